@@ -1,0 +1,376 @@
+"""Jitted equations of motion of TLAM, FOAM, SFOAM and CFOAM (Section 3).
+
+Every model is written in the generalised coordinates ``y = (theta, q1, q2)`` (size ``1 + 2n``) as
+
+    M(y) y'' = F(t, y, y'),        F_theta = tau + Q_theta,
+
+the form of Eq. (24) with the gyroscopic, stiffness and velocity terms moved to the right-hand side.
+``sm`` is the :class:`hubbeam.matrices.SystemMatrices` namedtuple (tip-mass terms included).
+
+* FOAM, Eqs. (25)-(34) without the Delta terms, with M_thq1 = -q2^T R^T and
+  M_thq2 = V2 + q1^T R (reproduction note 2).
+* TLAM: FOAM without the underlined ``D`` terms of Eqs. (25), (31), (32).
+* SFOAM, Eq. (40): q1 held at zero and Q_theta deleted.
+* CFOAM: Lagrange's equations of the exact kinetic energy (Eqs. 8-9) of the deformation field
+  u = w1 + wc, v = w2 (Eq. 2-3), derived in ``docs/cfoam.md``. With the rotating-frame position
+  ``(X, Y) = (rA + x + f1 q1 - q2^T S q2 / 2, f2 q2)`` of every mass point, its Jacobian
+  ``J = dr/dy`` (rotating components) and the velocity-only part ``b`` of its acceleration,
+
+      M = Jh e e^T + sum_k w_k J_k^T J_k,   F = tau e - K y - sum_k w_k J_k^T b_k,
+
+  summed over the point cloud (Gauss nodes of the beam and the tip mass).
+
+The kernels only use loops over small arrays: for the 5 to 20 modes of this study explicit loops
+beat BLAS calls, and nothing is allocated per call except the small linear solve's work arrays.
+"""
+
+import numpy as np
+
+from hubbeam.core.jit import kernel
+from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
+
+TLAM = 0
+FOAM = 1
+SFOAM = 2
+CFOAM = 3
+MODEL_IDS = {"TLAM": TLAM, "FOAM": FOAM, "SFOAM": SFOAM, "CFOAM": CFOAM}
+
+
+@kernel
+def free_dofs(model, kind, n):
+    """Indices of ``y`` that are integrated: theta unless prescribed, q1 unless SFOAM."""
+    count = 2 * n + 1
+    if kind == PRESCRIBED:
+        count -= 1
+    if model == SFOAM:
+        count -= n
+    free = np.empty(count, dtype=np.int64)
+    k = 0
+    if kind != PRESCRIBED:
+        free[k] = 0
+        k += 1
+    if model != SFOAM:
+        for i in range(n):
+            free[k] = 1 + i
+            k += 1
+    for i in range(n):
+        free[k] = 1 + n + i
+        k += 1
+    return free
+
+
+@kernel
+def _quad(A, a, b, n, off_a, off_b):
+    """a[off_a:off_a+n]^T A b[off_b:off_b+n]."""
+    s = 0.0
+    for i in range(n):
+        ai = a[off_a + i]
+        if ai != 0.0:
+            row = 0.0
+            for j in range(n):
+                row += A[i, j] * b[off_b + j]
+            s += ai * row
+    return s
+
+
+@kernel
+def _foam_system(model, y, v, tau, sm, M, F):
+    """Mass matrix and force of FOAM (Eqs. 24-34), TLAM (no D terms) or SFOAM (Eq. 40)."""
+    n = sm.M1.shape[0]
+    o1 = 1
+    o2 = 1 + n
+    cD = 0.0 if model == TLAM else 1.0
+    thd = v[0]
+    thd2 = thd * thd
+
+    # M_thth, Eq. (25)
+    m00 = sm.Jh + sm.Jb + _quad(sm.M1, y, y, n, o1, o1) + _quad(sm.M2, y, y, n, o2, o2)
+    for i in range(n):
+        m00 += 2.0 * sm.V1[i] * y[o1 + i]
+    m00 -= cD * _quad(sm.D, y, y, n, o2, o2)
+    M[0, 0] = m00
+
+    for i in range(n):
+        # M_thq1 = -(R q2)^T (note 2), M_thq2 = V2 + q1^T R (Eq. 27)
+        rq2 = 0.0
+        q1r = 0.0
+        for j in range(n):
+            rq2 += sm.R[i, j] * y[o2 + j]
+            q1r += y[o1 + j] * sm.R[j, i]
+        M[0, o1 + i] = -rq2
+        M[o1 + i, 0] = -rq2
+        M[0, o2 + i] = sm.V2[i] + q1r
+        M[o2 + i, 0] = sm.V2[i] + q1r
+        for j in range(n):
+            M[o1 + i, o1 + j] = sm.M1[i, j]
+            M[o2 + i, o2 + j] = sm.M2[i, j]
+            M[o1 + i, o2 + j] = 0.0
+            M[o2 + i, o1 + j] = 0.0
+
+    # Q_theta, Eq. (32)
+    q_theta = _quad(sm.M1, y, v, n, o1, o1) + _quad(sm.M2, y, v, n, o2, o2)
+    for i in range(n):
+        q_theta += sm.V1[i] * v[o1 + i]
+    q_theta -= cD * _quad(sm.D, y, v, n, o2, o2)
+    q_theta *= -2.0 * thd
+    F[0] = tau + q_theta
+
+    for i in range(n):
+        # q1 row: Q_q1 - K_q1q1 q1 - 2 thd G_q1q2 q2d, Eqs. (29), (30), (33)
+        f1 = thd2 * sm.V1[i]
+        # q2 row: -K_q2q2 q2 - 2 thd G_q2q1 q1d, Eqs. (29), (31), (34)
+        f2 = 0.0
+        for j in range(n):
+            f1 += -(sm.K1[i, j] - thd2 * sm.M1[i, j]) * y[o1 + j] + 2.0 * thd * sm.R[i, j] * v[o2 + j]
+            f2 += (-(sm.K2[i, j] - thd2 * sm.M2[i, j] + cD * thd2 * sm.D[i, j]) * y[o2 + j]
+                   - 2.0 * thd * sm.R[j, i] * v[o1 + j])
+        F[o1 + i] = f1
+        F[o2 + i] = f2
+
+    if model == SFOAM:
+        # Eq. (40): q1 rows decoupled (held at zero by the caller), Q_theta deleted
+        for i in range(n):
+            M[0, o1 + i] = 0.0
+            M[o1 + i, 0] = 0.0
+            F[o1 + i] = 0.0
+        F[0] = tau
+
+
+@kernel
+def _cfoam_system(y, v, tau, sm, M, F):
+    """Mass matrix and force of CFOAM from the exact kinetic energy (see module docstring)."""
+    n = sm.M1.shape[0]
+    N = 1 + 2 * n
+    o1 = 1
+    o2 = 1 + n
+    thd = v[0]
+    thd2 = thd * thd
+    for i in range(N):
+        F[i] = 0.0
+        for j in range(N):
+            M[i, j] = 0.0
+    M[0, 0] = sm.Jh
+    Jx = np.empty(N)
+    Jy = np.empty(N)
+    Sq2 = np.empty(n)
+    for k in range(sm.x.shape[0]):
+        wk = sm.w[k]
+        if wk == 0.0:
+            continue
+        X = sm.rA + sm.x[k]
+        Y = 0.0
+        Xd = 0.0
+        Yd = 0.0
+        q2dSq2d = 0.0
+        half_q2Sq2 = 0.0
+        for i in range(n):
+            s = 0.0
+            sd = 0.0
+            for j in range(n):
+                s += sm.S[k, i, j] * y[o2 + j]
+                sd += sm.S[k, i, j] * v[o2 + j]
+            Sq2[i] = s
+            half_q2Sq2 += 0.5 * y[o2 + i] * s
+            q2dSq2d += v[o2 + i] * sd
+            X += sm.F1[k, i] * y[o1 + i]
+            Y += sm.F2[k, i] * y[o2 + i]
+            Xd += sm.F1[k, i] * v[o1 + i] - s * v[o2 + i]
+            Yd += sm.F2[k, i] * v[o2 + i]
+        X -= half_q2Sq2
+        # rotating-frame components of dr/dy (Jx, Jy) and of the velocity part of r''
+        Jx[0] = -Y
+        Jy[0] = X
+        for i in range(n):
+            Jx[o1 + i] = sm.F1[k, i]
+            Jy[o1 + i] = 0.0
+            Jx[o2 + i] = -Sq2[i]
+            Jy[o2 + i] = sm.F2[k, i]
+        bx = -q2dSq2d - 2.0 * thd * Yd - thd2 * X
+        by = 2.0 * thd * Xd - thd2 * Y
+        for i in range(N):
+            F[i] -= wk * (Jx[i] * bx + Jy[i] * by)
+            wjx = wk * Jx[i]
+            wjy = wk * Jy[i]
+            for j in range(i, N):
+                M[i, j] += wjx * Jx[j] + wjy * Jy[j]
+    for i in range(N):
+        for j in range(i + 1, N):
+            M[j, i] = M[i, j]
+    for i in range(n):
+        for j in range(n):
+            F[o1 + i] -= sm.K1[i, j] * y[o1 + j]
+            F[o2 + i] -= sm.K2[i, j] * y[o2 + j]
+    F[0] += tau
+
+
+@kernel
+def mass_matrix_and_force(model, y, v, tau, sm, M, F):
+    """Fill the full ``M(y)`` and ``F(y, y')`` of ``model`` (``F_theta = tau + Q_theta``)."""
+    if model == CFOAM:
+        _cfoam_system(y, v, tau, sm, M, F)
+    else:
+        _foam_system(model, y, v, tau, sm, M, F)
+
+
+@kernel
+def impose_constraints(model, kind, mp, t, y, v, a):
+    """Overwrite the constrained entries of y, y', y'' and return the applied torque.
+
+    A prescribed maneuver sets theta and its rates from Eq. (43) and applies no torque of its own
+    (the torque it needs is an output); a torque maneuver applies Eq. (44). SFOAM holds q1 at zero.
+    """
+    n = (y.shape[0] - 1) // 2
+    tau = 0.0
+    if kind == PRESCRIBED:
+        th, thd, thdd = hub_motion(t, mp)
+        y[0] = th
+        v[0] = thd
+        a[0] = thdd
+    else:
+        tau = applied_torque(t, mp)
+    if model == SFOAM:
+        for i in range(n):
+            y[1 + i] = 0.0
+            v[1 + i] = 0.0
+            a[1 + i] = 0.0
+    return tau
+
+
+@kernel
+def _solve_spd(A, b):
+    """Solve A x = b in place (b <- x) for a small symmetric positive definite A (Cholesky).
+
+    ``A`` is overwritten by its Cholesky factor. Returns False if A is not positive definite.
+    """
+    N = A.shape[0]
+    for j in range(N):
+        d = A[j, j]
+        for k in range(j):
+            d -= A[j, k] * A[j, k]
+        if not d > 0.0:
+            return False
+        d = np.sqrt(d)
+        A[j, j] = d
+        for i in range(j + 1, N):
+            s = A[i, j]
+            for k in range(j):
+                s -= A[i, k] * A[j, k]
+            A[i, j] = s / d
+    for i in range(N):
+        s = b[i]
+        for k in range(i):
+            s -= A[i, k] * b[k]
+        b[i] = s / A[i, i]
+    for i in range(N - 1, -1, -1):
+        s = b[i]
+        for k in range(i + 1, N):
+            s -= A[k, i] * b[k]
+        b[i] = s / A[i, i]
+    return True
+
+
+@kernel
+def accelerations(model, kind, mp, t, y, v, sm, free, a_out):
+    """Accelerations of every coordinate at time ``t``; returns ``(torque, Q_theta)``.
+
+    ``y`` and ``v`` are full-length; their constrained entries are overwritten from the maneuver.
+    The free accelerations solve ``M_ff a_f = F_f - M_fc a_c`` with the constrained accelerations
+    ``a_c`` known. ``torque`` is the applied torque of Eq. (44), or the torque a prescribed motion
+    requires, ``(M a)_theta - Q_theta`` (the hub row of Eq. 24). SFOAM has no Q_theta (zero).
+    """
+    N = y.shape[0]
+    tau = impose_constraints(model, kind, mp, t, y, v, a_out)
+    M = np.empty((N, N))
+    F = np.empty(N)
+    mass_matrix_and_force(model, y, v, tau, sm, M, F)
+    nf = free.shape[0]
+    is_free = np.zeros(N, dtype=np.bool_)
+    for i in range(nf):
+        is_free[free[i]] = True
+    Mff = np.empty((nf, nf))
+    rhs = np.empty(nf)
+    for i in range(nf):
+        fi = free[i]
+        r = F[fi]
+        for j in range(N):
+            if not is_free[j]:
+                r -= M[fi, j] * a_out[j]
+        rhs[i] = r
+        for j in range(nf):
+            Mff[i, j] = M[fi, free[j]]
+    if not _solve_spd(Mff, rhs):
+        for i in range(nf):
+            rhs[i] = np.nan
+    for i in range(nf):
+        a_out[free[i]] = rhs[i]
+    q_theta = F[0] - tau
+    if kind == PRESCRIBED:
+        ma0 = 0.0
+        for j in range(N):
+            ma0 += M[0, j] * a_out[j]
+        tau = ma0 - q_theta
+    return tau, q_theta
+
+
+@kernel
+def energy(model, y, v, sm):
+    """Total mechanical energy T + U, with T = y'^T M(y) y' / 2 and U of Eq. (22)."""
+    N = y.shape[0]
+    n = (N - 1) // 2
+    M = np.empty((N, N))
+    F = np.empty(N)
+    mass_matrix_and_force(model, y, v, 0.0, sm, M, F)
+    e = 0.5 * (_quad(sm.K1, y, y, n, 1, 1) + _quad(sm.K2, y, y, n, 1 + n, 1 + n))
+    for i in range(N):
+        for j in range(N):
+            e += 0.5 * v[i] * M[i, j] * v[j]
+    return e
+
+
+@kernel
+def angular_momentum(model, y, v, sm):
+    """Angular momentum about the hub axis, p_theta = dT/d(theta_dot) = (M(y) y')_theta."""
+    N = y.shape[0]
+    M = np.empty((N, N))
+    F = np.empty(N)
+    mass_matrix_and_force(model, y, v, 0.0, sm, M, F)
+    p = 0.0
+    for j in range(N):
+        p += M[0, j] * v[j]
+    return p
+
+
+@kernel
+def tip_outputs(y, sm):
+    """Tip deflection v(L) = f2(L) q2, pure axial w1(L) = f1(L) q1 and wc(L) = -q2^T S(L) q2 / 2."""
+    n = sm.f1L.shape[0]
+    transverse = 0.0
+    axial = 0.0
+    for i in range(n):
+        transverse += sm.f2L[i] * y[1 + n + i]
+        axial += sm.f1L[i] * y[1 + i]
+    foreshortening = -0.5 * _quad(sm.SL, y, y, n, 1 + n, 1 + n)
+    return transverse, axial, foreshortening
+
+
+@kernel
+def high_order_terms(y, v, a, sm, dQ):
+    """The CFOAM terms FOAM drops (Eqs. 35-39, re-derived), along a state with accelerations ``a``.
+
+    Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the generalised force the high-order terms add
+    to FOAM's equations (theta, q1, q2 rows; accelerations moved to the right-hand side as in
+    Eqs. 38-39) and returns ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35).
+    """
+    N = y.shape[0]
+    Mc = np.empty((N, N))
+    Fc = np.empty(N)
+    Mf = np.empty((N, N))
+    Ff = np.empty(N)
+    _cfoam_system(y, v, 0.0, sm, Mc, Fc)
+    _foam_system(FOAM, y, v, 0.0, sm, Mf, Ff)
+    for i in range(N):
+        s = Fc[i] - Ff[i]
+        for j in range(N):
+            s -= (Mc[i, j] - Mf[i, j]) * a[j]
+        dQ[i] = s
+    return Mc[0, 0] - Mf[0, 0]

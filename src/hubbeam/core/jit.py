@@ -1,0 +1,23 @@
+"""The single place that decides how hubbeam's kernels are compiled.
+
+Every kernel is compiled with ``cache=True`` so that a second process loads machine code from
+disk instead of compiling again. ``hubbeam/__init__.py`` points ``NUMBA_CACHE_DIR`` at a directory
+keyed by a hash of the package sources, because numba's cache does not notice edits in other
+modules. Setting ``HUBBEAM_NO_JIT_CACHE=1`` disables the on-disk cache (useful when profiling
+compilation).
+"""
+
+import os
+
+import numba
+
+_CACHE = os.environ.get("HUBBEAM_NO_JIT_CACHE", "0") not in ("1", "true", "yes")
+
+# error_model="numpy": division by zero gives inf/nan like numpy instead of raising, which keeps
+# the kernels branch-free; divergence is detected explicitly by the integrator.
+JIT_OPTIONS = dict(cache=_CACHE, error_model="numpy", fastmath=False)
+
+
+def kernel(func):
+    """Decorate a numerical kernel with the project's jit options."""
+    return numba.njit(**JIT_OPTIONS)(func)

@@ -1,0 +1,43 @@
+# hubbeam: the two commands of README.md.
+#   make reproduce   set up .venv (if needed) and run the whole workflow with Snakemake
+#   make test        set up .venv (if needed) and run the test suite
+#   make lock        (maintainers) re-resolve pyproject.toml's dependencies into requirements.lock
+# Setup installs hubbeam (editable, with its `test` extra; `validation` is opt-in, see README) constrained to the
+# exact versions of requirements.lock; it reruns only when pyproject.toml or requirements.lock
+# change (stamp file .venv/.hubbeam-installed).
+
+PYTHON ?= python3
+VENV := .venv
+VENV_PYTHON := $(VENV)/bin/python
+STAMP := $(VENV)/.hubbeam-installed
+
+.PHONY: reproduce test setup lock
+
+reproduce: $(STAMP)
+	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/snakemake
+
+test: $(STAMP)
+	$(VENV_PYTHON) -m pytest -q
+
+setup: $(STAMP)
+
+$(VENV_PYTHON):
+	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info < (3, 11))' || \
+		{ echo "hubbeam needs Python >= 3.11; run: make PYTHON=/path/to/python3.11 ..." >&2; exit 1; }
+	$(PYTHON) -m venv $(VENV)
+
+$(STAMP): pyproject.toml requirements.lock | $(VENV_PYTHON)
+	$(VENV_PYTHON) -m pip install --quiet --constraint requirements.lock --editable ".[test]"
+	$(VENV_PYTHON) -m pip check
+	touch $@
+
+# Resolve in a throw-away environment (no constraints: this is where versions may move).
+LOCK_VENV := .lock-venv
+lock:
+	rm -rf $(LOCK_VENV)
+	$(PYTHON) -m venv $(LOCK_VENV)
+	$(LOCK_VENV)/bin/python -m pip install --quiet ".[test,validation]"
+	$(LOCK_VENV)/bin/python -m pip check
+	{ sed -n '/^#/p' requirements.lock; $(LOCK_VENV)/bin/python -m pip freeze --exclude hubbeam; } > requirements.lock.new
+	mv requirements.lock.new requirements.lock
+	rm -rf $(LOCK_VENV)

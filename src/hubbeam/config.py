@@ -1,0 +1,399 @@
+"""Load and validate the study configuration (``config/config.yaml``).
+
+Validation has two layers, reported together in one :class:`ConfigError`:
+
+1. the JSON schema ``workflow/schemas/config.schema.yaml`` (shape, types, ranges, allowed names);
+2. checks a schema cannot express: the tip mass lies on the beam (``0 <= l <= L``), every case
+   spans at least one output step, grids increase, numbers are finite, case names stay distinct
+   on case-insensitive file systems, keys are text, and no YAML file repeats a key.
+
+Every problem names the key path (``cases.fig05_tlam.maneuver.wf``), the offending value and
+what is allowed. :func:`case_settings` resolves one case with the defaults of ``numerics``.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import os
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any, NamedTuple
+
+import jsonschema
+import yaml
+
+SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+
+_TYPE_NAMES = {bool: "boolean", int: "integer", float: "decimal number", str: "text", dict: "mapping",
+               list: "list", type(None): "null"}
+
+
+class Problem(NamedTuple):
+    """One configuration problem: the dotted key path and what is wrong there."""
+
+    path: str
+    text: str
+
+    def __str__(self) -> str:
+        return f"{self.path}: {self.text}"
+
+
+class ConfigError(ValueError):
+    """The configuration is invalid; ``problems`` lists every problem found."""
+
+    def __init__(self, problems: Iterable[Problem], sources: Iterable[os.PathLike | str] = ()):
+        self.problems = list(problems)
+        names = ", ".join(str(source) for source in sources)
+        where = f" ({names})" if names else ""
+        count = f"{len(self.problems)} problems" if len(self.problems) > 1 else "1 problem"
+        lines = "\n".join(f"  - {problem}" for problem in self.problems)
+        super().__init__(f"invalid hubbeam configuration{where}, {count}:\n{lines}")
+
+
+def _load_schema() -> dict:
+    if not SCHEMA_PATH.is_file():
+        raise FileNotFoundError(
+            f"the config schema {SCHEMA_PATH} is missing: hubbeam runs from its source tree "
+            "(install it with `pip install -e .`)"
+        )
+    return yaml.safe_load(SCHEMA_PATH.read_text(encoding="utf-8"))
+
+
+SCHEMA = _load_schema()
+#: Case names double as wildcards and file names (``results/simulations/<case>.nc``).
+CASE_NAME_PATTERN = SCHEMA["properties"]["cases"]["propertyNames"]["pattern"].strip("^$")
+
+# "integer" means a YAML integer: 5.0 is rejected rather than silently used as an array size.
+_VALIDATOR = jsonschema.validators.extend(
+    jsonschema.Draft202012Validator,
+    type_checker=jsonschema.Draft202012Validator.TYPE_CHECKER.redefine(
+        "integer", lambda _checker, value: isinstance(value, int) and not isinstance(value, bool)
+    ),
+)(SCHEMA)
+
+
+# ---------------------------------------------------------------------------------------------
+# public API
+
+
+def read_config_file(path: os.PathLike | str) -> dict:
+    """Read one YAML (or JSON) config file, rejecting repeated keys and non-mapping content."""
+    data, problems = _read_file(Path(path))
+    if problems:
+        raise ConfigError(problems, [path])
+    return data
+
+
+def merge_configs(*configs: Mapping) -> dict:
+    """Merge configs left to right like Snakemake: mappings recursively, anything else replaced."""
+    merged: dict = {}
+    for config in configs:
+        _update(merged, copy.deepcopy(dict(config)))
+    return merged
+
+
+def load_config(paths: os.PathLike | str | Iterable[os.PathLike | str]) -> dict:
+    """Read, merge (later files override earlier ones) and validate one or several config files."""
+    paths = [paths] if isinstance(paths, (str, os.PathLike)) else list(paths)
+    contents, problems = [], []
+    for path in paths:
+        data, file_problems = _read_file(Path(path))
+        contents.append(data)
+        problems += file_problems
+    return _validate(merge_configs(*contents), problems, paths)
+
+
+def validate_config(cfg: Any, files: Iterable[os.PathLike | str] = ()) -> dict:
+    """Check ``cfg`` against the schema and the physical constraints; return it unchanged.
+
+    ``files`` are the files ``cfg`` was merged from (in Snakemake, ``workflow.configfiles``); they
+    are re-read only to detect repeated keys, which YAML loaders silently resolve (last one wins).
+    Raises :class:`ConfigError` listing every problem.
+    """
+    files = list(files)
+    problems = [problem for path in files for problem in _read_file(Path(path))[1]]
+    return _validate(cfg, problems, files)
+
+
+def case_names(cfg: Mapping) -> list[str]:
+    """Names of the configured cases, sorted."""
+    return sorted(cfg["cases"])
+
+
+def case_settings(cfg: Mapping, name: str) -> dict:
+    """The fully resolved case ``name`` of a validated config (JSON-serialisable).
+
+    Defaults: ``modes`` is ``numerics.modes``; without ``tip_mass`` the case has mass 0 at the tip;
+    a tip mass given without ``position`` sits at the tip, ``position = beam.length``.
+    """
+    cases = cfg["cases"]
+    if name not in cases:
+        raise ConfigError([Problem(f"cases.{name}", f"unknown case; defined: {', '.join(sorted(cases))}")])
+    case = cases[name]
+    tip_mass = case.get("tip_mass", {})
+    return {
+        "name": name,
+        "model": case["model"],
+        "maneuver": {key: value if key == "kind" else float(value) for key, value in case["maneuver"].items()},
+        "t_end": float(case["t_end"]),
+        "modes": int(case.get("modes", cfg["numerics"]["modes"])),
+        "tip_mass": {
+            "mass": float(tip_mass.get("mass", 0.0)),
+            "position": float(tip_mass.get("position", cfg["beam"]["length"])),
+        },
+    }
+
+
+# ---------------------------------------------------------------------------------------------
+# reading files
+
+
+def _read_file(path: Path) -> tuple[dict, list[Problem]]:
+    """Parse ``path``; return its mapping (empty when unusable) and the problems found."""
+    label = f"file {path}"
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as error:
+        return {}, [Problem(label, f"cannot be read ({error.strerror or error}); allowed: a readable YAML file")]
+    try:
+        root = yaml.compose(text, Loader=yaml.SafeLoader)
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        line = f" at line {mark.line + 1}" if mark else ""
+        return {}, [Problem(label, f"is not valid YAML{line}: {getattr(error, 'problem', None) or error}")]
+    if not isinstance(data, dict):
+        return {}, [Problem(label, f"got {_show(data)}; allowed: a mapping of keys at the top level")]
+    return data, _repeated_keys(root, [], path)
+
+
+def _repeated_keys(node: yaml.Node, parts: list, filename: Path) -> list[Problem]:
+    problems = []
+    if isinstance(node, yaml.MappingNode):
+        first_line: dict[str, int] = {}
+        for key_node, value_node in node.value:
+            key = str(key_node.value)
+            line = key_node.start_mark.line + 1
+            if key in first_line:
+                problems.append(Problem(_path(parts + [key]), f"repeated key in {filename} (lines "
+                                        f"{first_line[key]} and {line}); allowed: each key once per mapping"))
+            else:
+                first_line[key] = line
+            problems += _repeated_keys(value_node, parts + [key], filename)
+    elif isinstance(node, yaml.SequenceNode):
+        for index, item in enumerate(node.value):
+            problems += _repeated_keys(item, parts + [index], filename)
+    return problems
+
+
+def _update(config: dict, override: Mapping) -> None:
+    for key, value in override.items():
+        if isinstance(value, Mapping) and isinstance(config.get(key), dict):
+            _update(config[key], value)
+        else:
+            config[key] = value
+
+
+# ---------------------------------------------------------------------------------------------
+# validation
+
+
+def _validate(cfg: Any, problems: list[Problem], sources: list) -> dict:
+    found = [problem for error in _VALIDATOR.iter_errors(cfg) for problem in _explain(error)]
+    found += _physical_problems(cfg)
+    problems = list(dict.fromkeys(problems + sorted(found, key=lambda problem: problem.path)))
+    if problems:
+        raise ConfigError(problems, sources)
+    return cfg
+
+
+def _explain(error: jsonschema.ValidationError) -> list[Problem]:
+    """Turn one schema error into problems that name key, value and what is allowed."""
+    parts = list(error.absolute_path)
+    kind, instance = error.validator, error.instance
+    if "propertyNames" in error.absolute_schema_path:
+        return [Problem(_path(parts + [instance]),
+                        f"illegal case name {instance!r}; allowed: letters, digits, '_' and '-' "
+                        f"(pattern {CASE_NAME_PATTERN}), as the name becomes a file name")]
+    if kind == "required":
+        why = f"required when kind is {instance.get('kind')!r}" if "then" in error.absolute_schema_path else "required"
+        return [Problem(_path(parts + [key]), f"missing ({why}); allowed: {_allowed(parts + [key])}")
+                for key in error.validator_value if key not in instance]
+    if kind == "not":  # a maneuver key that belongs to the other kind
+        allowed_keys = ", ".join(["kind", *error.schema["required"]])
+        return [Problem(_path(parts + [key]), f"got {_show(instance[key])}; not allowed when kind is "
+                        f"{instance['kind']!r} (allowed keys: {allowed_keys})")
+                for key in error.validator_value["required"]]
+    if kind == "additionalProperties":
+        known = error.schema.get("properties", {})
+        return [Problem(_path(parts + [key]), f"unknown key (value {_show(instance[key])}); allowed keys "
+                        f"here: {', '.join(known)}") for key in instance if key not in known]
+    if kind == "minProperties":
+        return [Problem(_path(parts), "got no entries; allowed: at least one case")]
+    if kind == "uniqueItems":
+        return [Problem(_path(parts), f"got {_show(instance)}; allowed: distinct values")]
+    got = f"got {_show(instance)}"
+    if kind == "type":
+        got += f" ({_type_name(instance)})"
+        if isinstance(instance, str) and _parses_as_float(instance):
+            got += (", as YAML 1.1 reads an exponent form without a decimal point and a signed exponent "
+                    "as text (write 2.7667e+3 or 1.0e-9, not 2.7667e3 or 1e-9)")
+    return [Problem(_path(parts), f"{got}; allowed: {_allowed(parts)}")]
+
+
+def _physical_problems(cfg: Any) -> list[Problem]:
+    """Checks the schema cannot express; each runs only on values the schema accepted."""
+    if not isinstance(cfg, dict):
+        return []
+    problems = _non_finite_numbers_and_non_text_keys(cfg, [])
+    beam, numerics, eigen, cases = (_section(cfg, key) for key in ("beam", "numerics", "eigen", "cases"))
+    length = _number(beam.get("length"))
+    output_step = _number(numerics.get("output_step"))
+
+    max_steps, step_warning = _integer(numerics.get("max_steps")), _integer(numerics.get("step_warning"))
+    if max_steps is not None and step_warning is not None and step_warning > max_steps:
+        problems.append(Problem("numerics.step_warning",
+                                f"got {step_warning}; allowed: at most numerics.max_steps = {max_steps}"))
+
+    for grid_name in ("speeds", "positions"):
+        grid = _section(eigen, grid_name)
+        start, stop = _number(grid.get("start")), _number(grid.get("stop"))
+        if start is not None and stop is not None and stop <= start:
+            problems.append(Problem(f"eigen.{grid_name}.stop",
+                                    f"got {stop}; allowed: a value > eigen.{grid_name}.start = {start}"))
+        if grid_name == "positions" and stop is not None and length is not None and stop > length:
+            problems.append(Problem("eigen.positions.stop",
+                                    f"got {stop}; allowed: a position on the beam, <= beam.length = {length}"))
+
+    first_spelling: dict[str, str] = {}
+    for name, case in cases.items():
+        if isinstance(name, str):
+            other = first_spelling.setdefault(name.lower(), name)
+            if other != name:
+                problems.append(Problem(f"cases.{name}", f"case name {name!r} differs from {other!r} only in "
+                                        "letter case; allowed: names distinct ignoring case (they are file names)"))
+        if not isinstance(case, dict):
+            continue
+        t_end = _number(case.get("t_end"))
+        if t_end is not None and output_step is not None and t_end < output_step:
+            problems.append(Problem(f"cases.{name}.t_end", f"got {t_end}; allowed: at least one output step, "
+                                    f"t_end >= numerics.output_step = {output_step}"))
+        position = _number(_section(case, "tip_mass").get("position"))
+        if position is not None and length is not None and position > length:
+            problems.append(Problem(f"cases.{name}.tip_mass.position",
+                                    f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+    return problems
+
+
+def _non_finite_numbers_and_non_text_keys(node: Any, parts: list) -> list[Problem]:
+    problems = []
+    if isinstance(node, dict):
+        for key, value in node.items():
+            if not isinstance(key, str):
+                problems.append(Problem(_path(parts + [str(key)]), f"key {key!r} is read by YAML as {_type_name(key)}; "
+                                        f"allowed: text keys (write \"{key}\")"))
+            problems += _non_finite_numbers_and_non_text_keys(value, parts + [str(key)])
+    elif isinstance(node, list):
+        for index, item in enumerate(node):
+            problems += _non_finite_numbers_and_non_text_keys(item, parts + [index])
+    elif isinstance(node, float) and not math.isfinite(node):
+        problems.append(Problem(_path(parts), f"got {node}; allowed: a finite number"))
+    return problems
+
+
+# ---------------------------------------------------------------------------------------------
+# describing the schema and the values
+
+
+def _schema_at(parts: list) -> dict:
+    """The schema of the value at ``parts`` ($refs resolved, sibling keys kept), {} if none."""
+    node = _resolve(SCHEMA)
+    for part in parts:
+        if isinstance(part, int):
+            node = node.get("items", {})
+        elif part in node.get("properties", {}):
+            node = node["properties"][part]
+        elif isinstance(node.get("additionalProperties"), dict):
+            node = node["additionalProperties"]
+        else:
+            return {}
+        node = _resolve(node)
+    return node
+
+
+def _resolve(node: dict) -> dict:
+    if "$ref" not in node:
+        return node
+    target = SCHEMA
+    for key in node["$ref"].removeprefix("#/").split("/"):
+        target = target[key]
+    return {**_resolve(target), **{key: value for key, value in node.items() if key != "$ref"}}
+
+
+def _allowed(parts: list) -> str:
+    """What the schema allows at ``parts``, followed by the key's description."""
+    node = _schema_at(parts)
+    text = _allowed_values(node)
+    return f"{text} -- {node['description'].strip()}" if "description" in node else text
+
+
+def _allowed_values(node: dict) -> str:
+    if "enum" in node:
+        return "one of " + ", ".join(map(str, node["enum"]))
+    kind = node.get("type")
+    if kind in ("number", "integer"):
+        bounds = [f"{symbol} {node[key]}" for key, symbol in
+                  (("minimum", ">="), ("exclusiveMinimum", ">"), ("maximum", "<="), ("exclusiveMaximum", "<"))
+                  if key in node]
+        return ("an integer" if kind == "integer" else "a number") + (" " + " and ".join(bounds) if bounds else "")
+    if kind == "array":
+        return f"a list of at least {node.get('minItems', 0)} distinct values, each {_allowed_values(node['items'])}"
+    if kind == "object" and "properties" in node:
+        return "a mapping with keys " + ", ".join(node["properties"])
+    if kind == "object":
+        return "a mapping"
+    return json.dumps(node)
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, (dict, list)) or value is None:
+        text = json.dumps(value, default=str)
+        return text if len(text) <= 80 else text[:77] + "..."
+    return repr(value)
+
+
+def _type_name(value: Any) -> str:
+    return _TYPE_NAMES.get(type(value), type(value).__name__)
+
+
+def _parses_as_float(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _path(parts: list) -> str:
+    path = ""
+    for part in parts:
+        path += f"[{part}]" if isinstance(part, int) and not isinstance(part, bool) else f".{part}"
+    return path.lstrip(".") or "<top level>"
+
+
+def _section(mapping: Mapping, key: str) -> Mapping:
+    value = mapping.get(key)
+    return value if isinstance(value, dict) else {}
+
+
+def _number(value: Any) -> float | None:
+    """``value`` as float if it is a finite YAML number, else None (the schema reports it)."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+        return float(value)
+    return None
+
+
+def _integer(value: Any) -> int | None:
+    return value if isinstance(value, int) and not isinstance(value, bool) else None

@@ -1,0 +1,81 @@
+"""Physical parameters of the hub-beam system (Table 1 of the paper) and of the tip mass."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, fields
+
+#: BeamParameters field -> key of the ``beam`` section of the config.
+CONFIG_KEYS = {
+    "L": "length",
+    "rho": "density",
+    "A": "area",
+    "E": "youngs_modulus",
+    "I": "second_moment",
+    "Jh": "hub_inertia",
+    "rA": "hub_radius",
+}
+
+
+@dataclass(frozen=True)
+class BeamParameters:
+    """Uniform Euler-Bernoulli beam clamped radially to a rigid hub (Table 1, SI units).
+
+    ``L`` length (m), ``rho`` density (kg m-3), ``A`` cross-section area (m2), ``E`` Young's
+    modulus (N m-2), ``I`` second moment of area (m4), ``Jh`` hub inertia (kg m2), ``rA`` hub
+    radius (m). Values are stored as float and not checked here: user input is checked by
+    ``hubbeam.config``, and the functions that use the parameters check what they rely on.
+    """
+
+    L: float
+    rho: float
+    A: float
+    E: float
+    I: float  # noqa: E741 (the paper's symbol)
+    Jh: float
+    rA: float
+
+    def __post_init__(self) -> None:
+        _store_floats(self)
+
+    @classmethod
+    def from_config(cls, cfg: Mapping) -> BeamParameters:
+        """Build from a validated config (its ``beam`` section)."""
+        beam = cfg["beam"]
+        return cls(**{name: beam[key] for name, key in CONFIG_KEYS.items()})
+
+    @property
+    def rhoA(self) -> float:
+        """Mass per unit length, kg m-1."""
+        return self.rho * self.A
+
+    @property
+    def EI(self) -> float:
+        """Bending stiffness, N m2."""
+        return self.E * self.I
+
+    @property
+    def beam_mass(self) -> float:
+        """Mass of the beam, kg."""
+        return self.rhoA * self.L
+
+
+@dataclass(frozen=True)
+class TipMass:
+    """Point mass ``mass`` (kg) at distance ``position`` (m) from the clamped root, 0 <= l <= L."""
+
+    mass: float
+    position: float
+
+    def __post_init__(self) -> None:
+        _store_floats(self)
+
+    @classmethod
+    def from_case(cls, case: Mapping) -> TipMass:
+        """Build from a resolved case (``hubbeam.config.case_settings``)."""
+        return cls(**case["tip_mass"])
+
+
+def _store_floats(instance) -> None:
+    for field in fields(instance):
+        object.__setattr__(instance, field.name, float(getattr(instance, field.name)))

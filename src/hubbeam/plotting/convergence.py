@@ -1,0 +1,61 @@
+"""Beyond the paper: convergence of the FOAM spin-up (w_f = 5 rad/s) in the number of modes.
+
+(a) tip deflection v(L) for every mode count given; (b) its difference from the run with the most
+modes; (c) peak and residual amplitude of v(L) and (d) the dominant residual frequency (least-squares
+sinusoid of ``hubbeam.report.fit_sinusoid`` after t_f) against the number of modes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+
+from hubbeam.plotting.figures import (curve_label, mark_maneuver_end, maneuver_value, n_modes,
+                                      plot_series, require_datasets)
+from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
+from hubbeam.report import peak, residual_amplitude, residual_fit
+
+
+def plot(datasets: Mapping[str, xr.Dataset]):
+    require_datasets("convergence", datasets, "a run (e.g. fig06_foam_n1, n3, n5)")
+    ordered = sorted(datasets.items(), key=lambda item: n_modes(*item))
+    ref_case, ref = ordered[-1]
+    fig, axes = new_figure(2, 2, height=4.8, width=7.0, sharex=False)
+    ax = axes[0, 0]
+    for variant, (case, ds) in enumerate(ordered):
+        plot_series(ax, case, ds, "tip_transverse", variant=variant)
+    mark_maneuver_end(ax, ref_case, ref)
+    panel_title(ax, 0, f"Tip deflection, $\\omega_f$ = {maneuver_value(ref_case, ref, 'wf'):g} rad/s")
+    ax.set_ylabel(axis_label("$v(L)$", "m"))
+    ax.legend(loc="best")
+    ax = axes[0, 1]
+    for variant, (case, ds) in enumerate(ordered[:-1]):
+        diff = ds["tip_transverse"].interp(time=ref["time"]) - ref["tip_transverse"]
+        ax.plot(ref["time"].values, 1e3 * diff.values, **model_style(ds.attrs["model"], variant),
+                label=f"{curve_label(case, ds)} $-$ {curve_label(ref_case, ref)}")
+    mark_maneuver_end(ax, ref_case, ref)
+    panel_title(ax, 1, f"Difference from n = {n_modes(ref_case, ref)}")
+    ax.set_ylabel(axis_label("$\\Delta v(L)$", "mm"))
+    ax.legend(loc="best")
+    for row in axes[0]:
+        row.set_xlabel(axis_label("Time $t$", "s"))
+    counts = np.array([n_modes(c, d) for c, d in ordered])
+    ax = axes[1, 0]
+    ax.plot(counts, [peak(d["tip_transverse"].values) for _, d in ordered], "o-", label="peak $|v(L)|$")
+    ax.plot(counts, [residual_amplitude(c, d) for c, d in ordered], "s--",
+            label="residual amplitude ($t > t_f$)")
+    panel_title(ax, 2, "Tip deflection against mode count")
+    ax.set_ylabel(axis_label("$|v(L)|$", "m"))
+    ax.legend(loc="best")
+    ax = axes[1, 1]
+    frequencies = [residual_fit(c, d).omega / (2 * np.pi) for c, d in ordered]
+    ax.plot(counts, frequencies, "o-", label=f"{ref.attrs['model']}, dominant residual frequency")
+    panel_title(ax, 3, "Residual vibration frequency")
+    ax.set_ylabel(axis_label("$f$", "Hz"))
+    ax.legend(loc="best")
+    for ax in axes[1]:
+        ax.set_xlabel("Number of modes $n$")
+        ax.set_xticks(counts)
+    return fig

@@ -1,0 +1,209 @@
+"""Which simulation cases feed which figure, and the dataset helpers shared by the figure modules.
+
+A case belongs to a figure when its name starts with one of the figure's prefixes
+(:data:`FIGURE_CASE_PREFIXES`): naming a new case ``fig05_cfoam_wf2p8`` in the config is enough to
+put it on Fig. 5. The Snakemake rules and the report read the grouping from :func:`cases_for`.
+
+The figure functions receive ``{case name: xarray.Dataset}`` following the simulation dataset
+contract of ``docs/architecture.md`` and never touch files.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Iterable, Mapping
+
+import numpy as np
+import xarray as xr
+
+from hubbeam.plotting.style import mark_time, model_style
+
+#: figure (or table) key -> case-name prefixes whose datasets it draws.
+FIGURE_CASE_PREFIXES: dict[str, tuple[str, ...]] = {
+    "fig03": ("fig03_",),
+    "fig04": ("fig04_",),
+    "fig05": ("fig05_",),
+    "fig06": ("fig06_",),
+    "fig07": ("fig07_", "tab3_"),
+    "fig08": ("fig08_", "tab3_"),
+    "fig10": ("fig10_",),
+    "convergence": ("fig06_",),
+    "table3": ("tab3_",),
+}
+
+
+class FigureDataError(ValueError):
+    """A dataset handed to a figure lacks what the figure needs (names case and item)."""
+
+
+def cases_for(key: str, case_names: Iterable[str]) -> list[str]:
+    """The sorted case names that feed figure/table ``key`` (by name prefix).
+
+    Raises ``KeyError`` for an unknown key and ``FigureDataError`` when no case matches.
+    """
+    if key not in FIGURE_CASE_PREFIXES:
+        raise KeyError(f"unknown figure key {key!r}; allowed: {sorted(FIGURE_CASE_PREFIXES)}")
+    prefixes = FIGURE_CASE_PREFIXES[key]
+    selected = sorted(name for name in case_names if name.startswith(prefixes))
+    if not selected:
+        raise FigureDataError(
+            f"no case for {key}: the config needs at least one case named {' or '.join(p + '*' for p in prefixes)}")
+    return selected
+
+
+# --- dataset metadata ---------------------------------------------------------------------------
+
+def attr(case: str, ds: xr.Dataset, key: str):
+    """Global attribute ``key`` of ``case``'s dataset, or a FigureDataError naming both."""
+    try:
+        return ds.attrs[key]
+    except KeyError:
+        raise FigureDataError(f"dataset of case {case!r} has no attribute {key!r}") from None
+
+
+def variable(case: str, ds: xr.Dataset, name: str) -> xr.DataArray:
+    """Variable ``name`` of ``case``'s dataset, or a FigureDataError naming both."""
+    if name not in ds.data_vars:
+        raise FigureDataError(
+            f"dataset of case {case!r} has no variable {name!r} (has: {', '.join(sorted(ds.data_vars))})")
+    return ds[name]
+
+
+def model(case: str, ds: xr.Dataset) -> str:
+    return str(attr(case, ds, "model"))
+
+
+def maneuver(case: str, ds: xr.Dataset) -> dict:
+    """The ``maneuver`` attribute (JSON) as a dict, e.g. ``{"kind": "prescribed", "wf": 3.0, ...}``."""
+    raw = attr(case, ds, "maneuver")
+    try:
+        return json.loads(raw) if isinstance(raw, str) else dict(raw)
+    except (TypeError, ValueError) as err:
+        raise FigureDataError(f"case {case!r}: attribute 'maneuver' is not JSON: {raw!r}") from err
+
+
+def maneuver_value(case: str, ds: xr.Dataset, key: str) -> float:
+    """One number of the maneuver (``wf``, ``tf``, ``tau_max``), with a clear error if absent."""
+    value = maneuver(case, ds).get(key)
+    if value is None:
+        raise FigureDataError(f"case {case!r}: maneuver has no {key!r} ({maneuver(case, ds)})")
+    return float(value)
+
+
+def n_modes(case: str, ds: xr.Dataset) -> int:
+    return int(attr(case, ds, "n_modes"))
+
+
+def tip_mass(case: str, ds: xr.Dataset) -> float:
+    return float(attr(case, ds, "tip_mass_kg"))
+
+
+def tip_position(case: str, ds: xr.Dataset) -> float:
+    return float(attr(case, ds, "tip_position_m"))
+
+
+def diverged_at(case: str, ds: xr.Dataset) -> float | None:
+    """Time (s) at which the run diverged, or None when it did not."""
+    if int(attr(case, ds, "diverged")) != 1:
+        return None
+    t = float(ds.attrs.get("diverged_at_s", math.nan))
+    if math.isnan(t):  # flag set but no time recorded: last finite sample of the run
+        finite = np.isfinite(variable(case, ds, "tip_transverse").values)
+        t = float(ds["time"].values[finite][-1]) if finite.any() else float(ds["time"].values[0])
+    return t
+
+
+def curve_label(case: str, ds: xr.Dataset) -> str:
+    """``"FOAM, n = 5"``: the model and its mode count, as every legend names them."""
+    return f"{model(case, ds)}, n = {n_modes(case, ds)}"
+
+
+def select(datasets: Mapping[str, xr.Dataset], **criteria) -> dict[str, xr.Dataset]:
+    """The datasets whose model / maneuver numbers / tip mass equal ``criteria``.
+
+    Keys: ``model``, ``kind``, ``wf``, ``tau_max``, ``tf``, ``tip_mass``, ``n_modes``.
+    """
+    def value(case, ds, key):
+        if key == "model":
+            return model(case, ds)
+        if key == "n_modes":
+            return n_modes(case, ds)
+        if key == "tip_mass":
+            return tip_mass(case, ds)
+        return maneuver(case, ds).get(key)
+
+    def matches(case, ds):
+        for key, wanted in criteria.items():
+            got = value(case, ds, key)
+            if isinstance(wanted, float) or isinstance(got, float):
+                if got is None or not math.isclose(float(got), float(wanted), rel_tol=1e-9, abs_tol=1e-12):
+                    return False
+            elif got != wanted:
+                return False
+        return True
+
+    return {case: ds for case, ds in datasets.items() if matches(case, ds)}
+
+
+def distinct(datasets: Mapping[str, xr.Dataset], key: str) -> list[float]:
+    """Sorted distinct values of a maneuver number (``wf``, ``tau_max``) or ``tip_mass``."""
+    if key == "tip_mass":
+        values = {tip_mass(c, ds) for c, ds in datasets.items()}
+    else:
+        values = {maneuver_value(c, ds, key) for c, ds in datasets.items()}
+    return sorted(values)
+
+
+def require_datasets(key: str, datasets: Mapping[str, xr.Dataset], what: str) -> None:
+    """Fail when a figure got no dataset for ``what`` (e.g. 'a CFOAM run')."""
+    if not datasets:
+        raise FigureDataError(f"{key}: no dataset for {what}; add a matching case to the config")
+
+
+def format_number(x: float) -> str:
+    """Short number for titles and legends: 2.8, 0.1, 400 (no trailing zeros)."""
+    return f"{x:g}"
+
+
+# --- drawing shared by the time-series figures --------------------------------------------------
+
+def plot_series(ax, case: str, ds: xr.Dataset, name: str, *, label: str | None = None,
+                variant: int = 0, scale: float = 1.0, mode: int | None = None, **style):
+    """Draw ``name`` (or its ``mode`` column) of ``case`` against time in the model's style.
+
+    A diverged run is drawn up to the divergence time (its data are NaN after it) and marked.
+    """
+    da = variable(case, ds, name)
+    if mode is not None:
+        da = da.sel(mode=mode)
+    props = model_style(model(case, ds), variant) | style
+    line, = ax.plot(ds["time"].values, scale * da.values, label=label or curve_label(case, ds), **props)
+    t_div = diverged_at(case, ds)
+    if t_div is not None:
+        mark_time(ax, t_div, f"{model(case, ds)} diverged at t = {t_div:.2f} s")
+        line.set_label(f"{line.get_label()} (diverged)")
+    return line
+
+
+def mark_maneuver_end(ax, case: str, ds: xr.Dataset) -> None:
+    """Mark ``t_f``, the end of the spin-up or torque pulse (start of the residual vibration)."""
+    tf = maneuver(case, ds).get("tf")
+    if tf is not None:
+        mark_time(ax, float(tf), f"$t_f$ = {format_number(float(tf))} s")
+
+
+def limit_to_bounded(ax, datasets: Mapping[str, xr.Dataset], name: str, *, scale: float = 1.0,
+                     headroom: float = 3.0) -> None:
+    """Keep bounded runs readable next to diverged ones.
+
+    When the axes hold both diverged and non-diverged runs, the y-range is set to ``headroom``
+    times the largest excursion of the non-diverged runs; the diverged curve leaves the frame and
+    its divergence time is marked by :func:`plot_series`.
+    """
+    bounded = [ds for c, ds in datasets.items() if diverged_at(c, ds) is None]
+    if len(bounded) == len(datasets) or not bounded:
+        return
+    peak = max(float(np.nanmax(np.abs(ds[name].values))) for ds in bounded) * abs(scale)
+    if peak > 0:
+        ax.set_ylim(-headroom * peak, headroom * peak)

@@ -1,0 +1,263 @@
+"""Python API of a simulation: validate a case, run the jitted kernel, label the result.
+
+:func:`simulate` turns a resolved case (``hubbeam.config.case_settings``), the beam parameters
+(Table 1) and the ``numerics`` section of the config into the simulation dataset of
+``docs/architecture.md``. The hub-beam starts at rest and undeformed (``theta = 0``, ``q = 0``,
+all rates zero). The whole time integration runs in :func:`hubbeam.core.integrate.simulate_kernel`
+(Radau IIA of order 5, :mod:`hubbeam.core.radau`); a divergent run (tip deflection beyond
+``numerics.divergence_limit * L``, a non-finite state or a vanishing step size) is a result,
+recorded as ``diverged = 1`` with NaN outputs after ``diverged_at_s``.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+import time
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+
+from hubbeam.core import radau
+from hubbeam.core.eom import MODEL_IDS
+from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
+from hubbeam.core.maneuver import PRESCRIBED, TORQUE
+from hubbeam.matrices import SystemMatrices, assemble
+from hubbeam.parameters import CONFIG_KEYS, BeamParameters, TipMass
+from hubbeam.provenance import global_attributes
+
+LOG = logging.getLogger(__name__)
+
+#: maneuver kind -> (kernel id, parameters in the order of the kernel's ``mp`` array)
+MANEUVERS = {"prescribed": (PRESCRIBED, ("wf", "tf")), "torque": (TORQUE, ("tau_max", "tf"))}
+
+#: numerics keys a simulation reads
+NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
+
+#: variable -> (dimensions, UDUNITS units, long name)
+VARIABLES = {
+    "theta": (("time",), "rad", "hub angle theta"),
+    "theta_dot": (("time",), "rad s-1", "hub angular velocity"),
+    "theta_ddot": (("time",), "rad s-2", "hub angular acceleration"),
+    "torque": (("time",), "N m", "hub torque (applied by Eq. 44, or required by Eq. 43)"),
+    "Q_theta": (("time",), "N m", "velocity-dependent generalised force Q_theta (Eq. 32)"),
+    "q1": (("time", "mode"), "kg1/2 m", "axial modal coordinates q1 (unit modal mass modes)"),
+    "q2": (("time", "mode"), "kg1/2 m", "transverse modal coordinates q2 (unit modal mass modes)"),
+    "tip_transverse": (("time",), "m", "transverse tip deflection v(L) = f2(L) q2"),
+    "tip_axial": (("time",), "m", "pure axial tip deformation w1(L) = f1(L) q1"),
+    "tip_foreshortening": (("time",), "m", "tip foreshortening wc(L) = -q2' S(L) q2 / 2"),
+    "energy": (("time",), "J", "total mechanical energy T + U"),
+    "angular_momentum": (("time",), "kg m2 s-1", "angular momentum about the hub axis"),
+}
+#: CFOAM only: the high-order terms FOAM drops, along the CFOAM trajectory (note 5, Fig. 3)
+HIGH_ORDER_VARIABLES = {
+    "dM_thth": (("time",), "kg m2", "CFOAM minus FOAM rotary inertia M_thth (Eq. 35)"),
+    "dQ_theta": (("time",), "N m", "CFOAM minus FOAM generalised force of the theta equation"),
+    "dQ_q1": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM axial generalised force"),
+    "dQ_q2": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM transverse generalised force"),
+}
+
+INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
+
+
+class SimulationError(ValueError):
+    """A case or the numerics cannot be simulated; the message names key, value and allowed."""
+
+
+def check_case(case: Mapping) -> None:
+    """Raise :class:`SimulationError` unless ``case`` is a resolved case that can be run."""
+    name = case.get("name", "<unnamed>")
+    if case.get("model") not in MODEL_IDS:
+        raise SimulationError(f"cases.{name}.model = {case.get('model')!r}; "
+                              f"allowed: one of {', '.join(MODEL_IDS)}")
+    maneuver = case.get("maneuver")
+    kind = maneuver.get("kind") if isinstance(maneuver, Mapping) else None
+    if kind not in MANEUVERS:
+        raise SimulationError(f"cases.{name}.maneuver.kind = {kind!r}; "
+                              f"allowed: one of {', '.join(MANEUVERS)}")
+    for key in MANEUVERS[kind][1]:
+        value = maneuver.get(key)
+        if not _finite(value) or (key == "tf" and value <= 0.0):
+            raise SimulationError(f"cases.{name}.maneuver.{key} = {value!r}; allowed: a finite "
+                                  f"number{' > 0 s' if key == 'tf' else ''}")
+    if not _finite(case.get("t_end")) or case["t_end"] <= 0.0:
+        raise SimulationError(f"cases.{name}.t_end = {case.get('t_end')!r}; allowed: a number > 0 s")
+    modes = case.get("modes")
+    if not isinstance(modes, (int, np.integer)) or isinstance(modes, bool) or not 1 <= modes <= 20:
+        raise SimulationError(f"cases.{name}.modes = {modes!r}; allowed: an integer in 1..20")
+
+
+def check_numerics(numerics: Mapping) -> None:
+    """Raise :class:`SimulationError` unless ``numerics`` holds usable integrator settings."""
+    for key in NUMERICS_KEYS:
+        value = numerics.get(key)
+        integer = key in ("max_steps", "step_warning")
+        ok = (isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value >= 1
+              if integer else _finite(value) and value > 0.0)
+        if not ok:
+            allowed = "an integer >= 1" if integer else "a finite number > 0"
+            raise SimulationError(f"numerics.{key} = {value!r}; allowed: {allowed}")
+    if numerics["rtol"] < 100 * radau.UROUND:
+        raise SimulationError(f"numerics.rtol = {numerics['rtol']!r}; allowed: a number >= "
+                              f"{100 * radau.UROUND:.3g} (100 machine epsilons)")
+
+
+def output_times(t_end: float, output_step: float) -> np.ndarray:
+    """The uniform output grid ``0, dt, 2 dt, ...`` up to the last multiple of ``dt`` <= t_end."""
+    count = int(math.floor(t_end / output_step + 1e-9))
+    return np.arange(count + 1) * output_step
+
+
+def maneuver_parameters(maneuver: Mapping) -> tuple[int, np.ndarray]:
+    """Kernel id and parameter array ``mp`` of a maneuver (``[wf, tf]`` or ``[tau_max, tf]``)."""
+    kind, keys = MANEUVERS[maneuver["kind"]]
+    return kind, np.array([float(maneuver[key]) for key in keys])
+
+
+def kernel_matrices(sm: SystemMatrices) -> SystemMatrices:
+    """``sm`` with C-contiguous float64 arrays and float scalars (one compiled kernel for all)."""
+    return SystemMatrices(*(np.ascontiguousarray(value, dtype=np.float64) if np.ndim(value)
+                            else float(value) for value in sm))
+
+
+def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
+                  matrices: SystemMatrices | None = None) -> SystemMatrices:
+    """The system matrices of ``case``: ``matrices`` (checked) or assembled from ``params``."""
+    n = case["modes"]
+    if matrices is None:
+        tip = TipMass(**case["tip_mass"]) if case.get("tip_mass") else None
+        quadrature = numerics.get("quadrature_points")
+        if not isinstance(quadrature, (int, np.integer)) or quadrature < 1:
+            raise SimulationError(f"numerics.quadrature_points = {quadrature!r}; "
+                                  "allowed: an integer >= 1")
+        matrices = assemble(params, tip, n, int(quadrature))
+    if np.shape(matrices.K1) != (n, n):
+        raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.modes = {n}, but the "
+                              f"matrices given have {np.shape(matrices.K1)[0]} modes; allowed: "
+                              "matrices assembled with the case's number of modes")
+    return kernel_matrices(matrices)
+
+
+def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
+             matrices: SystemMatrices | None = None) -> xr.Dataset:
+    """Simulate one case from rest and return the labelled simulation dataset.
+
+    Parameters
+    ----------
+    case : a resolved case (``hubbeam.config.case_settings``): ``name``, ``model``, ``maneuver``
+        (``kind`` and ``wf, tf`` or ``tau_max, tf``), ``t_end``, ``modes``, ``tip_mass``.
+    params : Table 1 parameters.
+    numerics : the ``numerics`` section of the config (``rtol``, ``atol``, ``output_step``,
+        ``max_steps``, ``step_warning``, ``divergence_limit``, and ``quadrature_points`` when
+        ``matrices`` is not given).
+    matrices : the case's :class:`~hubbeam.matrices.SystemMatrices` (assembled if None).
+    """
+    check_case(case)
+    check_numerics(numerics)
+    sm = case_matrices(case, params, numerics, matrices)
+    kind, mp = maneuver_parameters(case["maneuver"])
+    t = output_times(case["t_end"], numerics["output_step"])
+    out = np.empty((t.size, n_output_columns(case["modes"])))
+    stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
+    start = time.perf_counter()
+    status, t_stop = simulate_kernel(
+        MODEL_IDS[case["model"]], kind, mp, sm, t, _stops(case, t), float(numerics["rtol"]),
+        float(numerics["atol"]), float(numerics["divergence_limit"]) * params.L,
+        int(numerics["max_steps"]), out, stats)
+    wall = time.perf_counter() - start
+    LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
+             "%d rhs calls, %d Jacobians, %d LU", case.get("name", "<unnamed>"), case["model"],
+             case["modes"], radau.STATUS_NAMES[status], t_stop, wall, stats[radau.ACCEPTED],
+             stats[radau.REJECTED], stats[radau.RHS_CALLS], stats[radau.JACOBIANS],
+             stats[radau.FACTORIZATIONS])
+    integrator = {"integrator": INTEGRATOR, "rtol": float(numerics["rtol"]),
+                  "atol": float(numerics["atol"]),
+                  **{name: int(value) for name, value in zip(radau.STAT_NAMES, stats)}}
+    return build_dataset(case, params, numerics, t, out, status, t_stop, integrator)
+
+
+def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: np.ndarray,
+                  out: np.ndarray, status: int, t_stop: float, integrator: Mapping) -> xr.Dataset:
+    """The simulation dataset of ``docs/architecture.md`` from the kernel's output array.
+
+    ``status`` and ``t_stop`` are the kernel's return values; ``integrator`` holds the integrator
+    attributes (name, tolerances and statistics, including ``n_steps``).
+    """
+    n = case["modes"]
+    columns = output_columns(n)
+    variables = dict(VARIABLES)
+    if case["model"] == "CFOAM":
+        variables |= HIGH_ORDER_VARIABLES
+    data_vars = {name: (dims, np.ascontiguousarray(out[:, columns[name]]),
+                        {"units": units, "long_name": long_name})
+                 for name, (dims, units, long_name) in variables.items()}
+    coords = {
+        "time": ("time", t, {"units": "s", "long_name": "time since the start of the maneuver",
+                             "standard_name": "time"}),
+        "mode": ("mode", np.arange(1, n + 1), {"units": "1", "long_name": "mode number"}),
+    }
+    diverged = status in (radau.DIVERGED, radau.NON_FINITE, radau.STEP_UNDERFLOW)
+    warnings = []
+    if integrator.get("n_steps", 0) > numerics["step_warning"]:
+        warnings.append(f"{integrator['n_steps']} accepted steps exceed numerics.step_warning = "
+                        f"{numerics['step_warning']}")
+    if status == radau.TOO_MANY_STEPS:
+        warnings.append(f"step budget numerics.max_steps = {numerics['max_steps']} exhausted at "
+                        f"t = {t_stop:.6g} s; outputs after it are NaN")
+    if diverged:
+        warnings.append(f"stopped as diverged ({radau.STATUS_NAMES[status]}) at t = {t_stop:.6g} s")
+    tip = case.get("tip_mass") or {"mass": 0.0, "position": params.L}
+    attributes = {
+        "model": case["model"],
+        "maneuver": dict(case["maneuver"]),
+        "tip_mass_kg": float(tip["mass"]),
+        "tip_position_m": float(tip["position"]),
+        "n_modes": int(n),
+        **{key: float(getattr(params, field)) for field, key in CONFIG_KEYS.items()},
+        "diverged": int(diverged),
+        "diverged_at_s": float(t_stop) if diverged else math.nan,
+        "integrator_status": radau.STATUS_NAMES[status],
+        "stopped_at_s": float(t_stop),
+        "output_step": float(numerics["output_step"]),
+        "divergence_limit": float(numerics["divergence_limit"]),
+        "max_steps": int(numerics["max_steps"]),
+        **integrator,
+        "warnings": "; ".join(warnings),
+    }
+    title = f"hubbeam simulation {case.get('name', '')}: {case['model']}, {json.dumps(dict(case['maneuver']))}"
+    attrs = global_attributes(title, case_config=dict(case), extra=attributes)
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def compile_kernels() -> float:
+    """Compile (or load from numba's cache) the simulation kernel; return the seconds it took.
+
+    One kernel serves every model, maneuver and mode count, so a workflow calls this once before
+    it starts parallel simulations (they then all load the cached machine code).
+    """
+    params = BeamParameters(L=1.0, rho=1.0, A=1.0, E=1.0, I=1.0, Jh=1.0, rA=0.1)
+    case = {"name": "compile_kernels", "model": "FOAM", "modes": 1, "t_end": 0.1,
+            "maneuver": {"kind": "prescribed", "wf": 0.1, "tf": 0.05},
+            "tip_mass": {"mass": 0.0, "position": 1.0}}
+    numerics = {"rtol": 1e-6, "atol": 1e-8, "output_step": 0.05, "max_steps": 1000,
+                "step_warning": 1000, "divergence_limit": 1.0, "quadrature_points": 8}
+    start = time.perf_counter()
+    sm = case_matrices(case, params, numerics)
+    kind, mp = maneuver_parameters(case["maneuver"])
+    t = output_times(case["t_end"], numerics["output_step"])
+    simulate_kernel(MODEL_IDS["FOAM"], kind, mp, sm, t, _stops(case, t), 1e-6, 1e-8, 1.0, 1000,
+                    np.empty((t.size, n_output_columns(1))), np.zeros(len(radau.STAT_NAMES), np.int64))
+    return time.perf_counter() - start
+
+
+def _stops(case: Mapping, t: np.ndarray) -> np.ndarray:
+    """Times no step may cross: the end of the maneuver, where Eq. 43/44 are only C^1 or C^3."""
+    tf = float(case["maneuver"]["tf"])
+    return np.array([tf]) if 0.0 < tf < t[-1] else np.empty(0)
+
+
+def _finite(value) -> bool:
+    return (isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
+            and math.isfinite(value))

@@ -1,0 +1,219 @@
+"""Fixture factory: small synthetic result files that follow the dataset contract exactly.
+
+The figures, tables, report and archive are built and tested against these files until (and
+besides) the real simulations exist. The signals are smooth closed-form stand-ins (a quasi-static
+lag during the maneuver plus a residual sinusoid of known amplitude and phase), not physics; what
+matters is that names, dimensions, units and attributes are those of ``docs/architecture.md``:
+a change of the contract breaks these tests on purpose.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+BEAM = {"length": 8.0, "density": 2.7667e3, "area": 7.2968e-5, "youngs_modulus": 6.8952e10,
+        "second_moment": 8.2189e-9, "hub_inertia": 200.0, "hub_radius": 0.5}
+
+#: contract variables: name -> (dims, units, long_name)
+SIMULATION_VARIABLES = {
+    "theta": (("time",), "rad", "hub angle"),
+    "theta_dot": (("time",), "rad s-1", "hub angular velocity"),
+    "theta_ddot": (("time",), "rad s-2", "hub angular acceleration"),
+    "torque": (("time",), "N m", "hub torque (applied or required)"),
+    "Q_theta": (("time",), "N m", "inertia torque Q_theta (Eq. 32)"),
+    "q1": (("time", "mode"), "kg1/2 m", "axial modal coordinates"),
+    "q2": (("time", "mode"), "kg1/2 m", "transverse modal coordinates"),
+    "tip_transverse": (("time",), "m", "transverse tip deflection v(L)"),
+    "tip_axial": (("time",), "m", "pure axial tip deformation w1(L)"),
+    "tip_foreshortening": (("time",), "m", "tip foreshortening wc(L)"),
+    "energy": (("time",), "J", "total mechanical energy"),
+    "angular_momentum": (("time",), "kg m2 s-1", "angular momentum about the hub axis"),
+}
+HIGH_ORDER_VARIABLES = {
+    "dM_thth": (("time",), "kg m2", "CFOAM minus FOAM rotary inertia"),
+    "dQ_theta": (("time",), "N m", "CFOAM minus FOAM velocity term of the theta equation"),
+    "dQ_q1": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM axial generalised force"),
+    "dQ_q2": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM transverse generalised force"),
+}
+
+
+def residual_signal(t, tf, amplitude, omega, phase):
+    """``amplitude * cos(omega (t - tf) + phase)`` for t > tf, 0 before: the known residual."""
+    return np.where(t > tf, amplitude * np.cos(omega * (t - tf) + phase), 0.0)
+
+
+def hub_motion(maneuver: dict, t: np.ndarray):
+    """theta, theta_dot, theta_ddot of Eq. 43 (note 1) or a rest-to-rest stand-in for Eq. 44."""
+    tf = maneuver["tf"]
+    s = np.clip(t, 0.0, tf)
+    if maneuver["kind"] == "prescribed":
+        wf = maneuver["wf"]
+        thd = wf / tf * s - wf / (2 * np.pi) * np.sin(2 * np.pi * s / tf)
+        thdd = np.where(t <= tf, wf / tf * (1 - np.cos(2 * np.pi * s / tf)), 0.0)
+        th = wf / tf * s**2 / 2 + wf * tf / (4 * np.pi**2) * (np.cos(2 * np.pi * s / tf) - 1)
+        th = th + np.where(t > tf, wf * (t - tf), 0.0)
+        return th, thd, thdd
+    tau = maneuver["tau_max"] * np.where(t <= tf, np.sin(2 * np.pi * s / tf), 0.0)
+    thdd = tau / 230.0
+    thd = np.cumsum(thdd) * (t[1] - t[0])
+    th = np.cumsum(thd) * (t[1] - t[0])
+    return th, thd, thdd
+
+
+def simulation_dataset(case: str, spec: dict, *, n_modes: int | None = None, t_end: float | None = None,
+                       dt: float = 0.05, residual: tuple[float, float, float] | None = None,
+                       diverge_at: float | None = None, high_order: bool | None = None) -> xr.Dataset:
+    """A contract-conforming simulation dataset for ``case`` with configuration ``spec``.
+
+    ``residual = (amplitude, omega, phase)`` fixes the residual vibration of the tip deflection
+    after t_f; ``diverge_at`` makes a diverged run (NaN from that time on, ``diverged = 1``);
+    ``high_order`` adds the CFOAM variables (default: when the model is CFOAM).
+    """
+    n = n_modes or spec.get("modes", 5)
+    t_end = t_end or spec["t_end"]
+    man = spec["maneuver"]
+    model = spec["model"]
+    t = np.round(np.arange(0.0, t_end + dt / 2, dt), 10)
+    th, thd, thdd = hub_motion(man, t)
+    tf = man["tf"]
+    amp, omega, phase = residual or (0.01 * (1 + (model == "TLAM")), 2.9, 0.3)
+    quasi_static = -0.02 * thdd / max(np.max(np.abs(thdd)), 1e-12) * (1 + (model == "TLAM"))
+    tip = quasi_static + residual_signal(t, tf, amp, omega, phase)
+    if diverge_at is not None:
+        tip = tip * np.exp(np.clip(t - tf, 0, None) * 0.3)
+    shape = 1.0 / np.arange(1, n + 1) ** 3
+    q2 = np.outer(tip / 0.35, shape)
+    q1 = np.outer(-1e-4 * tip**2 - 1e-5 * thd**2, shape)
+    data = {
+        "theta": th, "theta_dot": thd, "theta_ddot": thdd,
+        "torque": 230.0 * thdd,
+        "Q_theta": np.zeros_like(t) if model == "SFOAM" else -0.01 * thd * np.gradient(tip, t),
+        "q1": q1, "q2": q2,
+        "tip_transverse": tip, "tip_axial": q1.sum(axis=1) * 0.35,
+        "tip_foreshortening": -0.6 * tip**2 / 8.0,
+        "energy": 0.5 * 230.0 * thd**2, "angular_momentum": 230.0 * thd,
+    }
+    variables = dict(SIMULATION_VARIABLES)
+    if high_order if high_order is not None else model == "CFOAM":
+        data |= {"dM_thth": 1e-3 * tip**3, "dQ_theta": 1e-3 * thd * tip**2,
+                 "dQ_q1": np.outer(1e-2 * tip**2, shape), "dQ_q2": np.outer(1e-2 * thd * tip**2, shape)}
+        variables |= HIGH_ORDER_VARIABLES
+    if diverge_at is not None:
+        after = t >= diverge_at
+        for value in data.values():
+            value[after] = np.nan
+    ds = xr.Dataset(
+        {name: (dims, np.asarray(data[name], dtype=float), {"units": units, "long_name": long_name})
+         for name, (dims, units, long_name) in variables.items()},
+        coords={"time": ("time", t, {"units": "s", "long_name": "time", "standard_name": "time"}),
+                "mode": ("mode", np.arange(1, n + 1), {"units": "1", "long_name": "mode number"})},
+    )
+    tip_mass = spec.get("tip_mass", {"mass": 0.0, "position": BEAM["length"]})
+    ds.attrs = {
+        "model": model, "maneuver": json.dumps(man), "tip_mass_kg": float(tip_mass["mass"]),
+        "tip_position_m": float(tip_mass["position"]), "n_modes": n, **BEAM,
+        "diverged": int(diverge_at is not None),
+        "diverged_at_s": float("nan") if diverge_at is None else float(diverge_at),
+        "case_config": json.dumps(spec), "Conventions": "CF-1.11", "title": f"hubbeam case {case}",
+        "source": "tests/synthetic_results.py (synthetic stand-in)", "history": "synthetic",
+        "references": "Bai et al. 2009", "hubbeam_version": "0.1.0", "git_commit": "synthetic",
+        "n_steps": 100, "n_rejected": 0, "n_rhs": 800, "rtol": 1e-9, "atol": 1e-11, "warnings": "",
+    }
+    return ds
+
+
+def write_dataset(ds: xr.Dataset, path: Path) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    ds.to_netcdf(path, engine="netcdf4", format="NETCDF4")
+    return path
+
+
+CONFIG_FILE = Path(__file__).resolve().parents[1] / "config" / "config.yaml"
+
+
+def paper_cases() -> dict[str, dict]:
+    """The cases of the project's ``config/config.yaml`` (so the fixtures follow the config)."""
+    import yaml
+
+    return yaml.safe_load(CONFIG_FILE.read_text())["cases"]
+
+
+def write_simulations(directory: Path, cases: dict[str, dict] | None = None, *, dt: float = 0.05,
+                      n_modes: int | None = None, overrides: dict[str, dict] | None = None) -> dict[str, Path]:
+    """Write ``<directory>/<case>.nc`` for every case (default: all cases of the paper).
+
+    TLAM at 3.5 rad/s and TLAM with 0.5 kg diverge (as the paper says they fail); ``overrides``
+    passes extra keyword arguments of :func:`simulation_dataset` per case.
+    """
+    cases = cases or paper_cases()
+    overrides = {"fig05_tlam_wf3p5": {"diverge_at": 41.3}, "fig10_tlam_mt0p5": {"diverge_at": 44.0},
+                 **(overrides or {})}
+    paths = {}
+    for case, spec in cases.items():
+        kwargs = {"dt": dt, "n_modes": n_modes and min(n_modes, spec.get("modes", n_modes))}
+        kwargs |= overrides.get(case, {})
+        paths[case] = write_dataset(simulation_dataset(case, spec, **kwargs), Path(directory) / f"{case}.nc")
+    return paths
+
+
+def write_eigen(directory: Path, n_modes: int = 5, n_quad: int = 24) -> dict[str, Path]:
+    """The eigen-analysis products on small grids, written by :mod:`hubbeam.eigen` itself:
+    ``eigen/{k22,critical_speeds,campbell}.nc`` and ``tables/{table2,critical_speeds}.csv``."""
+    from hubbeam import eigen
+    from hubbeam.parameters import BeamParameters
+
+    directory = Path(directory)
+    params = BeamParameters.from_config({"beam": BEAM})
+    masses, positions, speeds = [0.0, 0.1, 0.5], np.linspace(0.0, 8.0, 5), np.linspace(0.0, 4.0, 9)
+    datasets = {
+        "k22": eigen.k22_sweep(params, masses, positions, speeds, n_modes, n_quad),
+        "critical_speeds": eigen.critical_speed_sweep(params, masses, positions, n_modes, 20.0, n_quad),
+        "campbell": eigen.campbell(params, masses, speeds, n_modes, n_quad),
+    }
+    paths = {name: write_dataset(ds, directory / "eigen" / f"{name}.nc") for name, ds in datasets.items()}
+    (directory / "tables").mkdir(parents=True, exist_ok=True)
+    paths["table2"] = directory / "tables" / "table2.csv"
+    eigen.table2(params, 1.0, n_modes, n_quad).to_csv(paths["table2"], index=False)
+    paths["critical_speeds_csv"] = directory / "tables" / "critical_speeds.csv"
+    eigen.critical_speed_table(params, masses, n_modes, 20.0, n_quad).to_csv(
+        paths["critical_speeds_csv"], index=False)
+    return paths
+
+
+# --- running a workflow script without Snakemake ----------------------------------------------
+
+REPO = Path(__file__).resolve().parents[1]
+SCRIPTS = REPO / "workflow" / "scripts"
+
+
+class Section(dict):
+    """Stand-in for Snakemake's named lists: attribute access, ``items()``, iteration over values."""
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def __iter__(self):
+        return iter(self.values())
+
+    def __getitem__(self, key):
+        return list(self.values())[key] if isinstance(key, int) else super().__getitem__(key)
+
+
+def run_script(name: str, *, input=None, output=None, params=None, log=None) -> None:
+    """Execute ``workflow/scripts/<name>`` with a ``snakemake`` object as Snakemake would
+    (the log goes to ``log`` or, by default, beside the first output)."""
+    import runpy
+    from types import SimpleNamespace
+
+    output = dict(output or {})
+    log = log or str(Path(next(iter(output.values()))).with_suffix(".log"))
+    snakemake = SimpleNamespace(input=Section(input or {}), output=Section(output),
+                                params=Section(params or {}), log=Section({"log": log}))
+    runpy.run_path(str(SCRIPTS / name), init_globals={"snakemake": snakemake}, run_name="__snakemake__")

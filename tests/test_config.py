@@ -1,0 +1,401 @@
+"""Config loading and validation: every kind of bad input is reported with key, value and what is
+allowed; the Snakefile stops on a bad config before any rule; a new case needs no code change."""
+
+from __future__ import annotations
+
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from hubbeam.config import (
+    CASE_NAME_PATTERN,
+    SCHEMA,
+    ConfigError,
+    case_names,
+    case_settings,
+    load_config,
+    read_config_file,
+    validate_config,
+)
+from hubbeam.paper import TABLE1
+from hubbeam.parameters import BeamParameters, TipMass
+
+
+def set_at(cfg: dict, dotted: str, value) -> None:
+    *parents, last = dotted.split(".")
+    for key in parents:
+        cfg = cfg[key]
+    cfg[last] = value
+
+
+def delete_at(cfg: dict, dotted: str) -> None:
+    *parents, last = dotted.split(".")
+    for key in parents:
+        cfg = cfg[key]
+    del cfg[last]
+
+
+def problems_of(cfg: dict, files=()) -> list[str]:
+    with pytest.raises(ConfigError) as caught:
+        validate_config(cfg, files=files)
+    message = str(caught.value)
+    assert all(str(problem) in message for problem in caught.value.problems)
+    return [str(problem) for problem in caught.value.problems]
+
+
+def assert_reported(problems: list[str], path: str, *fragments: str) -> None:
+    """One problem starts with the key path and contains every fragment (value, what is allowed)."""
+    matching = [problem for problem in problems if problem.startswith(f"{path}: ")]
+    assert matching, f"no problem reported at {path}: {problems}"
+    assert any(all(fragment in problem for fragment in fragments) for problem in matching), matching
+
+
+# ---------------------------------------------------------------------------------------------
+# the study config
+
+
+def test_study_config_is_valid_and_transcribes_table1(study_config):
+    assert validate_config(study_config) is study_config
+    assert BeamParameters.from_config(study_config) == BeamParameters(**TABLE1)
+    params = BeamParameters.from_config(study_config)
+    assert params.rhoA == TABLE1["rho"] * TABLE1["A"]
+    assert params.EI == TABLE1["E"] * TABLE1["I"]
+
+
+def test_case_settings_fill_in_numerics_defaults(study_config):
+    length = study_config["beam"]["length"]
+    plain = case_settings(study_config, "fig04_foam")
+    assert plain == {"name": "fig04_foam", "model": "FOAM",
+                     "maneuver": {"kind": "prescribed", "wf": 3.0, "tf": 30.0}, "t_end": 50.0,
+                     "modes": study_config["numerics"]["modes"],
+                     "tip_mass": {"mass": 0.0, "position": length}}
+    assert case_settings(study_config, "fig06_foam_n1")["modes"] == 1
+    assert TipMass.from_case(case_settings(study_config, "fig10_tlam_mt0p5")) == TipMass(0.5, 8.0)
+
+    study_config["cases"]["mid_mass"] = {"model": "TLAM", "maneuver": {"kind": "torque", "tau_max": 5.0, "tf": 2.0},
+                                         "t_end": 3.0, "tip_mass": {"mass": 0.2}}
+    validate_config(study_config)
+    assert case_settings(study_config, "mid_mass")["tip_mass"] == {"mass": 0.2, "position": length}
+
+
+def test_unknown_case_names_the_defined_ones(study_config):
+    with pytest.raises(ConfigError, match=r"cases\.nope: unknown case; defined: .*fig04_foam"):
+        case_settings(study_config, "nope")
+
+
+def test_case_names_are_sorted_and_usable_as_wildcards(study_config):
+    names = case_names(study_config)
+    assert names == sorted(study_config["cases"])
+    assert all(re.fullmatch(CASE_NAME_PATTERN, name) for name in names)
+
+
+# ---------------------------------------------------------------------------------------------
+# one kind of bad value at a time: (key path, bad value, fragments the problem must contain)
+
+BAD_VALUES = [
+    ("beam.length", 0.0, ["got 0.0", "allowed: a number > 0"]),
+    ("beam.length", -8.0, ["got -8.0", "> 0"]),
+    ("beam.density", -2.7e3, ["got -2700.0", "> 0"]),
+    ("beam.area", 0, ["got 0", "> 0"]),
+    ("beam.youngs_modulus", 0.0, ["got 0.0", "> 0"]),
+    ("beam.second_moment", -8.2e-9, ["got -8.2e-09", "> 0"]),
+    ("beam.hub_inertia", -1.0, ["got -1.0", ">= 0"]),
+    ("beam.hub_radius", -0.5, ["got -0.5", ">= 0"]),
+    ("beam.length", "eight", ["got 'eight' (text)", "a number > 0"]),
+    ("beam.length", math.inf, ["got inf", "a finite number"]),
+    ("numerics.atol", math.nan, ["got nan", "a finite number"]),
+    ("numerics.rtol", "1e-9", ["got '1e-9' (text)", "write 2.7667e+3 or 1.0e-9", "a number > 0 and < 1"]),
+    ("numerics.rtol", 1.0, ["got 1.0", "< 1"]),
+    ("numerics.modes", 0, ["got 0", "an integer >= 1 and <= 20"]),
+    ("numerics.modes", 21, ["got 21", "an integer >= 1 and <= 20"]),
+    ("numerics.modes", 5.0, ["got 5.0 (decimal number)", "an integer >= 1"]),
+    ("numerics.quadrature_points", 1, ["got 1", "an integer >= 2"]),
+    ("numerics.output_step", 0.0, ["got 0.0", "> 0"]),
+    ("numerics.step_warning", 2_000_000, ["got 2000000", "at most numerics.max_steps = 1000000"]),
+    ("cases.fig06_foam_n3.modes", 25, ["got 25", "an integer >= 1 and <= 20"]),
+    ("cases.fig06_foam_n3.modes", True, ["got True (boolean)", "an integer"]),
+    ("cases.fig04_foam.t_end", 0.0, ["got 0.0", "> 0"]),
+    ("cases.fig04_foam.t_end", 0.005, ["got 0.005", "at least one output step", "numerics.output_step = 0.01"]),
+    ("cases.fig04_foam.maneuver.tf", 0.0, ["got 0.0", "> 0"]),
+    ("cases.fig04_foam.maneuver.wf", -3.0, ["got -3.0", "> 0"]),
+    ("cases.fig04_foam.maneuver.wf", "fast", ["got 'fast' (text)", "a number > 0"]),
+    ("cases.tab3_foam_tau50.maneuver.tf", -10.0, ["got -10.0", "> 0"]),
+    ("cases.tab3_foam_tau50.maneuver.tau_max", 0.0, ["got 0.0", "> 0"]),
+    ("cases.fig04_foam.model", "FEM", ["got 'FEM'", "one of TLAM, FOAM, SFOAM, CFOAM"]),
+    ("cases.fig04_foam.maneuver.kind", "ramp", ["got 'ramp'", "one of prescribed, torque"]),
+    ("cases.fig04_foam.maneuver", "spin-up", ["got 'spin-up' (text)", "a mapping with keys kind, wf, tf, tau_max"]),
+    ("cases.fig10_foam_mt0p1.tip_mass.position", 8.5, ["got 8.5", "0 <= position <= beam.length = 8.0"]),
+    ("cases.fig10_foam_mt0p1.tip_mass.position", -0.1, ["got -0.1", ">= 0"]),
+    ("cases.fig10_foam_mt0p1.tip_mass.mass", -0.1, ["got -0.1", "a number >= 0"]),
+    ("eigen.positions.stop", 9.0, ["got 9.0", "<= beam.length = 8.0"]),
+    ("eigen.speeds.start", 5.0, ["got 4.0", "> eigen.speeds.start = 5.0"]),
+    ("eigen.speeds.num", 1, ["got 1", "an integer >= 2"]),
+    ("eigen.tip_masses", [0.1, 0.1], ["got [0.1, 0.1]", "distinct values"]),
+    ("eigen.tip_masses", [], ["got []", "a list of at least 1"]),
+]
+
+
+def reported_path(dotted: str) -> str:
+    """Where the problem is reported: a grid's start/stop clash is reported at its stop."""
+    return "eigen.speeds.stop" if dotted == "eigen.speeds.start" else dotted
+
+
+@pytest.mark.parametrize("dotted, value, fragments", BAD_VALUES, ids=[f"{d}={v!r}" for d, v, _ in BAD_VALUES])
+def test_bad_value_names_key_value_and_allowed(study_config, dotted, value, fragments):
+    set_at(study_config, dotted, value)
+    assert_reported(problems_of(study_config), reported_path(dotted), *fragments)
+
+
+def test_bad_list_item_is_named_by_index(study_config):
+    study_config["eigen"]["tip_masses"] = [0.0, -0.1]
+    assert_reported(problems_of(study_config), "eigen.tip_masses[1]", "got -0.1", ">= 0")
+
+
+def test_tip_mass_beyond_a_shortened_beam(study_config):
+    """The position bound is the configured length, not the paper's 8 m."""
+    study_config["beam"]["length"] = 6.0
+    problems = problems_of(study_config)
+    for name in ("fig10_foam_mt0p1", "fig10_tlam_mt0p5"):
+        assert_reported(problems, f"cases.{name}.tip_mass.position", "got 8.0", "beam.length = 6.0")
+
+
+MISSING = [
+    ("beam.length", ["missing (required)", "a number > 0"]),
+    ("numerics", ["missing (required)", "a mapping with keys modes"]),
+    ("cases.fig04_foam.t_end", ["missing (required)", "a number > 0"]),
+    ("cases.fig04_foam.model", ["missing (required)", "one of TLAM, FOAM, SFOAM, CFOAM"]),
+    ("cases.fig04_foam.maneuver.wf", ["missing (required when kind is 'prescribed')", "a number > 0"]),
+    ("cases.fig04_foam.maneuver.kind", ["missing (required)", "one of prescribed, torque"]),
+    ("cases.tab3_foam_tau50.maneuver.tau_max", ["missing (required when kind is 'torque')"]),
+    ("cases.tab3_foam_tau50.maneuver.tf", ["missing (required when kind is 'torque')"]),
+    ("eigen.speeds.num", ["missing (required)", "an integer >= 2"]),
+]
+
+
+@pytest.mark.parametrize("dotted, fragments", MISSING, ids=[d for d, _ in MISSING])
+def test_missing_key_is_named(study_config, dotted, fragments):
+    delete_at(study_config, dotted)
+    assert_reported(problems_of(study_config), dotted, *fragments)
+
+
+@pytest.mark.parametrize("case, key, kind, allowed", [
+    ("tab3_foam_tau50", "wf", "torque", "kind, tau_max, tf"),
+    ("fig04_foam", "tau_max", "prescribed", "kind, wf, tf"),
+])
+def test_key_of_the_other_maneuver_kind(study_config, case, key, kind, allowed):
+    study_config["cases"][case]["maneuver"][key] = 3.0
+    assert_reported(problems_of(study_config), f"cases.{case}.maneuver.{key}",
+                    "got 3.0", f"not allowed when kind is '{kind}'", allowed)
+
+
+@pytest.mark.parametrize("section, key, allowed", [
+    ("cases.fig04_foam", "t_ned", "model, maneuver, t_end, modes, tip_mass"),
+    ("beam", "colour", "length, density, area"),
+    ("cases.fig10_foam_mt0p1.tip_mass", "offset", "mass, position"),
+])
+def test_unknown_key_is_named(study_config, section, key, allowed):
+    set_at(study_config, f"{section}.{key}", 1.5)
+    assert_reported(problems_of(study_config), f"{section}.{key}", "unknown key (value 1.5)", allowed)
+
+
+@pytest.mark.parametrize("name", ["bad name", "a/b", "x.y", "case*", "é"])
+def test_illegal_case_name(study_config, name):
+    study_config["cases"][name] = study_config["cases"]["fig04_foam"]
+    assert_reported(problems_of(study_config), f"cases.{name}", f"illegal case name {name!r}",
+                    "letters, digits, '_' and '-'")
+
+
+def test_case_names_differing_only_in_letter_case(study_config):
+    study_config["cases"]["FIG04_foam"] = study_config["cases"]["fig04_foam"]
+    assert_reported(problems_of(study_config), "cases.FIG04_foam", "'FIG04_foam' differs from 'fig04_foam'",
+                    "distinct ignoring case")
+
+
+def test_case_name_read_as_a_number(study_config):
+    study_config["cases"][2024] = study_config["cases"]["fig04_foam"]
+    assert_reported(problems_of(study_config), "cases.2024", "read by YAML as integer", 'write "2024"')
+
+
+def test_no_cases(study_config):
+    study_config["cases"] = {}
+    assert_reported(problems_of(study_config), "cases", "got no entries", "at least one case")
+
+
+def test_every_problem_in_one_message(study_config):
+    set_at(study_config, "cases.fig05_tlam_wf2p8.maneuver.wf", -2.8)
+    set_at(study_config, "cases.fig10_foam_mt0p5.tip_mass.position", 8.01)
+    delete_at(study_config, "numerics.rtol")
+    with pytest.raises(ConfigError) as caught:
+        validate_config(study_config)
+    message = str(caught.value)
+    assert message.startswith("invalid hubbeam configuration, 3 problems:")
+    for fragment in ("cases.fig05_tlam_wf2p8.maneuver.wf: got -2.8",
+                     "cases.fig10_foam_mt0p5.tip_mass.position: got 8.01",
+                     "numerics.rtol: missing"):
+        assert fragment in message
+
+
+def test_top_level_must_be_a_mapping():
+    assert_reported(problems_of([1, 2]), "<top level>", "got [1, 2] (list)", "a mapping with keys beam")
+
+
+# ---------------------------------------------------------------------------------------------
+# files: repeated keys, syntax, merging
+
+
+def write(path: Path, text: str) -> Path:
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_repeated_yaml_keys_are_rejected(tmp_path, repo_root):
+    extra = write(tmp_path / "extra.yaml", "cases:\n"
+                  "  spin: {model: FOAM, maneuver: {kind: prescribed, wf: 1.0, tf: 5.0}, t_end: 9.0}\n"
+                  "  spin: {model: TLAM, maneuver: {kind: prescribed, wf: 1.0, tf: 5.0}, t_end: 9.0}\n"
+                  "numerics:\n  rtol: 1.0e-8\n  rtol: 1.0e-6\n")
+    with pytest.raises(ConfigError) as caught:
+        load_config([repo_root / "config" / "config.yaml", extra])
+    problems = [str(problem) for problem in caught.value.problems]
+    assert_reported(problems, "cases.spin", f"repeated key in {extra} (lines 2 and 3)", "each key once")
+    assert_reported(problems, "numerics.rtol", "(lines 5 and 6)")
+    with pytest.raises(ConfigError, match="repeated key"):
+        read_config_file(extra)
+
+
+def test_repeated_keys_found_even_when_the_merged_config_is_valid(tmp_path, study_config):
+    """Snakemake's YAML loader keeps the last of two repeated keys; the Snakefile passes the files."""
+    extra = write(tmp_path / "extra.yaml", "numerics:\n  modes: 3\n  modes: 4\n")
+    study_config["numerics"]["modes"] = 4
+    assert_reported(problems_of(study_config, files=[extra]), "numerics.modes", "repeated key")
+
+
+@pytest.mark.parametrize("text, fragment", [
+    ("beam: {length: 8.0\n", "is not valid YAML at line"),
+    ("- 1\n- 2\n", "got [1, 2]; allowed: a mapping of keys at the top level"),
+    ("", "got null"),
+])
+def test_unreadable_file_is_named(tmp_path, text, fragment):
+    path = write(tmp_path / "broken.yaml", text)
+    assert_reported(problems_of({}, files=[path]), f"file {path}", fragment)
+
+
+def test_missing_file_is_named(tmp_path):
+    with pytest.raises(ConfigError, match=r"file .*nowhere\.yaml: cannot be read"):
+        load_config(tmp_path / "nowhere.yaml")
+
+
+def test_extra_file_adds_a_case_and_overrides_like_snakemake(tmp_path, repo_root):
+    extra = write(tmp_path / "extra.yaml", "numerics:\n  modes: 3\ncases:\n"
+                  "  my_spinup:\n    model: FOAM\n    maneuver: {kind: prescribed, wf: 1.5, tf: 5.0}\n"
+                  "    t_end: 8.0\n    tip_mass: {mass: 0.2, position: 4.0}\n"
+                  "  fig04_foam: {t_end: 40.0}\n")
+    cfg = load_config([repo_root / "config" / "config.yaml", extra])
+    assert case_settings(cfg, "my_spinup") == {
+        "name": "my_spinup", "model": "FOAM", "maneuver": {"kind": "prescribed", "wf": 1.5, "tf": 5.0},
+        "t_end": 8.0, "modes": 3, "tip_mass": {"mass": 0.2, "position": 4.0}}
+    assert case_settings(cfg, "fig04_foam")["t_end"] == 40.0  # merged into the existing case
+    assert case_settings(cfg, "fig04_foam")["maneuver"] == {"kind": "prescribed", "wf": 3.0, "tf": 30.0}
+    assert case_settings(cfg, "fig06_foam_n1")["modes"] == 1  # a case's own modes win
+
+
+# ---------------------------------------------------------------------------------------------
+# documentation follows the schema
+
+
+def schema_keys(node: dict, prefix: str) -> list[str]:
+    keys = []
+    for key, child in node.get("properties", {}).items():
+        path = f"{prefix}.{key}" if prefix else key
+        target = child
+        if "$ref" in child:
+            target = SCHEMA["$defs"][child["$ref"].rsplit("/", 1)[-1]]
+        if child.get("$ref") == "#/$defs/grid" or "properties" not in target and "additionalProperties" not in target:
+            keys.append(path)
+        elif isinstance(target.get("additionalProperties"), dict):
+            case = SCHEMA["$defs"][target["additionalProperties"]["$ref"].rsplit("/", 1)[-1]]
+            keys += schema_keys(case, f"{path}.<name>")
+        else:
+            keys += schema_keys(target, path)
+    return keys
+
+
+def test_every_key_of_the_schema_has_a_description():
+    def walk(node, where):
+        for key, child in node.get("properties", {}).items():
+            assert "description" in child or "$ref" in child and "description" in SCHEMA["$defs"][
+                child["$ref"].rsplit("/", 1)[-1]], f"{where}.{key} has no description"
+            walk(child, f"{where}.{key}")
+    walk(SCHEMA, "")
+    for name, definition in SCHEMA["$defs"].items():
+        walk(definition, f"$defs.{name}")
+
+
+def test_readme_lists_every_config_key(repo_root):
+    readme = (repo_root / "README.md").read_text(encoding="utf-8")
+    keys = schema_keys(SCHEMA, "")
+    assert "cases.<name>.maneuver.tau_max" in keys and "eigen.speeds" in keys
+    missing = [key for key in keys if f"`{key}`" not in readme]
+    assert not missing, f"README.md does not describe {missing}"
+
+
+# ---------------------------------------------------------------------------------------------
+# the Snakefile
+
+
+def snakemake(repo_root: Path, workdir: Path, *args: str) -> subprocess.CompletedProcess:
+    """Run Snakemake on the repository's Snakefile in an empty working directory."""
+    command = [sys.executable, "-m", "snakemake", "--snakefile", str(repo_root / "Snakefile"),
+               "--directory", str(workdir), *args]
+    return subprocess.run(command, cwd=repo_root, capture_output=True, text=True, timeout=300)
+
+
+def test_snakefile_stops_on_a_bad_config_before_any_rule(tmp_path, repo_root):
+    bad = write(tmp_path / "bad.yaml", "cases:\n"
+                "  fig05_tlam_wf2p8: {maneuver: {wf: -2.8}}\n"
+                "  my_case: {model: FOAM, maneuver: {kind: torque, tau_max: 1.0, tf: 1.0}, t_end: 2.0}\n"
+                "  my_case: {model: FOAM, maneuver: {kind: torque, tau_max: 1.0, tf: 1.0}, t_end: 2.0}\n")
+    workdir = tmp_path / "work"
+    workdir.mkdir()
+    run = snakemake(repo_root, workdir, "--cores", "1", "--configfile",
+                    str(repo_root / "config" / "config.yaml"), str(bad))
+    output = run.stdout + run.stderr
+    assert run.returncode != 0
+    assert "invalid hubbeam configuration" in output
+    assert "cases.fig05_tlam_wf2p8.maneuver.wf: got -2.8; allowed: a number > 0" in output
+    assert f"cases.my_case: repeated key in {bad}" in output
+    assert "Traceback" not in output and 'File "' not in output
+    assert not (workdir / "results").exists()
+    assert "Building DAG" not in output and "Job stats" not in output
+
+
+needs_simulation_rule = pytest.mark.skipif(
+    not (Path(__file__).resolve().parents[1] / "workflow" / "rules" / "simulate.smk").exists(),
+    reason="workflow/rules/simulate.smk (the rule making results/simulations/<case>.nc) does not exist yet",
+)
+
+
+@needs_simulation_rule
+def test_dry_run_plans_every_case(tmp_path, repo_root, study_config):
+    run = snakemake(repo_root, tmp_path, "--dry-run", "--configfile", str(repo_root / "config" / "config.yaml"))
+    assert run.returncode == 0, run.stderr
+    output = run.stdout + run.stderr
+    assert "This was a dry-run" in output
+    for name in study_config["cases"]:
+        assert f"results/simulations/{name}.nc" in output
+
+
+@needs_simulation_rule
+def test_a_case_added_in_an_extra_config_file_builds_without_code_change(tmp_path, repo_root):
+    extra = write(tmp_path / "extra.yaml", yaml.safe_dump({"cases": {"my_spinup": {
+        "model": "SFOAM", "maneuver": {"kind": "prescribed", "wf": 1.0, "tf": 2.0}, "t_end": 3.0}}}))
+    workdir = tmp_path / "work"
+    workdir.mkdir()
+    run = snakemake(repo_root, workdir, "results/simulations/my_spinup.nc", "--dry-run",
+                    "--configfile", str(repo_root / "config" / "config.yaml"), str(extra))
+    assert run.returncode == 0, run.stderr
+    assert "results/simulations/my_spinup.nc" in run.stdout + run.stderr

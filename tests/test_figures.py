@@ -1,0 +1,172 @@
+"""Figures: case grouping, every figure renders from contract datasets, reproducible bytes,
+loud failures on missing data, divergence handling, labels with units."""
+
+from __future__ import annotations
+
+import hashlib
+
+import matplotlib.text
+import numpy as np
+import pytest
+from PIL import Image
+
+from hubbeam.io import ResultFileError
+from hubbeam.plotting import SIMULATION_FIGURES, cases_for, plotter, render
+from hubbeam.plotting.figures import FIGURE_CASE_PREFIXES, FigureDataError
+from hubbeam.plotting.style import styled, units_tex
+from synthetic_results import (paper_cases, run_script, simulation_dataset, write_eigen,
+                               write_simulations)
+from hubbeam.io import open_result
+
+
+@pytest.fixture(scope="module")
+def sims(tmp_path_factory):
+    return write_simulations(tmp_path_factory.mktemp("simulations"), dt=0.1)
+
+
+@pytest.fixture(scope="module")
+def datasets(sims):
+    return {case: open_result(path) for case, path in sims.items()}
+
+
+def group(datasets, key):
+    return {case: datasets[case] for case in cases_for(key, datasets)}
+
+
+def sha(path):
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+# --- which case goes where -----------------------------------------------------------------------
+
+def test_cases_are_grouped_by_name_prefix():
+    names = list(paper_cases())
+    assert cases_for("fig05", names) == ["fig05_foam_wf2p8", "fig05_foam_wf3p5", "fig05_tlam_wf2p8",
+                                         "fig05_tlam_wf3p5"]
+    assert cases_for("table3", names) == sorted(n for n in names if n.startswith("tab3_"))
+    # Fig. 8 compares with the FOAM torque runs of Table 3
+    assert set(cases_for("table3", names)) < set(cases_for("fig08", names))
+    for key in FIGURE_CASE_PREFIXES:
+        assert cases_for(key, names), key
+
+
+def test_a_new_case_joins_a_figure_by_its_name():
+    names = list(paper_cases()) + ["fig05_cfoam_wf2p8"]
+    assert "fig05_cfoam_wf2p8" in cases_for("fig05", names)
+    assert "fig05_cfoam_wf2p8" not in cases_for("fig06", names)
+
+
+def test_unknown_figure_and_empty_group_are_clear_errors():
+    with pytest.raises(KeyError, match="fig99.*allowed"):
+        cases_for("fig99", paper_cases())
+    with pytest.raises(FigureDataError, match="fig05_"):
+        cases_for("fig05", ["fig04_foam"])
+
+
+# --- rendering -----------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("key", sorted(SIMULATION_FIGURES))
+def test_every_simulation_figure_renders_pdf_and_png(key, datasets, tmp_path):
+    pdf, png = render(key, group(datasets, key), tmp_path / f"{key}.pdf")
+    assert pdf.read_bytes().startswith(b"%PDF") and pdf.stat().st_size > 5000
+    with Image.open(png) as image:
+        assert image.format == "PNG" and min(image.size) > 300
+
+
+def test_rerendering_gives_identical_files_without_volatile_metadata(datasets, tmp_path):
+    first = render("fig05", group(datasets, "fig05"), tmp_path / "a" / "fig05.pdf")
+    second = render("fig05", group(datasets, "fig05"), tmp_path / "b" / "fig05.pdf")
+    assert [sha(p) for p in first] == [sha(p) for p in second]
+    pdf = first[0].read_bytes()
+    assert b"CreationDate" not in pdf and b"Producer" not in pdf
+    with Image.open(first[1]) as image:
+        assert "Software" not in image.info
+
+
+def test_every_axis_has_units_and_every_legend_names_model_and_modes(datasets):
+    with styled():
+        fig = plotter("fig10")(group(datasets, "fig10"))
+    for ax in fig.axes:
+        assert ax.get_ylabel().endswith("(m)")
+        labels = [text.get_text() for text in ax.get_legend().get_texts()]
+        assert {"TLAM, n = 5", "FOAM, n = 5"} <= {label.removesuffix(" (diverged)") for label in labels}
+    assert fig.axes[-1].get_xlabel() == "Time $t$ (s)"
+
+
+def test_diverged_run_is_drawn_up_to_divergence_and_marked(datasets):
+    runs = group(datasets, "fig05")
+    t_div = runs["fig05_tlam_wf3p5"].attrs["diverged_at_s"]
+    with styled():
+        fig = plotter("fig05")(runs)
+    texts = [t.get_text() for t in fig.findobj(matplotlib.text.Text)]
+    assert f"TLAM diverged at t = {t_div:.2f} s" in texts
+    ax = fig.axes[1]  # transverse response at 3.5 rad/s
+    line = next(l for l in ax.get_lines() if l.get_label() == "TLAM, n = 5 (diverged)")
+    x, y = line.get_data()
+    assert np.isfinite(y).any() and x[np.isfinite(y)].max() < t_div
+    # the bounded FOAM run stays readable: the frame is set by it, not by the diverging TLAM run
+    foam_peak = np.nanmax(np.abs(runs["fig05_foam_wf3p5"]["tip_transverse"].values))
+    assert ax.get_ylim()[1] == pytest.approx(3 * foam_peak)
+
+
+def test_fig03_fails_naming_a_missing_high_order_variable():
+    spec = paper_cases()["fig03_cfoam_n1"]
+    ds = simulation_dataset("fig03_cfoam_n1", spec, t_end=5.0, dt=0.5).drop_vars("dQ_q2")
+    with styled(), pytest.raises(FigureDataError, match="fig03_cfoam_n1.*'dQ_q2'"):
+        plotter("fig03")({"fig03_cfoam_n1": ds})
+
+
+def test_fig06_labels_the_mode_normalisation(datasets):
+    with styled():
+        fig = plotter("fig06")(group(datasets, "fig06"))
+    assert "unit modal mass" in fig.axes[0].get_title(loc="left")
+    assert fig.axes[0].get_ylabel() == "$q_{2,i}$ (kg$^{1/2}$ m)"
+
+
+@pytest.mark.parametrize("units, tex", [("m", "m"), ("rad s-1", "rad s$^{-1}$"), ("kg m2", "kg m$^{2}$"),
+                                        ("kg1/2 m", "kg$^{1/2}$ m"), ("N kg-1/2", "N kg$^{-1/2}$"),
+                                        ("1", "-")])
+def test_units_are_typeset(units, tex):
+    assert units_tex(units) == tex
+
+
+# --- the Snakemake scripts -----------------------------------------------------------------------
+
+def test_figure_script_writes_pdf_and_png(sims, tmp_path):
+    cases = cases_for("fig04", sims)
+    out = tmp_path / "fig04.pdf"
+    run_script("figure_simulation.py", input={"datasets": [str(sims[c]) for c in cases]},
+               output={"pdf": str(out), "png": str(out.with_suffix(".png"))},
+               params={"figure": "fig04", "cases": cases})
+    assert out.is_file() and out.with_suffix(".png").is_file()
+
+
+@pytest.mark.parametrize("damage", ["missing", "corrupt", "truncated"])
+def test_figure_script_fails_loudly_naming_a_bad_dataset(damage, sims, tmp_path):
+    cases = cases_for("fig04", sims)
+    files = [str(sims[c]) for c in cases]
+    bad = tmp_path / "fig04_foam.nc"
+    if damage == "corrupt":
+        bad.write_bytes(b"this is not a netCDF file" * 100)
+    elif damage == "truncated":
+        bad.write_bytes(sims["fig04_foam"].read_bytes()[:2000])
+    files[cases.index("fig04_foam")] = str(bad)
+    out = tmp_path / "fig04.pdf"
+    with pytest.raises(ResultFileError, match=str(bad)):
+        run_script("figure_simulation.py", input={"datasets": files}, output={"pdf": str(out)},
+                   params={"figure": "fig04", "cases": cases})
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("key, module, inputs", [
+    ("fig09", "fig09", {"k22": "k22", "critical": "critical_speeds"}),
+    ("campbell", "campbell", {"campbell": "campbell", "critical": "critical_speeds"}),
+    ("critical_map", "critical_map", {"critical": "critical_speeds"}),
+])
+def test_eigen_figure_script_passes_named_inputs(key, module, inputs, tmp_path_factory, tmp_path):
+    eigen = write_eigen(tmp_path_factory.mktemp("eigen"), n_modes=3, n_quad=16)
+    out = tmp_path / f"{key}.pdf"
+    run_script("figure_eigen.py",
+               input={name: str(eigen[stem]) for name, stem in inputs.items()} | {"style": "x", "code": []},
+               output={"pdf": str(out)}, params={"module": module})
+    assert out.is_file() and out.with_suffix(".png").is_file()

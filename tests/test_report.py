@@ -1,0 +1,259 @@
+"""Tables, claims and the reproduction report, on contract datasets with known content."""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+
+import numpy as np
+import pytest
+
+from hubbeam import paper
+from hubbeam.io import open_result
+from hubbeam.plotting import cases_for
+from hubbeam.report import (CLAIM_COLUMNS, ClaimInputError, Results, claims, evaluate,
+                            fit_sinusoid, markdown_to_html, printed_tolerance, read_claims,
+                            reproduction_markdown, wrap_phase, write_claims)
+from hubbeam.tables import Column, Table, table1, table2, table3, to_latex, to_markdown, write_table
+from synthetic_results import paper_cases, run_script, write_eigen, write_simulations
+
+#: residual vibration after the torque pulse: FOAM (amplitude, omega, phase at t_f) and an SFOAM
+#: that leads it by 0.45 rad with a 24 % smaller amplitude (the paper's statement, as input)
+FOAM_RESIDUAL = (0.05, 2.6, 0.3)
+SFOAM_RESIDUAL = (0.05 * 0.76, 2.6, 0.3 + 0.45)
+
+
+@pytest.fixture(scope="module")
+def results_dir(tmp_path_factory):
+    root = tmp_path_factory.mktemp("results")
+    sims = write_simulations(root / "simulations", dt=0.05, overrides={
+        "tab3_foam_tau200": {"residual": FOAM_RESIDUAL},
+        "fig08_sfoam_tau200": {"residual": SFOAM_RESIDUAL},
+        "fig05_tlam_wf2p8": {"residual": (0.30, 2.9, 0.0)},
+        "fig05_foam_wf2p8": {"residual": (0.003, 2.9, 0.0)},
+    })
+    eigen = write_eigen(root, n_modes=5, n_quad=24)
+    return root, sims, eigen
+
+
+@pytest.fixture(scope="module")
+def results(results_dir):
+    _, sims, eigen = results_dir
+    return Results(sims, eigen["table2"], eigen["critical_speeds_csv"])
+
+
+@pytest.fixture(scope="module")
+def claim_rows(results):
+    return evaluate(results)
+
+
+def by_id(rows):
+    return {row["id"]: row for row in rows}
+
+
+# --- measures ------------------------------------------------------------------------------------
+
+def test_sinusoid_fit_recovers_amplitude_frequency_and_phase_off_the_spectral_grid():
+    t = np.arange(10.0, 30.0, 0.01)
+    y = 0.02 + 0.3 * np.cos(2.377 * (t - 10.0) - 2.9) + 0.01 * np.cos(17.0 * t)
+    fit = fit_sinusoid(t, y, 10.0)
+    assert fit.omega == pytest.approx(2.377, rel=1e-4)
+    assert fit.amplitude == pytest.approx(0.3, rel=1e-3)
+    assert wrap_phase(fit.phase + 2.9) == pytest.approx(0.0, abs=2e-3)
+
+
+def test_sinusoid_fit_needs_a_uniform_grid():
+    with pytest.raises(ValueError, match="uniform"):
+        fit_sinusoid([0, 1, 3, 4, 5, 6, 7, 8, 9], np.zeros(9), 0.0)
+
+
+@pytest.mark.parametrize("angle, wrapped", [(0.5, 0.5), (2 * math.pi + 0.5, 0.5), (-math.pi, math.pi),
+                                            (3 * math.pi / 2, -math.pi / 2)])
+def test_wrap_phase(angle, wrapped):
+    assert wrap_phase(angle) == pytest.approx(wrapped)
+
+
+@pytest.mark.parametrize("printed, tolerance", [("2.60", 0.005 / 2.6), ("1.91", 0.005 / 1.91),
+                                                ("100", 0.5), ("1500", 50 / 1500), ("0.45", 0.005 / 0.45),
+                                                ("0.4635", 1e-3), ("6.24e-03", 1e-3), ("2.62e+00", 0.005 / 2.62)])
+def test_tolerance_is_the_printed_precision(printed, tolerance):
+    assert printed_tolerance(printed) == pytest.approx(tolerance)
+
+
+# --- claims --------------------------------------------------------------------------------------
+
+def test_claims_csv_has_every_claim_and_no_empty_computed_value(claim_rows, tmp_path):
+    path = write_claims(claim_rows, tmp_path / "claims.csv")
+    with path.open(newline="") as handle:
+        reader = csv.DictReader(handle)
+        assert tuple(reader.fieldnames) == CLAIM_COLUMNS
+        rows = list(reader)
+    assert [row["id"] for row in rows] == [claim.id for claim in claims()]
+    assert len({row["id"] for row in rows}) == len(rows)
+    for row in rows:
+        assert row["computed"] != "" and math.isfinite(float(row["computed"])), row["id"]
+        assert row["verdict"] in ("agrees", "differs", "qualitative")
+        if row["verdict"] != "qualitative":
+            assert row["tolerance"] != "" and row["paper"] != ""
+
+
+def test_every_printed_number_has_a_claim(claim_rows):
+    papers = {row["paper"] for row in claim_rows}
+    printed = [*paper.TABLE3.values(), *paper.CRITICAL_SPEEDS_TLAM.values(),
+               *[v for values in paper.TABLE2.values() for v in values],
+               *paper.PEAK_TIP_DEFLECTION_WF2P8.values(), paper.RESIDUAL_RATIO_TLAM_FOAM_WF2P8,
+               paper.TRANSVERSE_AXIAL_PEAK_RATIO_WF5, paper.SFOAM_PHASE_LEAD_RAD_TAU200,
+               paper.SFOAM_AMPLITUDE_REDUCTION_PERCENT_TAU200, paper.Q_THETA_PERCENT_OF_TAU_MAX_400]
+    assert set(printed) <= papers
+
+
+def test_phase_lead_and_amplitude_reduction_are_measured_from_the_residual(claim_rows):
+    rows = by_id(claim_rows)
+    assert rows["sfoam_phase_lead_tau200"]["computed"] == pytest.approx(0.45, abs=1e-6)
+    assert rows["sfoam_amplitude_reduction_tau200"]["computed"] == pytest.approx(24.0, abs=1e-4)
+    assert rows["sfoam_phase_lead_tau200"]["verdict"] == "agrees"
+    assert rows["sfoam_amplitude_reduction_tau200"]["verdict"] == "agrees"
+
+
+def test_residual_ratio_and_divergence_flags_come_from_the_datasets(claim_rows, results):
+    rows = by_id(claim_rows)
+    # residual amplitudes 0.30 and 0.003 (sampled at 0.05 s, so peaks within 1 % of them)
+    assert rows["residual_ratio_tlam_foam_wf2p8"]["computed"] == pytest.approx(100.0, rel=0.02)
+    assert rows["tlam_diverges_wf3p5"]["computed"] == 1.0
+    assert rows["foam_bounded_wf3p5"]["computed"] == 0.0
+    assert rows["tlam_fails_mt0p5_wf2"]["computed"] == 1.0
+
+
+def test_table_claims_read_the_eigen_tables(claim_rows, results):
+    rows = by_id(claim_rows)
+    table2_rows = results.table2()
+    assert rows["table2_foam_f3"]["computed"] == table2_rows[2]["FOAM"]
+    assert rows["critical_speed_tlam_mt0p5"]["computed"] == results.critical_speed("TLAM", 0.5)
+    assert rows["critical_speed_tlam_mt0p5"]["paper"] == paper.CRITICAL_SPEEDS_TLAM[0.5]
+
+
+def test_verdict_follows_the_tolerance(claim_rows):
+    for row in claim_rows:
+        if row["verdict"] == "qualitative":
+            continue
+        if math.isnan(row["rel_diff"]):  # absolute claims: curves coincide
+            within = abs(row["computed"] - row["paper"]) <= row["tolerance"]
+        else:
+            assert row["rel_diff"] == pytest.approx((row["computed"] - row["paper"]) / abs(row["paper"]))
+            within = abs(row["rel_diff"]) <= row["tolerance"]
+        assert row["verdict"] == ("agrees" if within else "differs"), row["id"]
+
+
+def test_a_claim_without_its_run_fails_naming_what_is_missing(results_dir):
+    _, sims, eigen = results_dir
+    partial = {case: path for case, path in sims.items() if not case.startswith("fig08_sfoam_tau200")}
+    results = Results(partial, eigen["table2"], eigen["critical_speeds_csv"])
+    wanted = [c for c in claims() if c.id == "sfoam_phase_lead_tau200"]
+    with pytest.raises(ClaimInputError, match="fig08.*SFOAM.*200"):
+        evaluate(results, wanted)
+
+
+# --- tables --------------------------------------------------------------------------------------
+
+def test_table1_comes_from_the_config(study_config):
+    table = table1(study_config["beam"], [0.0, 0.1, 0.5, 0.1])
+    values = {row["symbol"]: row["value"] for row in table.rows}
+    assert values["L"] == study_config["beam"]["length"]
+    assert values["J_h"] == study_config["beam"]["hub_inertia"]
+    assert values["m_t"] == "0.1, 0.5"
+    assert "$J_h$" in to_latex(table)
+
+
+def test_table3_is_the_largest_q_theta_of_each_foam_torque_run(results_dir):
+    _, sims, _ = results_dir
+    runs = {c: open_result(sims[c]) for c in cases_for("fig08", sims)}  # includes SFOAM runs
+    table = table3(runs)
+    assert [row["tau_max"] for row in table.rows] == sorted(paper.TABLE3)
+    for row in table.rows:
+        q = runs[row["case"]]["Q_theta"].values
+        assert row["max_abs_Q_theta"] == np.nanmax(np.abs(q))
+        assert row["paper"] == paper.TABLE3[row["tau_max"]]
+        assert row["percent_of_tau_max"] == pytest.approx(100 * row["max_abs_Q_theta"] / row["tau_max"])
+
+
+def test_table_writers_round_trip_and_escape(tmp_path):
+    table = Table("Table 9", "A caption with 50 % & an_underscore.",
+                  (Column("x", "|x| (m)", "$|x|$ (m)", 3), Column("name", "Name", "Name", None)),
+                  ({"x": 1.23456789e-7, "name": "a_b"}, {"x": float("nan"), "name": "c"}))
+    csv_path, md_path, tex_path = write_table(table, tmp_path / "table9.csv")
+    assert csv_path.read_text().splitlines() == ["x,name", "1.23456789e-07,a_b", ",c"]
+    md = md_path.read_text()
+    assert "| \\|x\\| (m) | Name |" in md and "| 1.23×10^-7 | a_b |" in md and "| - | c |" in md
+    tex = tex_path.read_text()
+    assert "50 \\% \\& an\\_underscore" in tex and "$1.23\\times10^{-7}$ & a\\_b \\\\" in tex
+    assert to_markdown(table) == md and to_latex(table) == tex
+
+
+def test_table2_renders_the_eigen_csv(results_dir, tmp_path):
+    _, _, eigen = results_dir
+    table = table2(eigen["table2"], 1.0)
+    assert [row["mode"] for row in table.rows] == [1, 2, 3, 4, 5]
+    assert "Table 3's caption" in table.caption
+    assert "FOAM (1 rad/s), paper" in to_markdown(table)
+
+
+# --- the report ----------------------------------------------------------------------------------
+
+def test_report_scripts_write_claims_markdown_and_html(results_dir, tmp_path):
+    root, sims, eigen = results_dir
+    cases = sorted(sims)
+    claims_csv = tmp_path / "report" / "claims.csv"
+    run_script("report_claims.py", input={"datasets": [str(sims[c]) for c in cases],
+                                          "table2": str(eigen["table2"]),
+                                          "critical_speeds": str(eigen["critical_speeds_csv"])},
+               output={"claims": str(claims_csv)}, params={"cases": cases})
+    assert len(read_claims(claims_csv)) == len(claims())
+    figures = []
+    for key in ("fig04", "fig08"):
+        pdf = tmp_path / "figures" / f"{key}.pdf"
+        group = cases_for(key, sims)
+        run_script("figure_simulation.py", input={"datasets": [str(sims[c]) for c in group]},
+                   output={"pdf": str(pdf)}, params={"figure": key, "cases": group})
+        figures.append(str(pdf.with_suffix(".png")))
+    table_md = tmp_path / "tables" / "table2.md"
+    write_table(table2(eigen["table2"], 1.0), table_md.with_suffix(".csv"), csv=False)
+    out = {"markdown": str(tmp_path / "report" / "reproduction.md"),
+           "html": str(tmp_path / "report" / "reproduction.html")}
+    run_script("report_reproduction.py",
+               input={"claims": str(claims_csv), "figures": figures, "tables": [str(table_md)],
+                      "datasets": [str(sims[c]) for c in cases]},
+               output=out, params={"cases": cases, "numerics": {"rtol": 1e-9, "atol": 1e-11,
+                                                                 "output_step": 0.05, "quadrature_points": 64}})
+    md = (tmp_path / "report" / "reproduction.md").read_text()
+    assert "![Fig. 4: CFOAM against FOAM](../figures/fig04.png)" in md
+    assert all(f"\n{n}. " in md for n in range(1, 13))  # every note interpreted
+    assert "**Table 2.**" in md and "fig05_tlam_wf3p5" in md
+    page = (tmp_path / "report" / "reproduction.html").read_text()
+    assert page.count('src="data:image/png;base64,') == 2
+    assert all(claim.id in page for claim in claims())
+    assert "<table>" in page and "<ol>" in page
+
+
+def test_markdown_converter_subset(tmp_path):
+    md = ("# Title *x*\n\nSome **bold** `a|b` text\ncontinued.\n\n- one\n- two\n\n1. first\n2. second\n\n"
+          "| a | b |\n|---|---:|\n| 1 \\| 2 | <3> |\n")
+    page = markdown_to_html(md, tmp_path)
+    assert "<h1>Title <em>x</em></h1>" in page
+    assert "<p>Some <strong>bold</strong> <code>a|b</code> text continued.</p>" in page
+    assert "<ul><li>one</li><li>two</li></ul>" in page and "<ol><li>first</li><li>second</li></ol>" in page
+    assert "<td>1 | 2</td><td class=r>&lt;3&gt;</td>" in page
+    with pytest.raises(FileNotFoundError, match="missing.png"):
+        markdown_to_html("![x](missing.png)\n", tmp_path)
+
+
+def test_reproduction_report_lists_each_figure_with_its_claims(claim_rows, results_dir, tmp_path):
+    _, sims, _ = results_dir
+    png = tmp_path / "figures" / "fig05.png"
+    png.parent.mkdir()
+    png.write_bytes(b"png")
+    datasets = {c: open_result(p) for c, p in sims.items()}
+    md = reproduction_markdown(claim_rows, {"fig05": png}, {}, datasets, {}, tmp_path / "report")
+    section = md.split("### Fig. 5")[1].split("###")[0]
+    assert "../figures/fig05.png" in section
+    assert re.search(r"`peak_tip_tlam_wf2p8` \| .* \| m \| 0\.49 \|", section)

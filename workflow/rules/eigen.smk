@@ -1,0 +1,87 @@
+"""Eigen-analysis at constant hub speed: K22 eigenvalues (Fig. 9), critical speeds (Sections 4.2,
+4.4), Campbell diagram and Table 2. Every physical parameter reaches the scripts via `params:`."""
+
+EIGEN_CODE = hubbeam_sources(
+    "modes.py", "quadrature.py", "matrices.py", "parameters.py", "eigen.py", "paper.py"
+)
+
+
+def eigen_results():
+    """Every product of the eigen-analysis (netCDF and csv)."""
+    return [
+        "results/eigen/k22.nc",
+        "results/eigen/critical_speeds.nc",
+        "results/eigen/campbell.nc",
+        "results/tables/critical_speeds.csv",
+        "results/tables/table2.csv",
+    ]
+
+
+rule eigen_k22:
+    input:
+        code=EIGEN_CODE,
+    output:
+        ensure("results/eigen/k22.nc", non_empty=True),
+    params:
+        beam=config["beam"],
+        tip_masses=config["eigen"]["tip_masses"],
+        positions=config["eigen"]["positions"],
+        speeds=config["eigen"]["speeds"],
+        n_modes=config["numerics"]["modes"],
+        n_quad=config["numerics"]["quadrature_points"],
+    log:
+        "logs/eigen/k22.log",
+    script:
+        "../scripts/eigen_k22.py"
+
+
+rule eigen_critical_speeds:
+    input:
+        code=EIGEN_CODE,
+    output:
+        grid=ensure("results/eigen/critical_speeds.nc", non_empty=True),
+        table=ensure("results/tables/critical_speeds.csv", non_empty=True),
+    params:
+        beam=config["beam"],
+        tip_masses=config["eigen"]["tip_masses"],
+        positions=config["eigen"]["positions"],
+        search_max=config["eigen"]["critical_speed_search_max"],
+        n_modes=config["numerics"]["modes"],
+        n_quad=config["numerics"]["quadrature_points"],
+    log:
+        "logs/eigen/critical_speeds.log",
+    script:
+        "../scripts/eigen_critical_speeds.py"
+
+
+rule eigen_campbell:
+    input:
+        code=EIGEN_CODE,
+    output:
+        ensure("results/eigen/campbell.nc", non_empty=True),
+    params:
+        beam=config["beam"],
+        tip_masses=config["eigen"]["tip_masses"],
+        speeds=config["eigen"]["speeds"],
+        n_modes=config["numerics"]["modes"],
+        n_quad=config["numerics"]["quadrature_points"],
+    log:
+        "logs/eigen/campbell.log",
+    script:
+        "../scripts/eigen_campbell.py"
+
+
+rule eigen_table2:
+    input:
+        code=EIGEN_CODE,
+    output:
+        ensure("results/tables/table2.csv", non_empty=True),
+    params:
+        beam=config["beam"],
+        speed=config["eigen"]["table2_speed"],
+        n_modes=config["numerics"]["modes"],
+        n_quad=config["numerics"]["quadrature_points"],
+    log:
+        "logs/eigen/table2.log",
+    script:
+        "../scripts/eigen_table2.py"

@@ -1,0 +1,17 @@
+"""Snakemake shim: assemble and write the system matrices of one tip-mass configuration."""
+
+from hubbeam.io import write_netcdf
+from hubbeam.matrices import assemble, to_dataset
+from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.provenance import global_attributes
+
+p = snakemake.params
+params = BeamParameters.from_config({"beam": p.beam})
+tip = TipMass(mass=p.configuration["mass"], position=p.configuration["position"])
+sm = assemble(params, tip, p.configuration["modes"], p.n_quad)
+ds = to_dataset(sm, params, tip, n_quad_requested=p.n_quad)
+ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
+write_netcdf(ds, snakemake.output[0])
+with open(snakemake.log[0], "w") as log:
+    print(f"{ds.attrs['configuration']}: {ds.attrs['n_modes']} modes, "
+          f"{ds.attrs['n_quad']} Gauss nodes (requested {p.n_quad})", file=log)

@@ -1,0 +1,16 @@
+"""Snakemake shim: Campbell diagram data, TLAM and FOAM frequencies against hub speed."""
+
+import numpy as np
+
+from hubbeam.eigen import campbell
+from hubbeam.io import write_netcdf
+from hubbeam.parameters import BeamParameters
+from hubbeam.provenance import global_attributes
+
+p = snakemake.params
+params = BeamParameters.from_config({"beam": p.beam})
+ds = campbell(params, p.tip_masses, np.linspace(**p.speeds), p.n_modes, p.n_quad)
+ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
+write_netcdf(ds, snakemake.output[0])
+with open(snakemake.log[0], "w") as log:
+    print(f"Campbell diagram: {dict(ds.sizes)}", file=log)

@@ -1,0 +1,19 @@
+"""Snakemake shim: critical speeds over tip mass x position (netCDF) and at the beam tip (csv)."""
+
+import numpy as np
+
+from hubbeam.eigen import critical_speed_sweep, critical_speed_table
+from hubbeam.io import write_netcdf
+from hubbeam.parameters import BeamParameters
+from hubbeam.provenance import global_attributes
+
+p = snakemake.params
+params = BeamParameters.from_config({"beam": p.beam})
+ds = critical_speed_sweep(params, p.tip_masses, np.linspace(**p.positions), p.n_modes,
+                          p.search_max, p.n_quad)
+ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
+write_netcdf(ds, snakemake.output.grid)
+table = critical_speed_table(params, p.tip_masses, p.n_modes, p.search_max, p.n_quad)
+table.to_csv(snakemake.output.table, index=False)
+with open(snakemake.log[0], "w") as log:
+    print(table.to_string(index=False), file=log)

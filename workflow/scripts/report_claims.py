@@ -1,0 +1,16 @@
+"""Snakemake shim: evaluate every claim of the paper against the results -> claims.csv."""
+
+from collections import Counter
+
+from hubbeam.report import Results, evaluate, write_claims
+
+results = Results(dict(zip(snakemake.params.cases, snakemake.input.datasets)),
+                  table2_csv=snakemake.input.table2,
+                  critical_speeds_csv=snakemake.input.critical_speeds)
+rows = evaluate(results)
+write_claims(rows, snakemake.output[0])
+with open(snakemake.log[0], "w") as log:
+    print(f"{len(rows)} claims: {dict(Counter(row['verdict'] for row in rows))}", file=log)
+    for row in rows:
+        print(f"{row['verdict']:12s} {row['id']}: paper {row['paper']}, computed {row['computed']:.6g}",
+              file=log)

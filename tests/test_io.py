@@ -106,7 +106,8 @@ def test_failed_overwrite_keeps_the_old_file(tmp_path, monkeypatch):
 
 
 def test_failed_rename_leaves_no_temporary_file(tmp_path, monkeypatch):
-    path = write_netcdf(result_dataset(), tmp_path / "case.nc")
+    original = result_dataset()
+    path = write_netcdf(original, tmp_path / "case.nc")
 
     def refuse(*_args):
         raise PermissionError("rename refused")
@@ -115,7 +116,7 @@ def test_failed_rename_leaves_no_temporary_file(tmp_path, monkeypatch):
     with pytest.raises(PermissionError):
         write_netcdf(result_dataset(scale=2.0), path)
     assert files_in(tmp_path) == ["case.nc"]
-    xr.testing.assert_identical(open_result(path), result_dataset())
+    xr.testing.assert_identical(open_result(path), original)
 
 
 def test_overwrite_replaces_content(tmp_path):

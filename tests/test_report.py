@@ -16,7 +16,7 @@ from hubbeam.report import (CLAIM_COLUMNS, ClaimInputError, Results, claims, eva
                             fit_sinusoid, markdown_to_html, printed_tolerance, read_claims,
                             reproduction_markdown, wrap_phase, write_claims)
 from hubbeam.tables import Column, Table, table1, table2, table3, to_latex, to_markdown, write_table
-from synthetic_results import paper_cases, run_script, write_eigen, write_simulations
+from synthetic_results import run_script, write_eigen, write_simulations
 
 #: residual vibration after the torque pulse: FOAM (amplitude, omega, phase at t_f) and an SFOAM
 #: that leads it by 0.45 rad with a 24 % smaller amplitude (the paper's statement, as input)

@@ -26,7 +26,6 @@ from __future__ import annotations
 import base64
 import csv
 import html
-import json
 import math
 import os
 import re
@@ -66,7 +65,9 @@ def residual(case: str, ds: xr.Dataset, name: str = "tip_transverse") -> tuple[n
     y = variable(case, ds, name).values
     keep = (t > tf) & np.isfinite(y)
     if keep.sum() < 4:
-        raise ClaimInputError(f"case {case!r}: fewer than 4 samples of {name} after t_f = {tf} s")
+        t_div = diverged_at(case, ds)
+        why = f"the run diverged at t = {t_div:g} s" if t_div is not None else "the run ends too early"
+        raise ClaimInputError(f"case {case!r}: fewer than 4 samples of {name} after t_f = {tf} s ({why})")
     return t[keep], y[keep]
 
 
@@ -483,7 +484,7 @@ FIGURE_TEXT = {
         "The terms that distinguish CFOAM from FOAM, evaluated for a one-mode model during the spin-up "
         "to 3 rad/s; the paper finds them small and fading after the 30 s maneuver.",
         "Each panel is one difference CFOAM minus FOAM evaluated along the CFOAM trajectory (case "
-        "fig03_cfoam_n1, 1 mode): the rotary inertia M_thth, the velocity-dependent torque term of the "
+        "fig03_cfoam_n1, 1 mode): the rotary inertia M_thth, the generalised force of the "
         "hub equation, and the generalised forces of the axial (q1) and transverse (q2) equations "
         "(note 5; derivation in docs/cfoam.md).",
         ("cfoam_terms_small_after_tf",)),
@@ -608,6 +609,27 @@ OWN_CHOICES = (
 )
 
 
+#: context for a claim that differs, shown only when it does (own words; notes by number)
+DIFFERENCE_NOTES = {
+    "q_theta_percent_of_tau400": "2.62 N m is 0.655 % of 400 N m, so the printed percentage cannot hold "
+                                 "even for the paper's own torque value (note 9).",
+    "table3_tau50": "As printed, Table 3 falls from 100 to 200 N m (note 9); with the exponent -1 instead "
+                    "of -2 at 200 N m (0.372 N m) the column would rise with the torque, which suggests a "
+                    "misprint there.",
+    "critical_speed_tlam_mt0p5": "The critical-speed figure marks the exact value of the continuum "
+                                 "cantilever with the same tip mass; compare it with the printed number.",
+    "transverse_axial_ratio_wf5": "The ratio depends on which axial quantity is meant; we use the pure "
+                                  "axial deformation w1(L) (note 11).",
+    "sfoam_phase_lead_tau200": "Our SFOAM is FOAM without the axial coordinates and without Q_theta "
+                               "(Eq. 40); its distance from FOAM measures how much those terms matter "
+                               "under the torque pulse.",
+}
+for _key, _source in (("table3_tau100", "table3_tau50"), ("table3_tau200", "table3_tau50"),
+                      ("table3_tau400", "table3_tau50"),
+                      ("sfoam_amplitude_reduction_tau200", "sfoam_phase_lead_tau200")):
+    DIFFERENCE_NOTES[_key] = DIFFERENCE_NOTES[_source]
+
+
 def _format(value, digits=4) -> str:
     if value is None or value == "" or (isinstance(value, float) and math.isnan(value)):
         return "-"
@@ -669,6 +691,17 @@ def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Pa
         f"{counts['qualitative']} are qualitative (the number is shown, no tolerance applies). "
         "Numbers that differ are reported as they are; the model is never adjusted toward the printed values.",
         "",
+    ]
+    differing = [row for row in claim_rows if row["verdict"] == "differs"]
+    if differing:
+        out += ["Claims that differ:", ""]
+        for row in differing:
+            note = DIFFERENCE_NOTES.get(row["id"], "")
+            unit = "" if row["unit"] == "1" else f" {row['unit']}"
+            out.append(f"- `{row['id']}`: paper {_format(row['paper'])}{unit}, computed "
+                       f"{_format(row['computed'])}{unit}. {note}".rstrip())
+        out.append("")
+    out += [
         "## Tables",
         "",
     ]

@@ -134,3 +134,22 @@ def archive_inputs(wildcards):
     netcdf = simulation_results() + matrices_results()
     netcdf += [path for path in eigen_results() if path.endswith(".nc")]
     return sorted(set(netcdf + figure_targets() + table_targets() + report_targets()))
+
+
+# --- simulations (rule in simulate.smk) -----------------------------------------------------------
+
+
+def simulation_matrices(wildcards):
+    """The matrices file of the job's case: its tip-mass configuration (rule in matrices.smk)."""
+    from hubbeam.matrices import configuration_name
+    from hubbeam.parameters import TipMass
+
+    tip = TipMass(**case_config(wildcards.case)["tip_mass"])
+    return f"results/matrices/{configuration_name(tip)}.nc"
+
+
+def simulation_numerics():
+    """The `numerics` settings a simulation reads (changing any other one does not rerun it)."""
+    from hubbeam.simulate import NUMERICS_KEYS
+
+    return {key: config["numerics"][key] for key in NUMERICS_KEYS}

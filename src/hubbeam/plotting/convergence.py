@@ -47,6 +47,7 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     ax.plot(counts, [residual_amplitude(c, d) for c, d in ordered], "s--",
             label="residual amplitude ($t > t_f$)")
     panel_title(ax, 2, "Tip deflection against mode count")
+    ax.set_yscale("log")
     ax.set_ylabel(axis_label("$|v(L)|$", "m"))
     ax.legend(loc="best")
     ax = axes[1, 1]

@@ -2,8 +2,9 @@
 
 Each panel shows one difference CFOAM minus FOAM evaluated on the CFOAM trajectory
 (REPRODUCTION_NOTES 5): the rotary inertia ``dM_thth`` (the Delta term of Eq. 25), the
-velocity-dependent generalised force of the theta row ``dQ_theta`` (Eq. 32/37) and the generalised
-forces of the axial and transverse equations ``dQ_q1``, ``dQ_q2`` (Eqs. 33-34, 38-39).
+generalised force of the theta equation ``dQ_theta`` (Eqs. 32, 37, with the acceleration terms of
+the mass-matrix difference moved to the right-hand side) and the generalised forces of the axial and
+transverse equations ``dQ_q1``, ``dQ_q2`` (Eqs. 33-34, 38-39).
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from hubbeam.plotting.style import axis_label, new_figure, panel_title, symbol_t
 #: (variable, what the panel shows, units used when the dataset states none)
 PANELS = (
     ("dM_thth", "rotary inertia $M_{\\theta\\theta}$", "kg m2"),
-    ("dQ_theta", "velocity term $Q_\\theta$ of the $\\theta$ row", "N m"),
+    ("dQ_theta", "generalised force of the $\\theta$ equation", "N m"),
     ("dQ_q1", "axial generalised force $Q_{q_1}$", "N kg-1/2"),
     ("dQ_q2", "transverse generalised force $Q_{q_2}$", "N kg-1/2"),
 )

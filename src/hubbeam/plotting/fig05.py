@@ -13,7 +13,7 @@ import xarray as xr
 
 from hubbeam.plotting.figures import (distinct, limit_to_bounded, mark_maneuver_end, plot_series,
                                       require_datasets, select)
-from hubbeam.plotting.style import axis_label, new_figure, panel_title
+from hubbeam.plotting.style import axis_label, new_figure
 
 ROWS = (
     ("tip_transverse", "Transverse tip deflection", "$v(L)$"),

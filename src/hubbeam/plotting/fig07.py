@@ -12,7 +12,7 @@ import xarray as xr
 
 from hubbeam.plotting.figures import (curve_label, distinct, mark_maneuver_end, model, plot_series,
                                       require_datasets, select)
-from hubbeam.plotting.style import axis_label, new_figure, panel_title
+from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, panel_title
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):
@@ -32,7 +32,8 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     ax = axes[1, 0]
     for variant, tau in enumerate(taus):
         for case, ds in select(runs, tau_max=tau).items():
-            plot_series(ax, case, ds, "Q_theta", scale=100.0 / tau, variant=variant,
+            plot_series(ax, case, ds, "Q_theta", scale=100.0 / tau,
+                        color=SEQUENCE_COLORS[variant % len(SEQUENCE_COLORS)],
                         label=f"{curve_label(case, ds)}, $\\tau_m$ = {tau:g} N m")
     mark_maneuver_end(ax, *next(iter(runs.items())))
     panel_title(ax, 1, "Inertia torque relative to the torque amplitude")

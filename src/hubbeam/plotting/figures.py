@@ -181,7 +181,7 @@ def plot_series(ax, case: str, ds: xr.Dataset, name: str, *, label: str | None =
     line, = ax.plot(ds["time"].values, scale * da.values, label=label or curve_label(case, ds), **props)
     t_div = diverged_at(case, ds)
     if t_div is not None:
-        mark_time(ax, t_div, f"{model(case, ds)} diverged at t = {t_div:.2f} s")
+        mark_time(ax, t_div, f"{model(case, ds)} diverged at t = {t_div:.2f} s", color=props["color"])
         line.set_label(f"{line.get_label()} (diverged)")
     return line
 
@@ -193,17 +193,17 @@ def mark_maneuver_end(ax, case: str, ds: xr.Dataset) -> None:
         mark_time(ax, float(tf), f"$t_f$ = {format_number(float(tf))} s")
 
 
-def limit_to_bounded(ax, datasets: Mapping[str, xr.Dataset], name: str, *, scale: float = 1.0,
-                     headroom: float = 3.0) -> None:
+def limit_to_bounded(ax, datasets: Mapping[str, xr.Dataset], name: str) -> None:
     """Keep bounded runs readable next to diverged ones.
 
-    When the axes hold both diverged and non-diverged runs, the y-range is set to ``headroom``
-    times the largest excursion of the non-diverged runs; the diverged curve leaves the frame and
-    its divergence time is marked by :func:`plot_series`.
+    When the axes hold both diverged and non-diverged runs, the y-range is the range of the
+    non-diverged runs widened by that range on either side; the diverged curve leaves the frame
+    and its divergence time is marked by :func:`plot_series`.
     """
-    bounded = [ds for c, ds in datasets.items() if diverged_at(c, ds) is None]
+    bounded = [ds[name].values for c, ds in datasets.items() if diverged_at(c, ds) is None]
     if len(bounded) == len(datasets) or not bounded:
         return
-    peak = max(float(np.nanmax(np.abs(ds[name].values))) for ds in bounded) * abs(scale)
-    if peak > 0:
-        ax.set_ylim(-headroom * peak, headroom * peak)
+    low = min(float(np.nanmin(values)) for values in bounded)
+    high = max(float(np.nanmax(values)) for values in bounded)
+    if high > low:
+        ax.set_ylim(low - (high - low), high + (high - low))

@@ -103,8 +103,10 @@ def panel_title(ax, index: int, text: str) -> None:
     ax.set_title(f"({chr(ord('a') + index)}) {text}")
 
 
-def mark_time(ax, t: float, text: str) -> None:
-    """A light vertical line at time ``t`` with a small label at the top of the axes."""
+def mark_time(ax, t: float, text: str, color: str = "0.35") -> None:
+    """A light vertical line at time ``t``, labelled along the line (left of it, from the top),
+    so that several marks never overprint each other."""
     ax.axvline(t, color="0.55", linewidth=0.7, linestyle=":", zorder=0)
-    ax.annotate(text, xy=(t, 1.0), xycoords=("data", "axes fraction"), xytext=(2, -2),
-                textcoords="offset points", ha="left", va="top", fontsize=7, color="0.35")
+    ax.annotate(text, xy=(t, 1.0), xycoords=("data", "axes fraction"), xytext=(-2, -3),
+                textcoords="offset points", ha="right", va="top", rotation=90, fontsize=7,
+                color=color)

@@ -1,0 +1,170 @@
+"""Simulations of the hub-beam (``hubbeam.simulate``) checked against physics and against itself.
+
+* energy and angular momentum stay constant once the torque pulse has ended (FOAM, TLAM, CFOAM
+  are Lagrangian with a free hub), to within the tolerance;
+* the tip deflection converges as the tolerance tightens;
+* CFOAM and FOAM agree at w_f = 3 rad/s to within the relative size of the terms FOAM drops;
+* TLAM above its critical speed is recorded as diverged, without an exception;
+* the dataset follows the contract of docs/architecture.md (the synthetic fixtures' table);
+* the step budget, the step warning and bad input are reported as documented.
+
+Runs use 2 modes where the purpose allows (the kernel is the same for every mode count).
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from hubbeam.config import case_settings
+from hubbeam.parameters import BeamParameters
+from hubbeam.simulate import SimulationError, simulate
+from synthetic_results import SIMULATION_VARIABLES, HIGH_ORDER_VARIABLES
+
+
+@pytest.fixture(scope="module")
+def setup(_study_config):
+    return BeamParameters.from_config(_study_config), _study_config["numerics"], _study_config
+
+
+def torque_case(model, modes=2):
+    return {"name": f"pulse_{model}", "model": model, "t_end": 12.0, "modes": modes,
+            "maneuver": {"kind": "torque", "tau_max": 100.0, "tf": 5.0},
+            "tip_mass": {"mass": 0.0, "position": 8.0}}
+
+
+@pytest.mark.parametrize("model", ["FOAM", "TLAM", "CFOAM"])
+@pytest.mark.parametrize("rtol", [1e-7, 1e-10])
+def test_energy_and_angular_momentum_are_conserved_after_the_pulse(setup, model, rtol):
+    params, numerics, _ = setup
+    ds = simulate(torque_case(model), params, dict(numerics, rtol=rtol, atol=1e-2 * rtol))
+    assert ds.attrs["diverged"] == 0
+    after = ds.time >= 5.0
+    energy = ds.energy[after].values
+    momentum = ds.angular_momentum[after].values
+    assert np.ptp(energy) <= rtol * np.max(abs(energy))
+    # the rest-to-rest pulse leaves no net momentum: compare with its scale during the pulse
+    assert np.ptp(momentum) <= rtol * float(abs(ds.angular_momentum).max())
+    assert abs(momentum[0]) <= rtol * float(abs(ds.angular_momentum).max())
+
+
+def test_tip_deflection_converges_as_the_tolerance_tightens(setup):
+    params, numerics, config = setup
+    case = case_settings(config, "fig05_foam_wf2p8") | {"modes": 2}
+    tight = simulate(case, params, dict(numerics, rtol=1e-11, atol=1e-13)).tip_transverse
+    errors = []
+    for rtol in (1e-5, 1e-7, 1e-9):
+        tip = simulate(case, params, dict(numerics, rtol=rtol, atol=1e-2 * rtol)).tip_transverse
+        errors.append(float(abs(tip - tight).max()))
+        assert errors[-1] <= 10 * rtol * float(abs(tight).max())
+    assert errors[0] > errors[1] > errors[2]
+
+
+def test_cfoam_and_foam_agree_within_the_dropped_terms(setup):
+    """The tip deflections differ by at most ten times the relative size of the high-order terms
+    (dropped transverse force over elastic force, both along the CFOAM run)."""
+    from hubbeam.matrices import assemble
+
+    params, numerics, config = setup
+    cfoam = simulate(case_settings(config, "fig04_cfoam") | {"modes": 2}, params, numerics)
+    foam = simulate(case_settings(config, "fig04_foam") | {"modes": 2}, params, numerics)
+    K2 = assemble(params, None, 2, numerics["quadrature_points"]).K2
+    size = (np.linalg.norm(cfoam.dQ_q2.values, axis=1).max()
+            / np.linalg.norm(cfoam.q2.values @ K2.T, axis=1).max())
+    assert 0.0 < size < 1e-2
+    difference = float(abs(cfoam.tip_transverse - foam.tip_transverse).max())
+    assert 0.0 < difference <= 10 * size * float(abs(foam.tip_transverse).max())
+    assert set(HIGH_ORDER_VARIABLES) <= set(cfoam.data_vars)
+    assert not set(HIGH_ORDER_VARIABLES) & set(foam.data_vars)
+
+
+def test_tlam_above_its_critical_speed_is_recorded_as_diverged(setup):
+    params, numerics, config = setup
+    ds = simulate(case_settings(config, "fig05_tlam_wf3p5") | {"modes": 2}, params, numerics)
+    assert ds.attrs["diverged"] == 1 and ds.attrs["integrator_status"] == "diverged"
+    t_stop = ds.attrs["diverged_at_s"]
+    assert 0.0 < t_stop < 50.0 and "diverged" in ds.attrs["warnings"]
+    before = ds.time <= t_stop
+    assert np.all(np.isnan(ds.tip_transverse[~before])) and np.all(np.isnan(ds.q2[~before]))
+    assert np.all(np.isfinite(ds.tip_transverse[before]))
+    # it stopped because the tip passed the limit (divergence_limit * L = 8 m) within a step
+    assert float(abs(ds.tip_transverse[before]).max()) > 0.5 * numerics["divergence_limit"] * params.L
+    foam = simulate(case_settings(config, "fig05_foam_wf3p5") | {"modes": 2}, params, numerics)
+    assert foam.attrs["diverged"] == 0 and math.isnan(foam.attrs["diverged_at_s"])
+
+
+def test_dataset_follows_the_contract(setup):
+    params, numerics, config = setup
+    case = case_settings(config, "fig10_foam_mt0p1") | {"modes": 2, "t_end": 1.0}
+    ds = simulate(case, params, numerics)
+    for name, (dims, units, _) in SIMULATION_VARIABLES.items():
+        assert ds[name].dims == dims and ds[name].attrs["units"] == units
+        assert ds[name].attrs["long_name"]
+    for coord, units in (("time", "s"), ("mode", "1")):
+        assert ds[coord].attrs["units"] == units and ds[coord].attrs["long_name"]
+    assert np.allclose(ds.time, np.arange(101) * numerics["output_step"])
+    assert list(ds.mode.values) == [1, 2]
+    for key in ("model", "maneuver", "tip_mass_kg", "tip_position_m", "n_modes", "length",
+                "hub_inertia", "diverged", "diverged_at_s", "case_config", "Conventions", "title",
+                "source", "history", "references", "hubbeam_version", "git_commit", "n_steps",
+                "n_rejected", "n_rhs", "rtol", "atol", "warnings"):
+        assert key in ds.attrs, key
+    assert ds.attrs["tip_mass_kg"] == 0.1 and ds.attrs["tip_position_m"] == 8.0
+    assert ds.attrs["rtol"] == numerics["rtol"] and ds.attrs["warnings"] == ""
+    # initial state: rest, undeformed; the prescribed hub follows Eq. 43 exactly
+    assert float(abs(ds.q2[0]).max()) == 0.0 and float(ds.theta_dot[0]) == 0.0
+    t = ds.time.values
+    wf, tf = 2.0, 30.0
+    assert np.allclose(ds.theta_dot, wf / tf * t - wf / (2 * np.pi) * np.sin(2 * np.pi * t / tf))
+
+
+def test_step_budget_and_step_warning_are_recorded(setup):
+    params, numerics, config = setup
+    case = case_settings(config, "fig05_foam_wf2p8") | {"modes": 2, "t_end": 5.0}
+    ds = simulate(case, params, dict(numerics, max_steps=50, step_warning=10))
+    assert ds.attrs["integrator_status"] == "too_many_steps" and ds.attrs["diverged"] == 0
+    assert "max_steps = 50" in ds.attrs["warnings"] and "step_warning = 10" in ds.attrs["warnings"]
+    assert np.isnan(float(ds.tip_transverse[-1])) and float(ds.tip_transverse[1]) != 0.0
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"model": "XFOAM"}, "model = 'XFOAM'"),
+    ({"maneuver": {"kind": "prescribed", "wf": 2.0}}, "maneuver.tf = None"),
+    ({"modes": 0}, "modes = 0"),
+])
+def test_bad_cases_are_rejected_naming_the_key(setup, change, message):
+    params, numerics, config = setup
+    with pytest.raises(SimulationError, match=message):
+        simulate(case_settings(config, "fig05_foam_wf2p8") | change, params, numerics)
+
+
+def test_bad_numerics_are_rejected_naming_the_key(setup):
+    params, numerics, config = setup
+    with pytest.raises(SimulationError, match="numerics.rtol = -1"):
+        simulate(case_settings(config, "fig05_foam_wf2p8"), params, dict(numerics, rtol=-1.0))
+
+
+def test_workflow_script_writes_the_case_from_the_leading_matrix_blocks(setup, tmp_path):
+    """simulate_case.py reads the case's matrices file (more modes than the case uses), writes
+    the dataset atomically, and gives what simulate() gives with matrices of its own."""
+    import xarray as xr
+
+    from hubbeam.io import open_result, write_netcdf
+    from hubbeam.matrices import assemble, to_dataset
+    from hubbeam.parameters import TipMass
+    from synthetic_results import run_script
+
+    params, numerics, config = setup
+    case = case_settings(config, "fig10_tlam_mt0p1") | {"modes": 2, "t_end": 2.0}
+    tip = TipMass(**case["tip_mass"])
+    stored = write_netcdf(to_dataset(assemble(params, tip, 3, numerics["quadrature_points"]),
+                                     params, tip), tmp_path / "matrices.nc")
+    output = tmp_path / "simulations" / "case.nc"
+    run_script("simulate_case.py", input={"matrices": str(stored)}, output={"nc": str(output)},
+               params={"beam": config["beam"], "case": case, "numerics": numerics},
+               log=str(tmp_path / "case.log"))
+    written = open_result(output)
+    direct = simulate(case, params, numerics)
+    xr.testing.assert_allclose(written, direct, rtol=1e-10, atol=1e-14)
+    assert written.attrs["n_modes"] == 2 and written.attrs["model"] == "TLAM"
+    assert "fig10_tlam_mt0p1" in (tmp_path / "case.log").read_text()

@@ -1,0 +1,41 @@
+"""Time simulation of every configured case: `results/simulations/<case>.nc` (Radau IIA kernel).
+
+The system matrices come from `results/matrices/<configuration>.nc` (their leading `modes` blocks);
+the beam parameters, the resolved case and the integrator settings come through `params:`, so that
+editing a case reruns exactly that case (helpers `simulation_matrices` and `simulation_numerics`
+in common.smk). The package sources a simulation runs are inputs, so that editing a kernel reruns
+every simulation. `simulation_kernel` compiles the jitted kernel once into numba's on-disk cache
+before the (parallel) simulations load it.
+"""
+
+SIMULATION_CODE = hubbeam_sources(
+    "__init__.py", "core", "simulate.py", "matrices.py", "parameters.py", "provenance.py", "io.py"
+)
+
+
+rule simulation_kernel:
+    input:
+        code=SIMULATION_CODE,
+    output:
+        "logs/simulations/kernel.done",
+    log:
+        "logs/simulations/kernel.log",
+    script:
+        "../scripts/compile_simulation_kernel.py"
+
+
+rule simulate:
+    input:
+        matrices=simulation_matrices,
+        kernel="logs/simulations/kernel.done",
+        code=SIMULATION_CODE,
+    output:
+        ensure("results/simulations/{case}.nc", non_empty=True),
+    params:
+        beam=config["beam"],
+        case=case_params,
+        numerics=simulation_numerics(),
+    log:
+        "logs/simulations/{case}.log",
+    script:
+        "../scripts/simulate_case.py"

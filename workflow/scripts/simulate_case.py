@@ -1,0 +1,17 @@
+"""Snakemake shim: simulate one case and write `results/simulations/<case>.nc` atomically."""
+
+import logging
+
+from hubbeam.io import open_result, write_netcdf
+from hubbeam.matrices import from_dataset
+from hubbeam.parameters import BeamParameters
+from hubbeam.simulate import simulate
+
+logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
+                    format="%(asctime)s %(name)s %(levelname)s %(message)s")
+p = snakemake.params
+n_modes = p.case["modes"]
+stored = open_result(snakemake.input.matrices)
+matrices = from_dataset(stored.isel(mode=slice(0, n_modes), mode_j=slice(0, n_modes)))
+ds = simulate(p.case, BeamParameters.from_config({"beam": p.beam}), p.numerics, matrices)
+write_netcdf(ds, snakemake.output[0])

@@ -1,0 +1,16 @@
+"""Snakemake shim: comparison table and figure of the models against the Exudyn reference."""
+
+from pathlib import Path
+
+from hubbeam.io import open_result
+from hubbeam.plotting import draw
+from hubbeam.validation.comparison import comparison_table
+from hubbeam.validation.figures import exudyn_comparison
+
+datasets = {Path(path).stem.removeprefix("exudyn_"): open_result(path)
+            for path in snakemake.input.cases}
+table = comparison_table(datasets)
+table.to_csv(snakemake.output.table, index=False)
+draw(exudyn_comparison, snakemake.output.pdf, datasets)
+with open(snakemake.log[0], "w") as log:
+    print(table.to_string(index=False), file=log)

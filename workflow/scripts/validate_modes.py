@@ -1,0 +1,21 @@
+"""Snakemake shim: model-reference tip differences against the number of assumed modes."""
+
+from pathlib import Path
+
+import pandas as pd
+
+from hubbeam.io import open_result
+from hubbeam.parameters import BeamParameters
+from hubbeam.validation.comparison import mode_study
+
+p = snakemake.params
+params = BeamParameters.from_config({"beam": p.beam})
+tables = []
+for path in snakemake.input.references:
+    name = Path(path).stem.removeprefix("exudyn_")
+    tables.append(mode_study(name, p.cases[name], p.models, p.modes, params, p.numerics,
+                             open_result(path)))
+table = pd.concat(tables, ignore_index=True)
+table.to_csv(snakemake.output[0], index=False)
+with open(snakemake.log[0], "w") as log:
+    print(table.to_string(index=False), file=log)

@@ -95,14 +95,15 @@ def test_failed_write_leaves_no_file(tmp_path, monkeypatch, exception):
 
 
 def test_failed_overwrite_keeps_the_old_file(tmp_path, monkeypatch):
-    path = write_netcdf(result_dataset(), tmp_path / "case.nc")
+    original = result_dataset()
+    path = write_netcdf(original, tmp_path / "case.nc")
     before = path.read_bytes()
     failing_to_netcdf(monkeypatch, DiskFull("No space left on device"))
     with pytest.raises(DiskFull):
         write_netcdf(result_dataset(scale=2.0), path)
     assert files_in(tmp_path) == ["case.nc"]
     assert path.read_bytes() == before
-    xr.testing.assert_identical(open_result(path), result_dataset())
+    xr.testing.assert_identical(open_result(path), original)
 
 
 def test_failed_rename_leaves_no_temporary_file(tmp_path, monkeypatch):

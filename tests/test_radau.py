@@ -52,7 +52,8 @@ def test_coefficients_satisfy_the_radau_iia_order_conditions():
 
 
 def test_transformation_block_diagonalises_the_inverse_matrix():
-    lam = np.array([[radau.GAMMA, 0, 0], [0, radau.ALPHA, radau.BETA], [0, -radau.BETA, radau.ALPHA]])
+    g, a, b = radau.GAMMA, radau.ALPHA, radau.BETA
+    lam = np.array([[g, 0, 0], [0, a, b], [0, -b, a]])
     A_inv = np.linalg.inv(radau.A_RADAU)
     assert np.allclose(radau.T_INV_RADAU @ A_inv @ radau.T_RADAU, lam, atol=1e-12)
     # gamma is the real eigenvalue and alpha +- i beta the complex pair of A^-1
@@ -128,7 +129,8 @@ class GyroscopicOscillator:
         n = len(omega)
         self.K = np.diag(np.asarray(omega, float) ** 2)
         self.C = np.diag(2.0 * np.asarray(zeta) * omega) + coupling - coupling.T
-        self.problem = radau.ForcedOscillator(self.K, self.C, np.asarray(g, float), float(Omega), 0.0)
+        self.problem = radau.ForcedOscillator(self.K, self.C, np.asarray(g, float), float(Omega),
+                                              0.0)
         A = np.block([[np.zeros((n, n)), np.eye(n)], [-self.K, -self.C]])
         b = np.concatenate([np.zeros(n), g])
         self.P = np.linalg.solve(1j * Omega * np.eye(2 * n) - A, b)  # forced: Re(P e^{i W t})

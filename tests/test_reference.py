@@ -55,8 +55,9 @@ def test_pure_python_accelerations_call_no_compiled_code_and_agree(setup):
                 t = rng.uniform(0, 40)
                 y, v = rng.normal(scale=0.1, size=(2, 5))
                 a_fast, a_plain = np.zeros(5), np.zeros(5)
-                out_fast = eom.accelerations(model, kind, mp, t, y.copy(), v.copy(), sm, free, a_fast)
-                out_plain = plain(model, kind, mp, t, y.copy(), v.copy(), sm, free, a_plain)
+                args = (model, kind, mp, t)
+                out_fast = eom.accelerations(*args, y.copy(), v.copy(), sm, free, a_fast)
+                out_plain = plain(*args, y.copy(), v.copy(), sm, free, a_plain)
                 assert np.allclose(a_plain, a_fast, rtol=1e-12, atol=1e-12)
                 assert np.allclose(out_plain, out_fast, rtol=1e-12, atol=1e-12)
 

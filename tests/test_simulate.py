@@ -88,7 +88,8 @@ def test_tlam_above_its_critical_speed_is_recorded_as_diverged(setup):
     assert np.all(np.isnan(ds.tip_transverse[~before])) and np.all(np.isnan(ds.q2[~before]))
     assert np.all(np.isfinite(ds.tip_transverse[before]))
     # it stopped because the tip passed the limit (divergence_limit * L = 8 m) within a step
-    assert float(abs(ds.tip_transverse[before]).max()) > 0.5 * numerics["divergence_limit"] * params.L
+    limit = numerics["divergence_limit"] * params.L
+    assert float(abs(ds.tip_transverse[before]).max()) > 0.5 * limit
     foam = simulate(case_settings(config, "fig05_foam_wf3p5") | {"modes": 2}, params, numerics)
     assert foam.attrs["diverged"] == 0 and math.isnan(foam.attrs["diverged_at_s"])
 

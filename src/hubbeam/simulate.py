@@ -83,7 +83,8 @@ def check_case(case: Mapping) -> None:
             raise SimulationError(f"cases.{name}.maneuver.{key} = {value!r}; allowed: a finite "
                                   f"number{' > 0 s' if key == 'tf' else ''}")
     if not _finite(case.get("t_end")) or case["t_end"] <= 0.0:
-        raise SimulationError(f"cases.{name}.t_end = {case.get('t_end')!r}; allowed: a number > 0 s")
+        raise SimulationError(f"cases.{name}.t_end = {case.get('t_end')!r}; "
+                              "allowed: a number > 0 s")
     modes = case.get("modes")
     if not isinstance(modes, (int, np.integer)) or isinstance(modes, bool) or not 1 <= modes <= 20:
         raise SimulationError(f"cases.{name}.modes = {modes!r}; allowed: an integer in 1..20")
@@ -226,7 +227,8 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
         **integrator,
         "warnings": "; ".join(warnings),
     }
-    title = f"hubbeam simulation {case.get('name', '')}: {case['model']}, {json.dumps(dict(case['maneuver']))}"
+    maneuver = json.dumps(dict(case["maneuver"]))
+    title = f"hubbeam simulation {case.get('name', '')}: {case['model']}, {maneuver}"
     attrs = global_attributes(title, case_config=dict(case), extra=attributes)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
@@ -247,8 +249,10 @@ def compile_kernels() -> float:
     sm = case_matrices(case, params, numerics)
     kind, mp = maneuver_parameters(case["maneuver"])
     t = output_times(case["t_end"], numerics["output_step"])
+    out = np.empty((t.size, n_output_columns(1)))
+    stats = np.zeros(len(radau.STAT_NAMES), np.int64)
     simulate_kernel(MODEL_IDS["FOAM"], kind, mp, sm, t, _stops(case, t), 1e-6, 1e-8, 1.0, 1000,
-                    np.empty((t.size, n_output_columns(1))), np.zeros(len(radau.STAT_NAMES), np.int64))
+                    out, stats)
     return time.perf_counter() - start
 
 

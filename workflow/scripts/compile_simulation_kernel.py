@@ -1,11 +1,12 @@
-"""Snakemake shim: compile the simulation kernel into numba's on-disk cache (rule simulation_kernel)."""
+"""Snakemake shim: compile the simulation kernel into numba's on-disk cache (once per source)."""
 
 import os
 
 from hubbeam.simulate import compile_kernels
 
 seconds = compile_kernels()
-message = f"simulation kernel ready in {seconds:.1f} s (numba cache {os.environ.get('NUMBA_CACHE_DIR')})"
+cache = os.environ.get("NUMBA_CACHE_DIR")
+message = f"simulation kernel ready in {seconds:.1f} s (numba cache {cache})"
 with open(snakemake.log[0], "w") as log:
     print(message, file=log)
 with open(snakemake.output[0], "w") as done:

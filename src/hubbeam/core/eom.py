@@ -24,9 +24,11 @@ The kernels only use loops over small arrays: for the 5 to 20 modes of this stud
 beat BLAS calls, and nothing is allocated per call except the small linear solve's work arrays.
 """
 
+from collections import namedtuple
+
 import numpy as np
 
-from hubbeam.core.jit import kernel
+from hubbeam.core.jit import inline_kernel, kernel
 from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
 
 TLAM = 0
@@ -212,7 +214,7 @@ def mass_matrix_and_force(model, y, v, tau, sm, M, F):
         _foam_system(model, y, v, tau, sm, M, F)
 
 
-@kernel
+@inline_kernel
 def impose_constraints(model, kind, mp, t, y, v, a):
     """Overwrite the constrained entries of y, y', y'' and return the applied torque.
 
@@ -237,10 +239,10 @@ def impose_constraints(model, kind, mp, t, y, v, a):
 
 
 @kernel
-def _solve_spd(A, b):
-    """Solve A x = b in place (b <- x) for a small symmetric positive definite A (Cholesky).
+def _cholesky(A):
+    """Overwrite the lower triangle of a small SPD matrix with its Cholesky factor.
 
-    ``A`` is overwritten by its Cholesky factor. Returns False if A is not positive definite.
+    Returns False (and leaves ``A`` partly factored) if ``A`` is not positive definite.
     """
     N = A.shape[0]
     for j in range(N):
@@ -256,44 +258,75 @@ def _solve_spd(A, b):
             for k in range(j):
                 s -= A[i, k] * A[j, k]
             A[i, j] = s / d
-    for i in range(N):
-        s = b[i]
-        for k in range(i):
-            s -= A[i, k] * b[k]
-        b[i] = s / A[i, i]
-    for i in range(N - 1, -1, -1):
-        s = b[i]
-        for k in range(i + 1, N):
-            s -= A[k, i] * b[k]
-        b[i] = s / A[i, i]
     return True
 
 
-@kernel
-def accelerations(model, kind, mp, t, y, v, sm, free, a_out):
-    """Accelerations of every coordinate at time ``t``; returns ``(torque, Q_theta)``.
+@inline_kernel
+def _cholesky_solve(C, b, off):
+    """Solve ``C C^T x = b[off:off+N]`` in place, ``C`` from :func:`_cholesky`."""
+    N = C.shape[0]
+    for i in range(N):
+        s = b[off + i]
+        for k in range(i):
+            s -= C[i, k] * b[off + k]
+        b[off + i] = s / C[i, i]
+    for i in range(N - 1, -1, -1):
+        s = b[off + i]
+        for k in range(i + 1, N):
+            s -= C[k, i] * b[off + k]
+        b[off + i] = s / C[i, i]
 
-    ``y`` and ``v`` are full-length; their constrained entries are overwritten from the maneuver.
-    The free accelerations solve ``M_ff a_f = F_f - M_fc a_c`` with the constrained accelerations
-    ``a_c`` known. ``torque`` is the applied torque of Eq. (44), or the torque a prescribed motion
-    requires, ``(M a)_theta - Q_theta`` (the hub row of Eq. 24). SFOAM has no Q_theta (zero).
-    """
-    N = y.shape[0]
-    tau = impose_constraints(model, kind, mp, t, y, v, a_out)
-    M = np.empty((N, N))
-    F = np.empty(N)
-    mass_matrix_and_force(model, y, v, tau, sm, M, F)
+
+@kernel
+def _solve_spd(A, b):
+    """Solve A x = b in place (b <- x) for a small SPD ``A`` (overwritten by its factor)."""
+    if not _cholesky(A):
+        return False
+    _cholesky_solve(A, b, 0)
+    return True
+
+
+#: Work arrays of the acceleration kernels, allocated once per simulation by :func:`workspace`:
+#: the full mass matrix and force, the free block and its right-hand side, the free mask, and the
+#: Cholesky factors of the constant blocks M1 and M2 (prescribed-hub fast path).
+Workspace = namedtuple("Workspace", "M F Mff rhs is_free chol1 chol2")
+
+
+@kernel
+def workspace(sm, free):
+    """Allocate the :data:`Workspace` of a simulation with free coordinates ``free``."""
+    n = sm.M1.shape[0]
+    N = 1 + 2 * n
     nf = free.shape[0]
     is_free = np.zeros(N, dtype=np.bool_)
     for i in range(nf):
         is_free[free[i]] = True
-    Mff = np.empty((nf, nf))
-    rhs = np.empty(nf)
+    chol1 = sm.M1.copy()
+    chol2 = sm.M2.copy()
+    _cholesky(chol1)
+    _cholesky(chol2)
+    return Workspace(np.empty((N, N)), np.empty(N), np.empty((nf, nf)), np.empty(nf), is_free,
+                     chol1, chol2)
+
+
+@kernel
+def _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws):
+    """Solve ``M_ff a_f = F_f - M_fc a_c`` with the constrained ``a_c`` already in ``a_out``.
+
+    Builds ``ws.M`` and ``ws.F`` (kept for :func:`outputs`); returns ``(torque, Q_theta)``.
+    """
+    N = y.shape[0]
+    M = ws.M
+    F = ws.F
+    Mff = ws.Mff
+    rhs = ws.rhs
+    mass_matrix_and_force(model, y, v, tau, sm, M, F)
+    nf = free.shape[0]
     for i in range(nf):
         fi = free[i]
         r = F[fi]
         for j in range(N):
-            if not is_free[j]:
+            if not ws.is_free[j]:
                 r -= M[fi, j] * a_out[j]
         rhs[i] = r
         for j in range(nf):
@@ -310,6 +343,83 @@ def accelerations(model, kind, mp, t, y, v, sm, free, a_out):
             ma0 += M[0, j] * a_out[j]
         tau = ma0 - q_theta
     return tau, q_theta
+
+
+@inline_kernel
+def _prescribed_elastic_accelerations(model, y, v, sm, a_out, ws):
+    """Fast path of TLAM, FOAM, SFOAM under a prescribed hub motion (theta, rates set).
+
+    The elastic rows of Eq. (24) have the constant mass blocks M1, M2, pre-factored in ``ws``:
+    ``M1 q1'' = Q_q1 - K_q1q1 q1 - 2 thd G_q1q2 q2' + R q2 thdd`` and
+    ``M2 q2'' = -K_q2q2 q2 - 2 thd G_q2q1 q1' - (V2 + R^T q1)^T thdd``.
+    """
+    n = sm.M1.shape[0]
+    o1 = 1
+    o2 = 1 + n
+    cD = 0.0 if model == TLAM else 1.0
+    thd = v[0]
+    thd2 = thd * thd
+    thdd = a_out[0]
+    for i in range(n):
+        f1 = thd2 * sm.V1[i]
+        f2 = -sm.V2[i] * thdd
+        for j in range(n):
+            f1 += (-(sm.K1[i, j] - thd2 * sm.M1[i, j]) * y[o1 + j]
+                   + sm.R[i, j] * (2.0 * thd * v[o2 + j] + thdd * y[o2 + j]))
+            f2 += (-(sm.K2[i, j] - thd2 * sm.M2[i, j] + cD * thd2 * sm.D[i, j]) * y[o2 + j]
+                   - sm.R[j, i] * (2.0 * thd * v[o1 + j] + thdd * y[o1 + j]))
+        a_out[o1 + i] = f1
+        a_out[o2 + i] = f2
+    if model == SFOAM:
+        for i in range(n):
+            a_out[o1 + i] = 0.0
+    else:
+        _cholesky_solve(ws.chol1, a_out, o1)
+    _cholesky_solve(ws.chol2, a_out, o2)
+
+
+@inline_kernel
+def rhs_accelerations(model, kind, mp, t, y, v, sm, free, a_out, ws):
+    """Accelerations for the integrator (hot path): like :func:`accelerations` without the hub-row
+    outputs, and without allocating (``ws`` from :func:`workspace`)."""
+    tau = impose_constraints(model, kind, mp, t, y, v, a_out)
+    if kind == PRESCRIBED and model != CFOAM:
+        _prescribed_elastic_accelerations(model, y, v, sm, a_out, ws)
+    else:
+        _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws)
+
+
+@kernel
+def accelerations(model, kind, mp, t, y, v, sm, free, a_out):
+    """Accelerations of every coordinate at time ``t``; returns ``(torque, Q_theta)``.
+
+    ``y`` and ``v`` are full-length; their constrained entries are overwritten from the maneuver.
+    The free accelerations solve ``M_ff a_f = F_f - M_fc a_c`` with the constrained accelerations
+    ``a_c`` known. ``torque`` is the applied torque of Eq. (44), or the torque a prescribed motion
+    requires, ``(M a)_theta - Q_theta`` (the hub row of Eq. 24). SFOAM has no Q_theta (zero).
+    """
+    ws = workspace(sm, free)
+    tau = impose_constraints(model, kind, mp, t, y, v, a_out)
+    return _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws)
+
+
+@kernel
+def outputs(model, kind, mp, t, y, v, sm, free, a_out, ws):
+    """Accelerations and ``(torque, Q_theta, energy, angular_momentum)`` from one mass matrix."""
+    n = sm.M1.shape[0]
+    N = y.shape[0]
+    tau = impose_constraints(model, kind, mp, t, y, v, a_out)
+    torque, q_theta = _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws)
+    e = 0.5 * (_quad(sm.K1, y, y, n, 1, 1) + _quad(sm.K2, y, y, n, 1 + n, 1 + n))
+    p = 0.0
+    for i in range(N):
+        mv = 0.0
+        for j in range(N):
+            mv += ws.M[i, j] * v[j]
+        e += 0.5 * v[i] * mv
+        if i == 0:
+            p = mv
+    return torque, q_theta, e, p
 
 
 @kernel

@@ -8,8 +8,15 @@ compilation).
 """
 
 import os
+import warnings
 
 import numba
+from numba.core.errors import NumbaIRAssumptionWarning
+
+# Inlining at numba's IR level (``inline_kernel``) trips a pedantic internal check about the scope
+# of renamed variables; the check is informational (numba asks for reports, the code is correct
+# and covered by tests), so it is silenced here instead of being shown to every user on compile.
+warnings.filterwarnings("ignore", category=NumbaIRAssumptionWarning)
 
 _CACHE = os.environ.get("HUBBEAM_NO_JIT_CACHE", "0") not in ("1", "true", "yes")
 
@@ -21,3 +28,14 @@ JIT_OPTIONS = dict(cache=_CACHE, error_model="numpy", fastmath=False)
 def kernel(func):
     """Decorate a numerical kernel with the project's jit options."""
     return numba.njit(**JIT_OPTIONS)(func)
+
+
+def inline_kernel(func):
+    """A small kernel on a hot path, inlined into its callers at numba's IR level.
+
+    Every call between jitted functions passes array arguments by value and adjusts their
+    reference counts; for the many-array structures of this project (``SystemMatrices``, the
+    integrator's work arrays) that costs more than the arithmetic of a small kernel. Inlining
+    removes the call boundary at the price of longer compilation.
+    """
+    return numba.njit(inline="always", **JIT_OPTIONS)(func)

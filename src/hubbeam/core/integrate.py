@@ -1,0 +1,153 @@
+"""The whole hub-beam simulation in one kernel: Radau IIA over the equations of motion.
+
+:func:`simulate_kernel` integrates the free coordinates of ``y = (theta, q1, q2)`` (theta is
+dropped for a prescribed maneuver, q1 for SFOAM; see ``eom.free_dofs``) from rest with
+:func:`hubbeam.core.radau.radau5`, then evaluates every output of the simulation dataset on the
+uniform output grid from the interpolated states. Nothing returns to Python per step.
+"""
+
+from collections import namedtuple
+
+import numpy as np
+
+from hubbeam.core.eom import (CFOAM, free_dofs, high_order_terms, outputs, rhs_accelerations,
+                              tip_outputs, workspace)
+from hubbeam.core.jit import inline_kernel, kernel
+from hubbeam.core.radau import radau5, register_rhs
+
+#: Columns of the output array: these, then ``q1[0..n-1]``, ``q2[0..n-1]``, then the CFOAM
+#: high-order terms ``dM_thth``, ``dQ_theta``, ``dQ_q1[0..n-1]``, ``dQ_q2[0..n-1]`` (NaN for the
+#: other models); see :func:`output_columns`.
+SCALAR_OUTPUTS = ("theta", "theta_dot", "theta_ddot", "torque", "Q_theta", "tip_transverse",
+                  "tip_axial", "tip_foreshortening", "energy", "angular_momentum")
+N_SCALAR = len(SCALAR_OUTPUTS)
+
+
+def output_columns(n):
+    """``{name: column index or slice}`` of the output array for ``n`` modes."""
+    columns = {name: k for k, name in enumerate(SCALAR_OUTPUTS)}
+    columns["q1"] = slice(N_SCALAR, N_SCALAR + n)
+    columns["q2"] = slice(N_SCALAR + n, N_SCALAR + 2 * n)
+    columns["dM_thth"] = N_SCALAR + 2 * n
+    columns["dQ_theta"] = N_SCALAR + 2 * n + 1
+    columns["dQ_q1"] = slice(N_SCALAR + 2 * n + 2, N_SCALAR + 3 * n + 2)
+    columns["dQ_q2"] = slice(N_SCALAR + 3 * n + 2, N_SCALAR + 4 * n + 2)
+    return columns
+
+
+def n_output_columns(n):
+    """Width of the output array for ``n`` modes."""
+    return N_SCALAR + 4 * n + 2
+
+
+#: The hub-beam as a radau5 problem: model and maneuver ids, maneuver parameters, matrices, the
+#: free coordinates and full-length work vectors ``y, v, a``.
+BeamProblem = namedtuple("BeamProblem", "model kind mp sm free y v a ws")
+
+
+@kernel
+def beam_problem(model, kind, mp, sm):
+    """The :data:`BeamProblem` of a simulation from rest, with its work arrays allocated."""
+    N = 1 + 2 * sm.K1.shape[0]
+    free = free_dofs(model, kind, sm.K1.shape[0])
+    return BeamProblem(model, kind, mp, sm, free, np.zeros(N), np.zeros(N), np.zeros(N),
+                       workspace(sm, free))
+
+
+@inline_kernel
+def beam_rhs(t, yf, vf, af, problem):
+    """Accelerations ``af`` of the free coordinates at ``(t, yf, vf)`` (Eq. 24 solved for y'')."""
+    free = problem.free
+    for i in range(free.shape[0]):
+        problem.y[free[i]] = yf[i]
+        problem.v[free[i]] = vf[i]
+    rhs_accelerations(problem.model, problem.kind, problem.mp, t, problem.y, problem.v,
+                      problem.sm, free, problem.a, problem.ws)
+    for i in range(free.shape[0]):
+        af[i] = problem.a[free[i]]
+
+
+register_rhs(BeamProblem, beam_rhs)
+
+
+@kernel
+def tip_watch(free, sm):
+    """Weights ``w`` with ``w . y_free = f2(L) q2``, the tip deflection watched for divergence."""
+    n = sm.f2L.shape[0]
+    w = np.zeros(free.shape[0])
+    for i in range(free.shape[0]):
+        if free[i] >= 1 + n:
+            w[i] = sm.f2L[free[i] - 1 - n]
+    return w
+
+
+@kernel
+def fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out):
+    """Every output at the times ``t_out`` from the free positions and velocities ``y_out``,
+    ``v_out`` (rows with NaN give NaN rows): columns as in :func:`output_columns`."""
+    n = sm.K1.shape[0]
+    N = 1 + 2 * n
+    y = np.zeros(N)
+    v = np.zeros(N)
+    a = np.zeros(N)
+    dQ = np.zeros(N)
+    ws = workspace(sm, free)
+    nf = free.shape[0]
+    for k in range(t_out.shape[0]):
+        for j in range(out.shape[1]):
+            out[k, j] = np.nan
+        if not np.isfinite(y_out[k, 0]):
+            continue
+        for i in range(N):
+            y[i] = 0.0
+            v[i] = 0.0
+        for i in range(nf):
+            y[free[i]] = y_out[k, i]
+            v[free[i]] = v_out[k, i]
+        torque, q_theta, e, p = outputs(model, kind, mp, t_out[k], y, v, sm, free, a, ws)
+        transverse, axial, foreshortening = tip_outputs(y, sm)
+        out[k, 0] = y[0]
+        out[k, 1] = v[0]
+        out[k, 2] = a[0]
+        out[k, 3] = torque
+        out[k, 4] = q_theta
+        out[k, 5] = transverse
+        out[k, 6] = axial
+        out[k, 7] = foreshortening
+        out[k, 8] = e
+        out[k, 9] = p
+        for i in range(2 * n):
+            out[k, N_SCALAR + i] = y[1 + i]
+        if model == CFOAM:
+            out[k, N_SCALAR + 2 * n] = high_order_terms(y, v, a, sm, dQ)
+            for i in range(N):
+                out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
+
+
+@kernel
+def simulate_kernel(model, kind, mp, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps,
+                    out, stats):
+    """Simulate from rest (``y = 0``, ``y' = 0``) over ``t_out`` and fill ``out``.
+
+    ``model``, ``kind``: ids of ``eom`` and ``maneuver``; ``mp``: maneuver parameters; ``sm``:
+    SystemMatrices; ``t_stops``: times no step may cross (end of the maneuver); ``rtol`` and the
+    scalar ``atol`` apply to every free position and velocity (see ``radau5``); the run stops as
+    diverged once ``|tip deflection| > tip_limit``. ``out`` has shape
+    ``(len(t_out), n_output_columns(n))``, columns as in :func:`output_columns`; rows after the
+    stop are NaN. ``stats`` (int64, ``len(radau.STAT_NAMES)``) receives radau5's counters.
+    Returns radau5's ``(status, t_stop)``.
+    """
+    problem = beam_problem(model, kind, mp, sm)
+    free = problem.free
+    nf = free.shape[0]
+    n_out = t_out.shape[0]
+    y_out = np.empty((n_out, nf))
+    v_out = np.empty((n_out, nf))
+    atol_z = np.empty(2 * nf)
+    for i in range(2 * nf):
+        atol_z[i] = atol
+    status, t_stop = radau5(problem, np.zeros(nf), np.zeros(nf), t_out, t_stops, rtol, atol_z,
+                            tip_watch(free, sm), tip_limit, max_steps, 0.0, False, y_out, v_out,
+                            stats)
+    fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out)
+    return status, t_stop

@@ -140,7 +140,12 @@ def _foam_system(model, y, v, tau, sm, M, F):
 
 @kernel
 def _cfoam_system(y, v, tau, sm, M, F):
-    """Mass matrix and force of CFOAM from the exact kinetic energy (see module docstring)."""
+    """Mass matrix and force of CFOAM from the exact kinetic energy (see module docstring).
+
+    Evaluated block by block: with ``J = [[-Y, f1, -(S q2)^T], [X, 0, f2]]`` the q1-q1 block of
+    ``sum w J^T J`` is the constant ``M1`` and the q2-q2 block is ``M2 + sum w (S q2)(S q2)^T``,
+    so only the configuration-dependent parts are summed over the point cloud.
+    """
     n = sm.M1.shape[0]
     N = 1 + 2 * n
     o1 = 1
@@ -151,9 +156,11 @@ def _cfoam_system(y, v, tau, sm, M, F):
         F[i] = 0.0
         for j in range(N):
             M[i, j] = 0.0
-    M[0, 0] = sm.Jh
-    Jx = np.empty(N)
-    Jy = np.empty(N)
+    for i in range(n):
+        for j in range(n):
+            M[o1 + i, o1 + j] = sm.M1[i, j]
+            M[o2 + i, o2 + j] = sm.M2[i, j]
+    m00 = sm.Jh
     Sq2 = np.empty(n)
     for k in range(sm.x.shape[0]):
         wk = sm.w[k]
@@ -179,25 +186,32 @@ def _cfoam_system(y, v, tau, sm, M, F):
             Xd += sm.F1[k, i] * v[o1 + i] - s * v[o2 + i]
             Yd += sm.F2[k, i] * v[o2 + i]
         X -= half_q2Sq2
-        # rotating-frame components of dr/dy (Jx, Jy) and of the velocity part of r''
-        Jx[0] = -Y
-        Jy[0] = X
-        for i in range(n):
-            Jx[o1 + i] = sm.F1[k, i]
-            Jy[o1 + i] = 0.0
-            Jx[o2 + i] = -Sq2[i]
-            Jy[o2 + i] = sm.F2[k, i]
+        # velocity-only part (bx, by) of the rotating-frame acceleration of the point
         bx = -q2dSq2d - 2.0 * thd * Yd - thd2 * X
         by = 2.0 * thd * Xd - thd2 * Y
-        for i in range(N):
-            F[i] -= wk * (Jx[i] * bx + Jy[i] * by)
-            wjx = wk * Jx[i]
-            wjy = wk * Jy[i]
-            for j in range(i, N):
-                M[i, j] += wjx * Jx[j] + wjy * Jy[j]
-    for i in range(N):
-        for j in range(i + 1, N):
-            M[j, i] = M[i, j]
+        m00 += wk * (X * X + Y * Y)
+        F[0] -= wk * (X * by - Y * bx)
+        for i in range(n):
+            f1 = sm.F1[k, i]
+            f2 = sm.F2[k, i]
+            s = Sq2[i]
+            M[0, o1 + i] -= wk * Y * f1
+            M[0, o2 + i] += wk * (Y * s + X * f2)
+            F[o1 + i] -= wk * f1 * bx
+            F[o2 + i] -= wk * (f2 * by - s * bx)
+            ws = wk * s
+            for j in range(n):
+                M[o1 + i, o2 + j] -= wk * f1 * Sq2[j]
+            for j in range(i, n):
+                M[o2 + i, o2 + j] += ws * Sq2[j]
+    M[0, 0] = m00
+    for i in range(n):
+        M[o1 + i, 0] = M[0, o1 + i]
+        M[o2 + i, 0] = M[0, o2 + i]
+        for j in range(n):
+            M[o2 + j, o1 + i] = M[o1 + i, o2 + j]
+        for j in range(i + 1, n):
+            M[o2 + j, o2 + i] = M[o2 + i, o2 + j]
     for i in range(n):
         for j in range(n):
             F[o1 + i] -= sm.K1[i, j] * y[o1 + j]

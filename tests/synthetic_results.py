@@ -217,3 +217,110 @@ def run_script(name: str, *, input=None, output=None, params=None, log=None) -> 
     snakemake = SimpleNamespace(input=Section(input or {}), output=Section(output),
                                 params=Section(params or {}), log=Section({"log": log}))
     runpy.run_path(str(SCRIPTS / name), init_globals={"snakemake": snakemake}, run_name="__snakemake__")
+
+
+# --- validation results (files of rule validate_published and of `snakemake validate`) ----------
+
+#: published rows (source, direction, gamma, alpha, printed, ours with 20 modes, modal change); the
+#: Hamza-Cherif and Houmat rows are read as truncated, the last one is deliberately not reproduced
+PUBLISHED_ROWS = (
+    ("wright1982+hodges1981", "flapwise", 0.0, float("nan"), "3.5160", 3.516015, 0.0),
+    ("wright1982+hodges1981", "flapwise", 3.0, float("nan"), "4.7973", 4.797279, 1e-7),
+    ("wright1982+hodges1981", "flapwise", 6.0, float("nan"), "7.3604", 7.360374, 1e-7),
+    ("hamza-cherif2004", "flapwise", 6.0, 70.0, "7.3603", 7.360374, 1e-7),
+    ("hamza-cherif2004", "chordwise", 8.0, 70.0, "4.6105", 4.610587, 1e-6),
+    ("hamza-cherif2004", "chordwise", 4.0, 70.0, "3.888", 3.9, 1e-6),
+)
+#: Exudyn comparison rows: case -> (wf, tip mass, reference peak, reference residual,
+#: {model: (max difference, peak, residual, diverged at or None)})
+COMPARISON_ROWS = {
+    "spin_a": (2.0, 0.0, 0.15, 5e-4, {"FOAM": (2e-5, 0.15001, 5.005e-4, None),
+                                      "CFOAM": (5e-5, 0.15004, 5.1e-4, None),
+                                      "TLAM": (6e-2, 0.18, 1.85e-3, None)}),
+    "spin_b": (3.0, 0.5, 0.30, 2e-3, {"FOAM": (1e-4, 0.3001, 1.996e-3, None),
+                                      "CFOAM": (3e-4, 0.3003, 2.1e-3, None),
+                                      "TLAM": (8.0, 8.0, float("nan"), 27.6)}),
+}
+
+
+def write_validation(directory: Path) -> dict[str, Path]:
+    """Small validation result files in the producers' formats, with known content.
+
+    Keys: ``published``, ``tip_mass``, ``curves``, ``published_figure`` (rule validate_published)
+    and ``comparison``, ``mode_study``, ``convergence``, ``exudyn_figure`` (``snakemake validate``).
+    """
+    import pandas as pd
+
+    from hubbeam.validation.published import ROUNDING
+    from hubbeam.validation.rotating_eigen import allowed_interval
+
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    rows = []
+    for source, direction, gamma, alpha, printed, ours, change in PUBLISHED_ROWS:
+        low, high = allowed_interval(printed, ROUNDING[source], change)
+        difference = ours - float(printed)
+        rows.append({"source": source, "direction": direction, "gamma": gamma, "alpha": alpha,
+                     "delta": 0.0, "printed": printed, "published": float(printed),
+                     "rounding": ROUNDING[source], "omega_n15": ours + change, "omega_n20": ours,
+                     "modal_change": change, "difference": difference, "allowed_low": low,
+                     "allowed_high": high, "agrees": bool(low <= difference <= high)})
+    paths = {"published": directory / "published_comparison.csv",
+             "tip_mass": directory / "tip_mass_comparison.csv",
+             "curves": directory / "rotating_eigen.nc",
+             "published_figure": directory / "rotating_frequencies.png",
+             "comparison": directory / "exudyn_comparison.csv",
+             "mode_study": directory / "exudyn_mode_study.csv",
+             "convergence": directory / "exudyn_convergence.csv",
+             "exudyn_figure": directory / "exudyn_comparison.png"}
+    pd.DataFrame(rows).to_csv(paths["published"], index=False)
+    tip = []
+    for mu, printed, root, change in ((0.0, "1.87510", 1.875104, 0.0), (1.0, "1.24792", 1.247918, 1e-7)):
+        low, high = allowed_interval(printed, "rounded", change)
+        tip.append({"mu": mu, "printed": printed, "published": float(printed), "root_n15": root + change,
+                    "root_n20": root, "modal_change": change, "difference": root - float(printed),
+                    "allowed_low": low, "allowed_high": high,
+                    "agrees": bool(low <= root - float(printed) <= high)})
+    pd.DataFrame(tip).to_csv(paths["tip_mass"], index=False)
+    gammas = np.array([0.0, 2.0, 4.0, 6.0, 8.0])
+    curves = xr.Dataset({name: ("gamma", values, {"units": "1"}) for name, values in (
+        ("omega_flapwise", np.array([3.516, 4.137, 5.585, 7.360, 9.257])),
+        ("omega_chordwise", np.array([3.516, 3.620, 3.888, 4.239, 4.611])),
+        ("omega_chordwise_uncoupled", np.array([3.516, 3.622, 3.9, 4.263, 4.6572])))},
+        coords={"gamma": ("gamma", gammas, {"units": "1"})},
+        attrs={"alpha": 70.0, "delta": 0.0, "n_modes": 20})
+    write_dataset(curves, paths["curves"])
+    comparison, modes = [], []
+    for case, (wf, mass, ref_peak, ref_residual, models) in COMPARISON_ROWS.items():
+        for model, (difference, peak, residual, diverged_at) in models.items():
+            comparison.append({
+                "case": case, "model": model, "wf": wf, "tf": 30.0, "tip_mass_kg": mass, "n_modes": 5,
+                "max_abs_difference_m": difference, "max_abs_difference_rel_peak": difference / ref_peak,
+                "peak_m": peak, "peak_reference_m": ref_peak, "peak_time_s": 14.8,
+                "peak_time_reference_s": 14.8, "residual_m": residual, "residual_reference_m": ref_residual,
+                "residual_ratio": residual / ref_residual, "diverged": int(diverged_at is not None),
+                "diverged_at_s": float("nan") if diverged_at is None else diverged_at})
+            if diverged_at is None:
+                for n, factor in ((3, 1.5), (5, 1.0), (10, 0.95 if case == "spin_a" else 1.1)):
+                    modes.append({"case": case, "model": model, "n_modes": n,
+                                  "max_abs_difference_m": factor * difference,
+                                  "max_abs_difference_rel_peak": factor * difference / ref_peak})
+    pd.DataFrame(comparison).to_csv(paths["comparison"], index=False)
+    pd.DataFrame(modes).to_csv(paths["mode_study"], index=False)
+    convergence = []
+    for study, values, production, errors in (("elements", (8, 16, 32), 16, (5e-6, 1e-7, 0.0)),
+                                              ("time_step", (2e-3, 1e-3, 5e-4), 1e-3, (3e-6, 8e-7, 0.0)),
+                                              ("newton_tolerance", (1e-8, 1e-10), 1e-10, (4e-13, 0.0))):
+        for index, (value, error) in enumerate(zip(values, errors)):
+            settings = {"elements": 16, "time_step": 1e-3, "newton_tolerance": 1e-10, study: value}
+            convergence.append({
+                "study": study, "value": value, "elements": settings["elements"],
+                "time_step_s": settings["time_step"], "newton_tolerance": settings["newton_tolerance"],
+                "production": int(value == production), "max_abs_difference_to_finest_m": error,
+                "max_abs_difference_to_next_finer_m": error if index + 1 < len(values) else float("nan"),
+                "peak_m": 0.217, "residual_m": 7.9e-4, "newton_iterations": 1000 * (index + 1),
+                "cpu_time_s": 2.0 * (index + 1)})
+    pd.DataFrame(convergence).to_csv(paths["convergence"], index=False)
+    for key in ("published_figure", "exudyn_figure"):
+        paths[key].write_bytes(b"\x89PNG stand-in")
+    return paths

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,8 +16,10 @@ from hubbeam.plotting import cases_for
 from hubbeam.report import (CLAIM_COLUMNS, ClaimInputError, Results, claims, evaluate,
                             fit_sinusoid, markdown_to_html, printed_tolerance, read_claims,
                             reproduction_markdown, wrap_phase, write_claims)
+from hubbeam.io import ResultFileError
 from hubbeam.tables import Column, Table, table1, table2, table3, to_latex, to_markdown, write_table
-from synthetic_results import run_script, write_eigen, write_simulations
+from hubbeam.validation.report import ValidationInputError, exudyn_markdown, published_section
+from synthetic_results import run_script, write_eigen, write_simulations, write_validation
 
 #: residual vibration after the torque pulse: FOAM (amplitude, omega, phase at t_f) and an SFOAM
 #: that leads it by 0.45 rad with a 24 % smaller amplitude (the paper's statement, as input)
@@ -257,3 +260,98 @@ def test_reproduction_report_lists_each_figure_with_its_claims(claim_rows, resul
     section = md.split("### Fig. 5")[1].split("###")[0]
     assert "../figures/fig05.png" in section
     assert re.search(r"`peak_tip_tlam_wf2p8` \| .* \| m \| 0\.49 \|", section)
+
+
+# --- the validation sections ---------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def validation_files(tmp_path_factory):
+    return write_validation(tmp_path_factory.mktemp("validation"))
+
+
+def published(files, report_dir):
+    return published_section(files["published"], files["tip_mass"], files["curves"],
+                             files["published_figure"], report_dir)
+
+
+def test_validation_section_counts_verdicts_and_tests_both_readings_of_the_last_digit(
+        validation_files):
+    section = published(validation_files, validation_files["published"].parent / "report")
+    md = section.markdown
+    assert "**5 of 6**" in section.summary and "**2 of 2**" in section.summary
+    assert md.startswith("## Validation\n")
+    # the rounded table: truncation would fail two entries; the truncated one: rounding fails all three
+    assert "Wright et al. (1982); Hodges and Rutkowski (1981): read as rounded 3 of 3 agree, read as " \
+           "truncated 1 of 3; taken as **rounded**" in md
+    assert "Hamza-Cherif and Houmat (2004): read as rounded 0 of 3 agree, read as truncated 2 of 3; " \
+           "taken as **truncated**" in md
+    assert "flapwise gamma = 6: ours 7.360374, printed 7.3603" in md
+    assert "each printed value lying below ours" in md
+    assert "rounding our value to the printed decimals reproduces 0, chopping it reproduces 2" in md
+    assert "Ours, 7.360374, rounds to 7.3604 and chops to 7.3603." in md
+    # the entry that is not reproduced is named, and marked in the table
+    assert re.search(r"Entries that do not agree: .*chordwise gamma = 4: printed 3.888, ours 3.900000", md)
+    assert re.search(r"\| chordwise \| 4 \| 70 \| 3.888 \| truncated \| 3.900000 \|.*\*\*differs\*\* \|", md)
+    # the uncoupled chordwise value comes from rotating_eigen.nc at the row's gamma
+    assert re.search(r"\| chordwise \| 8 \| 70 \| 4.6105 \| truncated \| 4.610587 \|.*\| 4.6572 \| \*\*agrees\*\* \|", md)
+    assert "at gamma = 8 would be 4.6572 against the printed 4.6105" in md
+    assert "![Validation" in md and "(../rotating_frequencies.png)" in md
+    sources = md.split("### Sources of the published values")[1]
+    assert all(name in sources for name in ("Wright", "Hodges", "Hamza-Cherif", "point mass at its free end"))
+    assert "snakemake validate" in md and "(validation_exudyn.html)" in md
+
+
+def test_reproduction_report_carries_the_validation_section_or_says_it_was_not_run(
+        claim_rows, results_dir, validation_files, tmp_path):
+    _, sims, _ = results_dir
+    datasets = {c: open_result(p) for c, p in list(sims.items())[:2]}
+    report_dir = validation_files["published"].parent / "report"
+    section = published(validation_files, report_dir)
+    md = reproduction_markdown(claim_rows, {}, {}, datasets, {}, report_dir, validation=section)
+    summary = md.split("## Summary")[1].split("## Tables")[0]
+    assert section.summary in summary
+    assert md.index("## All claims") < md.index("## Validation") < md.index("## How the gaps")
+    page = markdown_to_html(md, report_dir)
+    assert page.count('src="data:image/png;base64,') == 1 and "<h2>Validation</h2>" in page
+    without = reproduction_markdown(claim_rows, {}, {}, datasets, {}, tmp_path)
+    assert "## Validation\n\nThe configuration of this run has no `validation` section" in without
+
+
+def test_a_missing_or_incomplete_validation_file_is_a_clear_error(validation_files, tmp_path):
+    files = dict(validation_files, published=tmp_path / "results" / "published_comparison.csv")
+    with pytest.raises(ResultFileError, match=r"published_comparison.csv does not exist; build it with "
+                                              r"`snakemake .*published_comparison.csv`"):
+        published(files, tmp_path)
+    broken = tmp_path / "tip_mass_comparison.csv"
+    broken.write_text("\n".join(line.rsplit(",", 1)[0] for line in
+                                validation_files["tip_mass"].read_text().splitlines()) + "\n")
+    with pytest.raises(ValidationInputError, match=r"tip_mass_comparison.csv: missing column\(s\) agrees"):
+        published(dict(validation_files, tip_mass=broken), tmp_path)
+    with pytest.raises(ResultFileError, match=r"exudyn_comparison.csv does not exist.*snakemake validate"):
+        exudyn_markdown(tmp_path / "exudyn_comparison.csv", validation_files["mode_study"],
+                        validation_files["convergence"], validation_files["exudyn_figure"], tmp_path)
+
+
+def test_exudyn_report_states_the_key_findings_computed_from_the_tables(validation_files, tmp_path):
+    out = {"markdown": str(tmp_path / "report" / "validation_exudyn.md"),
+           "html": str(tmp_path / "report" / "validation_exudyn.html")}
+    (tmp_path / "report").mkdir()
+    run_script("report_validation.py", input={
+        "comparison": str(validation_files["comparison"]), "figure": str(validation_files["exudyn_figure"]),
+        "mode_study": str(validation_files["mode_study"]), "convergence": str(validation_files["convergence"])},
+        output=out)
+    md = Path(out["markdown"]).read_text()
+    # FOAM: 2e-5 / 0.15 and 1e-4 / 0.30 of the peak; residual ratios 1.001 and 0.998
+    assert "**FOAM** stays within 0.033 % of the reference's peak tip deflection in all 2 bounded cases" in md
+    assert "residual vibration amplitude is within 0.2 % of the reference's" in md
+    # CFOAM: 5e-5 / 2e-5 and 3e-4 / 1e-4
+    assert "is 2.5 to 3 times FOAM's (2 cases), at most 0.1 % of the peak" in md
+    assert "in every case further from the geometrically exact beam than FOAM" in md
+    assert ("at w_f = 2 rad/s its peak is 1.20 times the reference's and its residual amplitude 3.7 times; "
+            "diverges at w_f = 3 rad/s, m_t = 0.5 kg (t = 27.6 s)") in md
+    assert "from 5 to 10 modes the largest difference from the reference changes by FOAM 5.3 % to 9.1 % (2 cases)" in md
+    assert "at most 8e-07 m, 25 times below FOAM's smallest difference" in md
+    assert re.search(r"\| spin_b \| TLAM \| - \| - \| - \| 0.3 \| - \| 0.002 \| 27.60 \|", md)
+    assert "| 16 | yes | 1e-07 |" in md
+    page = Path(out["html"]).read_text()
+    assert "<title>hubbeam validation against Exudyn</title>" in page and 'src="data:image/png;base64,' in page

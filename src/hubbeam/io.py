@@ -1,16 +1,28 @@
 """Writing result files atomically and reading them back with a clear error.
 
 Results are netCDF-4 files written by xarray with the netcdf4 engine. Float variables are
-compressed losslessly (zlib + shuffle); nothing is packed into integers. A file is first written
-under a temporary name in the destination directory and then renamed over the destination
-(``os.replace``, atomic on POSIX), so a crash or error never leaves a partial result where
-Snakemake or a figure would take it for a finished one, and an existing file stays intact.
+compressed losslessly (zlib + shuffle); nothing is packed into integers.
+
+Every file a rule produces is written atomically: first under a temporary name in the
+destination directory, then renamed over the destination (``os.replace``, atomic on POSIX). A
+crash, an error or a kill therefore never leaves a partial file under the destination's name,
+where Snakemake or a figure would take it for a finished one, and an existing file stays intact
+until its replacement is complete. :func:`write_netcdf` writes a dataset this way;
+:func:`staged` does it for any writer (figures, tables, reports, archives), and
+:func:`write_text` for a text. Temporaries are hidden entries ``.<name>.<random>.tmp`` beside the
+destination; one left behind by a writer killed without a chance to clean up (``SIGKILL``, power
+loss) is removed by the next write of the same file. Two processes must not write the same file
+at the same time (Snakemake never runs two jobs with the same output).
 """
 
 from __future__ import annotations
 
+import contextlib
+import glob
 import os
 import secrets
+import shutil
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -24,21 +36,97 @@ class ResultFileError(OSError):
     """A result file is missing, truncated or otherwise unreadable."""
 
 
+def temporary_path(path: os.PathLike | str) -> Path:
+    """A fresh hidden temporary name beside ``path``: ``.<name>.<random>.tmp``."""
+    path = Path(path)
+    return path.with_name(f".{path.name}.{secrets.token_hex(6)}.tmp")
+
+
+def remove_stale_temporaries(path: os.PathLike | str) -> list[Path]:
+    """Delete the temporaries (files or staging directories) an earlier, killed writer of
+    ``path`` left beside it; return what was removed."""
+    path = Path(path)
+    stale = sorted(path.parent.glob(f".{glob.escape(path.name)}.*.tmp"))
+    for entry in stale:
+        if entry.is_dir() and not entry.is_symlink():
+            shutil.rmtree(entry, ignore_errors=True)
+        else:
+            entry.unlink(missing_ok=True)
+    return stale
+
+
+def _fsync(path: Path) -> None:
+    with open(path, "rb") as written:
+        os.fsync(written.fileno())
+
+
+@contextlib.contextmanager
+def staged(*paths: os.PathLike | str) -> Iterator[list[Path]]:
+    """Write the files ``paths`` atomically: yield stand-ins to write instead, rename when done.
+
+    The stand-ins have the destinations' own file names, inside a hidden staging directory
+    (``.<name of the first file>.<random>.tmp/``) beside each destination directory, so writers
+    that derive sibling names (``fig05.pdf`` -> ``fig05.png``, ``table1.csv`` -> ``table1.md``)
+    or pick a format by suffix work unchanged. When the block ends normally, every stand-in must
+    exist; each is flushed to disk and renamed over its destination. When the block raises (or a
+    stand-in is missing), no destination is touched and the staging directories are removed::
+
+        with staged("results/figures/fig05.pdf", "results/figures/fig05.png") as (pdf, _png):
+            save_figure(fig, pdf)  # writes pdf and the png beside it
+    """
+    destinations = [Path(path) for path in paths]
+    if not destinations:
+        raise ValueError("staged() needs at least one destination path")
+    if len(set(destinations)) != len(destinations):
+        raise ValueError(f"staged() got a destination twice: {[str(p) for p in destinations]}")
+    for destination in destinations:
+        remove_stale_temporaries(destination)
+    staging: dict[Path, Path] = {}  # destination directory -> its staging directory
+    try:
+        for destination in destinations:
+            if destination.parent not in staging:
+                destination.parent.mkdir(parents=True, exist_ok=True)
+                staging[destination.parent] = temporary_path(destination)
+                staging[destination.parent].mkdir()
+        stand_ins = [staging[destination.parent] / destination.name for destination in destinations]
+        yield stand_ins
+        missing = [str(destination) for destination, stand_in in zip(destinations, stand_ins)
+                   if not stand_in.is_file()]
+        if missing:
+            raise FileNotFoundError(f"the writer did not produce {', '.join(missing)}")
+        for stand_in in stand_ins:
+            _fsync(stand_in)
+        for destination, stand_in in zip(destinations, stand_ins):
+            os.replace(stand_in, destination)
+    finally:
+        for directory in staging.values():
+            shutil.rmtree(directory, ignore_errors=True)
+
+
+def write_text(path: os.PathLike | str, text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` atomically; return the path."""
+    path = Path(path)
+    with staged(path) as (stand_in,):
+        stand_in.write_text(text, encoding="utf-8")
+    return path
+
+
 def write_netcdf(ds: xr.Dataset, path: os.PathLike | str) -> Path:
     """Write ``ds`` to ``path`` (NETCDF4) atomically; return the path.
 
     Encodings carried by ``ds`` (for example from a file it was read from) are replaced: float
-    variables get :data:`FLOAT_ENCODING`, all others the defaults.
+    variables get :data:`FLOAT_ENCODING`, all others the defaults. The temporary file's name does
+    not end in ``.nc``, so no partial file ever looks like a result.
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(path)
     encoding = {name: dict(FLOAT_ENCODING) if np.issubdtype(variable.dtype, np.floating) else {}
                 for name, variable in ds.variables.items()}
-    temporary = path.with_name(f".{path.name}.{secrets.token_hex(6)}.tmp")
+    temporary = temporary_path(path)
     try:
         ds.to_netcdf(temporary, mode="w", engine="netcdf4", format="NETCDF4", encoding=encoding)
-        with open(temporary, "rb") as written:
-            os.fsync(written.fileno())
+        _fsync(temporary)
         os.replace(temporary, path)
     except BaseException:
         temporary.unlink(missing_ok=True)

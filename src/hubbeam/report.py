@@ -499,8 +499,9 @@ FIGURE_TEXT = {
         "Transverse and axial tip response of TLAM and FOAM at 2.8 and 3.5 rad/s: TLAM diverges above "
         "about 3 rad/s and overshoots FOAM strongly at 2.8 rad/s (0.49 m against 0.22 m, residual "
         "vibration about 100 times larger).",
-        "Columns are the two final speeds; the axial response is the pure axial deformation w1(L) "
-        "(note 11). A diverged run is drawn until it stops and labelled with its divergence time.",
+        "Columns are the two final speeds: panels (a), (b) the transverse tip deflection, (c), (d) "
+        "the pure axial deformation w1(L) (note 11). A diverged run is drawn until it stops and "
+        "labelled with its divergence time.",
         ("tlam_diverges_wf3p5", "foam_bounded_wf3p5", "peak_tip_tlam_wf2p8", "peak_tip_foam_wf2p8",
          "residual_ratio_tlam_foam_wf2p8")),
     "fig06": FigureText(
@@ -669,10 +670,20 @@ def runs_markdown(datasets: Mapping[str, xr.Dataset]) -> str:
     return "\n".join(lines)
 
 
+#: the validation section when the config has no `validation` section (nothing was run)
+NO_VALIDATION = ("## Validation\n\nThe configuration of this run has no `validation` section, so the "
+                 "independent validation (`docs/validation.md`) was not run.\n")
+
+
 def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Path],
                           tables: Mapping[str, str | Path], datasets: Mapping[str, xr.Dataset],
-                          numerics: Mapping, report_dir) -> str:
-    """The reproduction report (Markdown), figures linked relative to ``report_dir``."""
+                          numerics: Mapping, report_dir, validation=None) -> str:
+    """The reproduction report (Markdown), figures linked relative to ``report_dir``.
+
+    ``validation`` is the :class:`hubbeam.validation.report.Section` of the published-table
+    validation (its summary sentence joins the report's summary), or None when the configuration
+    has no ``validation`` section.
+    """
     report_dir = Path(report_dir)
     by_id = {row["id"]: row for row in claim_rows}
     counts = {v: sum(r["verdict"] == v for r in claim_rows) for v in ("agrees", "differs", "qualitative")}
@@ -692,6 +703,8 @@ def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Pa
         "Numbers that differ are reported as they are; the model is never adjusted toward the printed values.",
         "",
     ]
+    if validation is not None:
+        out += [validation.summary, ""]
     differing = [row for row in claim_rows if row["verdict"] == "differs"]
     if differing:
         out += ["Claims that differ:", ""]
@@ -717,8 +730,9 @@ def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Pa
         listed = [by_id[c] for c in text.claims if c in by_id]
         if listed:
             out += [claims_markdown(listed), ""]
-    out += ["## All claims", "", claims_markdown(claim_rows), "",
-            "## How the gaps of the paper were filled", "",
+    out += ["## All claims", "", claims_markdown(claim_rows), ""]
+    out += [validation.markdown if validation is not None else NO_VALIDATION]
+    out += ["## How the gaps of the paper were filled", "",
             "Numbers refer to the notes in REPRODUCTION_NOTES.md.", ""]
     out += [f"{number}. {text}" for number, text in GAPS]
     out += ["", "Further choices of this reproduction:", ""]

@@ -7,6 +7,13 @@ all rates zero). The whole time integration runs in :func:`hubbeam.core.integrat
 (Radau IIA of order 5, :mod:`hubbeam.core.radau`); a divergent run (tip deflection beyond
 ``numerics.divergence_limit * L``, a non-finite state or a vanishing step size) is a result,
 recorded as ``diverged = 1`` with NaN outputs after ``diverged_at_s``.
+
+Guard rails written into the dataset's ``warnings`` attribute: more accepted steps than
+``numerics.step_warning``, an exhausted step budget, a divergence, and, when the optional
+convergence check (``numerics.convergence_check``) is given, a tip deflection that changes by more
+than its threshold when the case is rerun at a tighter tolerance or with more modes.
+:func:`simulation_inputs` turns the attributes of a dataset back into the arguments that
+reproduce it.
 """
 
 from __future__ import annotations
@@ -35,6 +42,12 @@ MANEUVERS = {"prescribed": (PRESCRIBED, ("wf", "tf")), "torque": (TORQUE, ("tau_
 
 #: numerics keys a simulation reads
 NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
+#: keys of the optional convergence check (``numerics.convergence_check``, :func:`convergence`)
+CONVERGENCE_KEYS = ("tolerance_factor", "extra_modes", "threshold_m")
+#: the largest number of assumed modes (the config's limit, 1..20)
+MAX_MODES = 20
+#: the smallest relative tolerance the integrator accepts (100 machine epsilons)
+MIN_RTOL = 100 * radau.UROUND
 
 #: variable -> (dimensions, UDUNITS units, long name)
 VARIABLES = {
@@ -100,9 +113,28 @@ def check_numerics(numerics: Mapping) -> None:
         if not ok:
             allowed = "an integer >= 1" if integer else "a finite number > 0"
             raise SimulationError(f"numerics.{key} = {value!r}; allowed: {allowed}")
-    if numerics["rtol"] < 100 * radau.UROUND:
+    if numerics["rtol"] < MIN_RTOL:
         raise SimulationError(f"numerics.rtol = {numerics['rtol']!r}; allowed: a number >= "
-                              f"{100 * radau.UROUND:.3g} (100 machine epsilons)")
+                              f"{MIN_RTOL:.3g} (100 machine epsilons)")
+
+
+def check_convergence_settings(settings: Mapping) -> None:
+    """Raise :class:`SimulationError` unless ``settings`` is a usable convergence check."""
+    where = "numerics.convergence_check"
+    if not isinstance(settings, Mapping):
+        raise SimulationError(f"{where} = {settings!r}; allowed: a mapping with keys "
+                              f"{', '.join(CONVERGENCE_KEYS)}")
+    unknown = sorted(set(settings) - set(CONVERGENCE_KEYS))
+    if unknown:
+        raise SimulationError(f"{where}.{unknown[0]}: unknown key; allowed keys: "
+                              f"{', '.join(CONVERGENCE_KEYS)}")
+    factor, extra, threshold = (settings.get(key) for key in CONVERGENCE_KEYS)
+    if not (_finite(factor) and 0.0 < factor < 1.0):
+        raise SimulationError(f"{where}.tolerance_factor = {factor!r}; allowed: a number > 0 and < 1")
+    if not isinstance(extra, (int, np.integer)) or isinstance(extra, bool) or extra < 1:
+        raise SimulationError(f"{where}.extra_modes = {extra!r}; allowed: an integer >= 1")
+    if not (_finite(threshold) and threshold > 0.0):
+        raise SimulationError(f"{where}.threshold_m = {threshold!r}; allowed: a number > 0 m")
 
 
 def output_times(t_end: float, output_step: float) -> np.ndarray:
@@ -142,7 +174,8 @@ def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
 
 
 def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
-             matrices: SystemMatrices | None = None) -> xr.Dataset:
+             matrices: SystemMatrices | None = None, *,
+             convergence_check: Mapping | None = None) -> xr.Dataset:
     """Simulate one case from rest and return the labelled simulation dataset.
 
     Parameters
@@ -154,10 +187,35 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
         ``max_steps``, ``step_warning``, ``divergence_limit``, and ``quadrature_points`` when
         ``matrices`` is not given).
     matrices : the case's :class:`~hubbeam.matrices.SystemMatrices` (assembled if None).
+    convergence_check : ``numerics.convergence_check`` of the config (``tolerance_factor``,
+        ``extra_modes``, ``threshold_m``); if given, the case is rerun at a tighter tolerance and
+        with more modes and the differences are recorded (:func:`convergence`).
+
+    The attribute ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so
+    that :func:`simulation_inputs` can rebuild them.
     """
     check_case(case)
     check_numerics(numerics)
+    if convergence_check is not None:
+        check_convergence_settings(convergence_check)
     sm = case_matrices(case, params, numerics, matrices)
+    ds = build_dataset(case, params, numerics, *_integrate(case, params, numerics, sm))
+    ds.attrs["quadrature_points"] = quadrature_points(sm)
+    if convergence_check is not None:
+        found = convergence(ds, case, params, numerics, sm, convergence_check)
+        notes = found.pop("warnings")
+        ds.attrs.update(found)
+        ds.attrs["warnings"] = "; ".join(filter(None, [ds.attrs["warnings"], *notes]))
+    return ds
+
+
+def quadrature_points(sm: SystemMatrices) -> int:
+    """Gauss-Legendre nodes of the beam integrals of ``sm`` (its point cloud less the tip)."""
+    return int(np.size(sm.x) - 1)
+
+
+def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices):
+    """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`."""
     kind, mp = maneuver_parameters(case["maneuver"])
     t = output_times(case["t_end"], numerics["output_step"])
     out = np.empty((t.size, n_output_columns(case["modes"])))
@@ -176,7 +234,67 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     integrator = {"integrator": INTEGRATOR, "rtol": float(numerics["rtol"]),
                   "atol": float(numerics["atol"]),
                   **{name: int(value) for name, value in zip(radau.STAT_NAMES, stats)}}
-    return build_dataset(case, params, numerics, t, out, status, t_stop, integrator)
+    return t, out, status, t_stop, integrator
+
+
+def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics: Mapping,
+                sm: SystemMatrices, settings: Mapping) -> dict:
+    """Check the run ``ds`` of ``case`` (made with matrices ``sm``) against two reruns.
+
+    The reruns change one setting each: the tolerances ``rtol`` and ``atol`` multiplied by
+    ``settings["tolerance_factor"]`` (``rtol`` not below :data:`MIN_RTOL`), and the number of
+    modes raised by ``settings["extra_modes"]`` (at most :data:`MAX_MODES`; the extra-mode
+    matrices are assembled with at least the Gauss nodes of ``sm``). Each difference is the
+    largest ``|tip_transverse - tip_transverse_rerun|`` in m over the output times where both
+    runs have values, i.e. excluding what follows a divergence or an exhausted step budget.
+
+    Returns the attributes ``convergence_check`` (the settings), ``convergence_rtol``,
+    ``convergence_atol``, ``convergence_modes``, ``convergence_tolerance_diff_m``,
+    ``convergence_modes_diff_m`` (NaN when the case already has :data:`MAX_MODES` modes) and
+    ``warnings``, a list of texts: a difference above ``settings["threshold_m"]``, a mode check
+    that could not be made, a rerun that stopped on its step budget before the run did.
+    """
+    threshold = float(settings["threshold_m"])
+    tip = ds["tip_transverse"].values
+    t_stop = float(ds.attrs["stopped_at_s"])
+    n = int(case["modes"])
+    tight = dict(numerics, rtol=max(float(numerics["rtol"]) * settings["tolerance_factor"], MIN_RTOL),
+                 atol=float(numerics["atol"]) * settings["tolerance_factor"])
+    more = min(n + int(settings["extra_modes"]), MAX_MODES)
+    found = {"convergence_check": json.dumps(dict(settings), sort_keys=True),
+             "convergence_rtol": tight["rtol"], "convergence_atol": tight["atol"],
+             "convergence_modes": more}
+    warnings = []
+    reruns = {"tolerance": (case, tight, sm,
+                            f"a rerun at rtol = {tight['rtol']:.3g}, atol = {tight['atol']:.3g}")}
+    if more > n:
+        more_case = dict(case, modes=more)
+        more_sm = case_matrices(more_case, params, {"quadrature_points": quadrature_points(sm)})
+        reruns["modes"] = (more_case, numerics, more_sm, f"a rerun with {more} modes")
+    else:
+        found["convergence_modes_diff_m"] = math.nan
+        warnings.append(f"convergence in the modes not checked: the case already has the "
+                        f"maximum of {MAX_MODES} modes")
+    for label, (rerun_case, rerun_numerics, rerun_sm, what) in reruns.items():
+        _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm)
+        rerun_tip = out[:, output_columns(rerun_case["modes"])["tip_transverse"]]
+        both = np.isfinite(tip) & np.isfinite(rerun_tip)
+        difference = float(np.max(np.abs(tip - rerun_tip)[both])) if both.any() else math.nan
+        found[f"convergence_{label}_diff_m"] = difference
+        LOG.info("case %s: max |tip deflection difference| to %s: %.3g m", case.get("name"),
+                 what, difference)
+        if difference > threshold:
+            warnings.append(f"not converged in the {label}: the tip deflection differs by up to "
+                            f"{difference:.3g} m from {what} (convergence_{label}_diff_m > "
+                            f"numerics.convergence_check.threshold_m = {threshold:g} m)")
+        elif math.isnan(difference):
+            warnings.append(f"convergence in the {label} not checked: no output time where both "
+                            f"the run and {what} have values")
+        if status == radau.TOO_MANY_STEPS and rerun_stop < t_stop:
+            warnings.append(f"convergence check against {what} covers t <= {rerun_stop:.6g} s "
+                            "only (its step budget numerics.max_steps ran out)")
+    found["warnings"] = warnings
+    return found
 
 
 def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: np.ndarray,
@@ -224,6 +342,7 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
         "output_step": float(numerics["output_step"]),
         "divergence_limit": float(numerics["divergence_limit"]),
         "max_steps": int(numerics["max_steps"]),
+        "step_warning": int(numerics["step_warning"]),
         **integrator,
         "warnings": "; ".join(warnings),
     }
@@ -231,6 +350,31 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
     title = f"hubbeam simulation {case.get('name', '')}: {case['model']}, {maneuver}"
     attrs = global_attributes(title, case_config=dict(case), extra=attributes)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def simulation_inputs(attrs: Mapping) -> dict:
+    """The arguments of :func:`simulate` that reproduce a simulation dataset, from its attributes.
+
+    ``simulate(**simulation_inputs(ds.attrs))`` reruns the case of ``ds`` (``case_config``) with
+    the beam parameters, integrator settings, Gauss nodes and convergence check recorded in it,
+    assembling the matrices itself. Raises :class:`SimulationError` naming a missing attribute.
+    """
+    def get(key):
+        if key not in attrs:
+            raise SimulationError(f"dataset attribute {key!r} is missing; allowed: the attributes "
+                                  "of a dataset written by hubbeam.simulate.simulate")
+        return attrs[key]
+
+    integers = ("max_steps", "step_warning", "quadrature_points")
+    numerics = {key: int(get(key)) if key in integers else float(get(key))
+                for key in (*NUMERICS_KEYS, "quadrature_points")}
+    settings = attrs.get("convergence_check")
+    return {
+        "case": json.loads(get("case_config")),
+        "params": BeamParameters(**{field: float(get(key)) for field, key in CONFIG_KEYS.items()}),
+        "numerics": numerics,
+        "convergence_check": json.loads(settings) if settings else None,
+    }
 
 
 def compile_kernels() -> float:

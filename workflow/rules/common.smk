@@ -60,6 +60,7 @@ def final_targets():
         + figure_targets()
         + table_targets()
         + report_targets()
+        + published_validation_results()
         + ["results/hubbeam-results.tar.gz"]
     )
 
@@ -130,10 +131,12 @@ def report_targets():
 
 
 def archive_inputs(wildcards):
-    """Everything the archive bundles: netCDF results, figures, tables and the report."""
+    """Everything the archive bundles: netCDF results, figures, tables, the report and the
+    published-table validation (the optional Exudyn validation is not bundled)."""
     netcdf = simulation_results() + matrices_results()
     netcdf += [path for path in eigen_results() if path.endswith(".nc")]
-    return sorted(set(netcdf + figure_targets() + table_targets() + report_targets()))
+    products = figure_targets() + table_targets() + report_targets() + published_validation_results()
+    return sorted(set(netcdf + products))
 
 
 # --- simulations (rule in simulate.smk) -----------------------------------------------------------
@@ -153,3 +156,159 @@ def simulation_numerics():
     from hubbeam.simulate import NUMERICS_KEYS
 
     return {key: config["numerics"][key] for key in NUMERICS_KEYS}
+
+
+# --- system matrices (rule in matrices.smk) ------------------------------------------------------
+
+
+def matrices_configurations():
+    """{name: {"mass", "position", "modes"}} over the tip masses of the configured cases."""
+    from hubbeam.matrices import configuration_name
+    from hubbeam.parameters import TipMass
+
+    configurations = {}
+    for case in cases():
+        settings = case_config(case)
+        tip = TipMass(**settings["tip_mass"])
+        if tip.mass == 0.0:
+            tip = TipMass(mass=0.0, position=config["beam"]["length"])
+        entry = configurations.setdefault(
+            configuration_name(tip),
+            {"mass": tip.mass, "position": tip.position, "modes": settings["modes"]},
+        )
+        entry["modes"] = max(entry["modes"], settings["modes"])
+    return configurations
+
+
+def matrices_configuration(wildcards):
+    """`params:` function: the tip mass and mode count of the job's `{config_name}`."""
+    configurations = matrices_configurations()
+    if wildcards.config_name not in configurations:
+        raise WorkflowError(
+            f"results/matrices/{wildcards.config_name}.nc: unknown configuration "
+            f"{wildcards.config_name!r}; allowed: {', '.join(sorted(configurations))}"
+        )
+    return configurations[wildcards.config_name]
+
+
+def matrices_results():
+    """One netCDF file of system matrices per tip-mass configuration."""
+    return expand("results/matrices/{config_name}.nc", config_name=sorted(matrices_configurations()))
+
+
+# --- eigen-analysis (rules in eigen.smk) ----------------------------------------------------------
+
+
+def eigen_results():
+    """Every product of the eigen-analysis (netCDF and csv)."""
+    return [
+        "results/eigen/k22.nc",
+        "results/eigen/critical_speeds.nc",
+        "results/eigen/campbell.nc",
+        "results/tables/critical_speeds.csv",
+        "results/tables/table2.csv",
+    ]
+
+
+# --- independent validation (rules in validate.smk, docs/validation.md) --------------------------
+# The published-table check is part of `all` (whenever the config has a `validation` section) and
+# of the reproduction report; the Exudyn comparison only of the `validate` target, with its own
+# report results/report/validation_exudyn.md/.html.
+
+VALIDATION_DIR = "results/validation"
+
+
+def validation_config():
+    """The `validation` section of the config, or a WorkflowError saying it is missing."""
+    if "validation" not in config:
+        raise WorkflowError(
+            "the independent validation needs the `validation` section of config/config.yaml "
+            "(see docs/validation.md); the configuration in use has none"
+        )
+    return config["validation"]
+
+
+def published_validation_inputs():
+    """Named products of rule `validate_published` that the reproduction report reads: every
+    key below, or none when the config has no `validation` section."""
+    if "validation" not in config:
+        return {}
+    return {
+        "published": f"{VALIDATION_DIR}/published_comparison.csv",
+        "tip_mass": f"{VALIDATION_DIR}/tip_mass_comparison.csv",
+        "curves": f"{VALIDATION_DIR}/rotating_eigen.nc",
+        "published_figure": f"{VALIDATION_DIR}/rotating_frequencies.png",
+    }
+
+
+def published_validation_results():
+    """Every product of rule `validate_published` (empty without a `validation` section)."""
+    inputs = published_validation_inputs()
+    return sorted(inputs.values()) + ([f"{VALIDATION_DIR}/rotating_frequencies.pdf"] if inputs else [])
+
+
+def validation_cases():
+    """Names of the validation cases, sorted."""
+    return sorted(validation_config()["cases"])
+
+
+def named_validation_case(name, key="validation.cases"):
+    """The validation case `name`, or a WorkflowError naming the key and the defined cases."""
+    cases = validation_config()["cases"]
+    if name not in cases:
+        raise WorkflowError(
+            f"{key}: validation case {name!r} is not defined; defined: {', '.join(sorted(cases))}"
+        )
+    return cases[name]
+
+
+def validation_case(wildcards):
+    """`params:` function: the validation case of the job's `{vcase}` wildcard."""
+    return named_validation_case(wildcards.vcase)
+
+
+def validation_case_files(wildcards):
+    """Input function: the comparison file of every validation case."""
+    return expand(f"{VALIDATION_DIR}/exudyn_{{vcase}}.nc", vcase=validation_cases())
+
+
+def validation_reference_files(wildcards):
+    """Input function: the Exudyn run of every validation case."""
+    return expand(f"{VALIDATION_DIR}/runs/exudyn_{{vcase}}.nc", vcase=validation_cases())
+
+
+def validation_section(key):
+    """`params:` function returning `validation.<key>` (evaluated only for validation jobs)."""
+    return lambda wildcards: validation_config()[key]
+
+
+def convergence_case(wildcards):
+    """`params:` function: the case the Exudyn convergence study runs."""
+    return named_validation_case(
+        validation_config()["convergence"]["case"], key="validation.convergence.case"
+    )
+
+
+def validation_targets(wildcards):
+    """Inputs of `validate`; stops with an install hint when Exudyn is not importable."""
+    import importlib.util
+
+    if importlib.util.find_spec("exudyn") is None:
+        raise WorkflowError(
+            "`snakemake validate` needs the optional dependency exudyn, which is not installed "
+            "in this environment: install the extra with `pip install -e .[validation]` (from "
+            "the repository root), then rerun `snakemake validate`"
+        )
+    return (
+        published_validation_results()
+        + [
+            f"{VALIDATION_DIR}/exudyn_comparison.csv",
+            f"{VALIDATION_DIR}/exudyn_comparison.pdf",
+            f"{VALIDATION_DIR}/exudyn_convergence.csv",
+            f"{VALIDATION_DIR}/exudyn_convergence.nc",
+            f"{VALIDATION_DIR}/exudyn_mode_study.csv",
+            "results/report/validation_exudyn.md",
+            "results/report/validation_exudyn.html",
+        ]
+        + validation_case_files(wildcards)
+    )

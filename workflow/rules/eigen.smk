@@ -6,17 +6,6 @@ EIGEN_CODE = hubbeam_sources(
 )
 
 
-def eigen_results():
-    """Every product of the eigen-analysis (netCDF and csv)."""
-    return [
-        "results/eigen/k22.nc",
-        "results/eigen/critical_speeds.nc",
-        "results/eigen/campbell.nc",
-        "results/tables/critical_speeds.csv",
-        "results/tables/table2.csv",
-    ]
-
-
 rule eigen_k22:
     input:
         code=EIGEN_CODE,

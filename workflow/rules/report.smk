@@ -30,7 +30,10 @@ rule reproduction_report:
         figures=[path for path in figure_targets() if path.endswith(".png")],
         tables=expand("results/tables/table{i}.md", i=(1, 2, 3)),
         datasets=simulation_results(),
-        code=hubbeam_sources("report.py", "io.py", "plotting/figures.py"),
+        # the published-table validation (none when the config has no `validation` section)
+        **published_validation_inputs(),
+        code=hubbeam_sources("report.py", "io.py", "plotting/figures.py", "validation/report.py",
+                             "validation/published.py"),
     output:
         markdown=ensure("results/report/reproduction.md", non_empty=True),
         html=report(

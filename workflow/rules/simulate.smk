@@ -1,9 +1,9 @@
 """Time simulation of every configured case: `results/simulations/<case>.nc` (Radau IIA kernel).
 
 The system matrices come from `results/matrices/<configuration>.nc` (their leading `modes` blocks);
-the beam parameters, the resolved case and the integrator settings come through `params:`, so that
-editing a case reruns exactly that case (helpers `simulation_matrices` and `simulation_numerics`
-in common.smk). The package sources a simulation runs are inputs, so that editing a kernel reruns
+the beam parameters, the resolved case, the integrator settings and the optional convergence check
+(`numerics.convergence_check`, None when absent) come through `params:`, so that editing a case
+reruns exactly that case (helpers `simulation_matrices` and `simulation_numerics` in common.smk). The package sources a simulation runs are inputs, so that editing a kernel reruns
 every simulation. `simulation_kernel` compiles the jitted kernel once into numba's on-disk cache
 before the (parallel) simulations load it.
 """
@@ -35,6 +35,7 @@ rule simulate:
         beam=config["beam"],
         case=case_params,
         numerics=simulation_numerics(),
+        convergence_check=config["numerics"].get("convergence_check"),
     log:
         "logs/simulations/{case}.log",
     script:

@@ -1,92 +1,18 @@
-"""Optional independent validation (issue 8, docs/validation.md): `snakemake validate`.
+"""Independent validation (issue 8, docs/validation.md); helpers in common.smk.
 
-Not part of `rule all`. Builds in results/validation/:
+Builds in results/validation/:
 * published_comparison.csv, tip_mass_comparison.csv, rotating_eigen.nc, rotating_frequencies.pdf/png:
-  the constant-speed linearisation of FOAM against published rotating-cantilever frequencies;
+  the constant-speed linearisation of FOAM against published rotating-cantilever frequencies
+  (rule `validate_published`, seconds, no Exudyn: part of `all` and of the reproduction report);
 * exudyn_<case>.nc, exudyn_comparison.csv, exudyn_comparison.pdf/png: FOAM, CFOAM and TLAM tip
   deflections against the Exudyn ANCF reference (runs/ holds the separate runs);
 * exudyn_mode_study.csv: the model-reference differences against the number of assumed modes;
-* exudyn_convergence.csv, exudyn_convergence.nc: convergence of the reference.
-The Exudyn part needs the optional dependency (`pip install -e .[validation]`); without it
-`snakemake validate` stops before running anything, saying so.
+* exudyn_convergence.csv, exudyn_convergence.nc: convergence of the reference;
+and results/report/validation_exudyn.md/.html, the report of the Exudyn comparison.
+Everything Exudyn is built only by the `validate` target (`snakemake validate`, not part of
+`all`); it needs the optional dependency (`pip install -e .[validation]`) and without it stops
+before running anything, saying so.
 """
-
-import importlib.util
-
-VALIDATION_DIR = "results/validation"
-
-
-def validation_config():
-    """The `validation` section of the config, or a WorkflowError saying it is missing."""
-    if "validation" not in config:
-        raise WorkflowError(
-            "`snakemake validate` needs the `validation` section of config/config.yaml "
-            "(see docs/validation.md); the configuration in use has none"
-        )
-    return config["validation"]
-
-
-def validation_cases():
-    """Names of the validation cases, sorted."""
-    return sorted(validation_config()["cases"])
-
-
-def named_validation_case(name, key="validation.cases"):
-    """The validation case `name`, or a WorkflowError naming the key and the defined cases."""
-    cases = validation_config()["cases"]
-    if name not in cases:
-        raise WorkflowError(
-            f"{key}: validation case {name!r} is not defined; defined: {', '.join(sorted(cases))}"
-        )
-    return cases[name]
-
-
-def validation_case(wildcards):
-    """`params:` function: the validation case of the job's `{vcase}` wildcard."""
-    return named_validation_case(wildcards.vcase)
-
-
-def validation_case_files(wildcards):
-    """Input function: the comparison file of every validation case."""
-    return expand(f"{VALIDATION_DIR}/exudyn_{{vcase}}.nc", vcase=validation_cases())
-
-
-def validation_reference_files(wildcards):
-    """Input function: the Exudyn run of every validation case."""
-    return expand(f"{VALIDATION_DIR}/runs/exudyn_{{vcase}}.nc", vcase=validation_cases())
-
-
-def validation_section(key):
-    """`params:` function returning `validation.<key>` (evaluated only for validation jobs)."""
-    return lambda wildcards: validation_config()[key]
-
-
-def convergence_case(wildcards):
-    """`params:` function: the case the Exudyn convergence study runs."""
-    return named_validation_case(validation_config()["convergence"]["case"],
-                                 key="validation.convergence.case")
-
-
-def validation_targets(wildcards):
-    """Inputs of `validate`; stops with an install hint when Exudyn is not importable."""
-    if importlib.util.find_spec("exudyn") is None:
-        raise WorkflowError(
-            "`snakemake validate` needs the optional dependency exudyn, which is not installed "
-            "in this environment: install the extra with `pip install -e .[validation]` (from "
-            "the repository root), then rerun `snakemake validate`"
-        )
-    return [
-        f"{VALIDATION_DIR}/published_comparison.csv",
-        f"{VALIDATION_DIR}/tip_mass_comparison.csv",
-        f"{VALIDATION_DIR}/rotating_eigen.nc",
-        f"{VALIDATION_DIR}/rotating_frequencies.pdf",
-        f"{VALIDATION_DIR}/exudyn_comparison.csv",
-        f"{VALIDATION_DIR}/exudyn_comparison.pdf",
-        f"{VALIDATION_DIR}/exudyn_convergence.csv",
-        f"{VALIDATION_DIR}/exudyn_convergence.nc",
-        f"{VALIDATION_DIR}/exudyn_mode_study.csv",
-    ] + validation_case_files(wildcards)
-
 
 EXUDYN_CODE = hubbeam_sources("validation/exudyn_model.py", "core/maneuver.py", "core/jit.py",
                               "parameters.py")
@@ -101,15 +27,19 @@ rule validate:
 rule validate_published:
     input:
         code=hubbeam_sources("validation/published.py", "validation/rotating_eigen.py",
-                             "validation/figures.py", "matrices.py", "modes.py", "quadrature.py",
-                             "parameters.py"),
+                             "validation/figures.py", "plotting/style.py", "matrices.py",
+                             "modes.py", "quadrature.py", "parameters.py"),
         style=FIGURE_STYLE,
     output:
         table=ensure(f"{VALIDATION_DIR}/published_comparison.csv", non_empty=True),
         tip_mass=ensure(f"{VALIDATION_DIR}/tip_mass_comparison.csv", non_empty=True),
         curves=ensure(f"{VALIDATION_DIR}/rotating_eigen.nc", non_empty=True),
         pdf=ensure(f"{VALIDATION_DIR}/rotating_frequencies.pdf", non_empty=True),
-        png=ensure(f"{VALIDATION_DIR}/rotating_frequencies.png", non_empty=True),
+        png=report(
+            ensure(f"{VALIDATION_DIR}/rotating_frequencies.png", non_empty=True),
+            caption="../report/rotating_frequencies.rst",
+            category="Validation",
+        ),
     params:
         published=validation_section("published"),
         n_quad=config["numerics"]["quadrature_points"],
@@ -174,12 +104,17 @@ rule validate_case:
 rule validate_comparison:
     input:
         cases=validation_case_files,
-        code=hubbeam_sources("validation/comparison.py", "validation/figures.py"),
+        code=hubbeam_sources("validation/comparison.py", "validation/figures.py",
+                             "plotting/style.py"),
         style=FIGURE_STYLE,
     output:
         table=ensure(f"{VALIDATION_DIR}/exudyn_comparison.csv", non_empty=True),
         pdf=ensure(f"{VALIDATION_DIR}/exudyn_comparison.pdf", non_empty=True),
-        png=ensure(f"{VALIDATION_DIR}/exudyn_comparison.png", non_empty=True),
+        png=report(
+            ensure(f"{VALIDATION_DIR}/exudyn_comparison.png", non_empty=True),
+            caption="../report/exudyn_comparison.rst",
+            category="Validation",
+        ),
     log:
         "logs/validation/comparison.log",
     script:
@@ -221,3 +156,23 @@ rule validate_convergence:
         "logs/validation/convergence.log",
     script:
         "../scripts/validate_convergence.py"
+
+
+rule validation_report:
+    input:
+        comparison=f"{VALIDATION_DIR}/exudyn_comparison.csv",
+        figure=f"{VALIDATION_DIR}/exudyn_comparison.png",
+        mode_study=f"{VALIDATION_DIR}/exudyn_mode_study.csv",
+        convergence=f"{VALIDATION_DIR}/exudyn_convergence.csv",
+        code=hubbeam_sources("validation/report.py", "report.py"),
+    output:
+        markdown=ensure("results/report/validation_exudyn.md", non_empty=True),
+        html=report(
+            ensure("results/report/validation_exudyn.html", non_empty=True),
+            caption="../report/validation_exudyn.rst",
+            category="Validation",
+        ),
+    log:
+        "logs/report/validation_exudyn.log",
+    script:
+        "../scripts/report_validation.py"

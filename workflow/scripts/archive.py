@@ -12,12 +12,13 @@ Run by Snakemake (``snakemake`` global) or imported (``build_archive``, ``verify
 import hashlib
 import io
 import os
-import secrets
 import tarfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 
 import yaml
+
+from hubbeam.io import staged
 
 TOP = "hubbeam-results"
 MANIFEST = "MANIFEST.sha256"
@@ -39,7 +40,7 @@ def _member(name: str, data: bytes, mtime: float) -> tuple[tarfile.TarInfo, io.B
 def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: os.PathLike | str,
                   root: os.PathLike | str = ".") -> Path:
     """Write ``output`` (.tar.gz) with ``files`` (paths relative to ``root``), the config and the
-    manifest; atomic (temporary file + rename). Raises FileNotFoundError naming a missing file."""
+    manifest; atomic (``hubbeam.io.staged``: temporary file + rename). Raises FileNotFoundError naming a missing file."""
     root, output = Path(root), Path(output)
     names = sorted({Path(os.path.relpath(Path(root, f), root)).as_posix() for f in files})
     if CONFIG_NAME in names or MANIFEST in names:
@@ -55,16 +56,10 @@ def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: o
     members.append((CONFIG_NAME, config_text, newest))
     members.sort()
     manifest = "".join(f"{sha256(data)}  {name}\n" for name, data, _ in members).encode()
-    output.parent.mkdir(parents=True, exist_ok=True)
-    temporary = output.with_name(f".{output.name}.{secrets.token_hex(6)}.tmp")
-    try:
+    with staged(output) as (temporary,):
         with tarfile.open(temporary, "w:gz", format=tarfile.PAX_FORMAT) as tar:
             for name, data, mtime in [(MANIFEST, manifest, newest), *members]:
                 tar.addfile(*_member(name, data, mtime))
-        os.replace(temporary, output)
-    except BaseException:
-        temporary.unlink(missing_ok=True)
-        raise
     return output
 
 

@@ -2,6 +2,7 @@
 
 import os
 
+from hubbeam.io import write_text
 from hubbeam.simulate import compile_kernels
 
 seconds = compile_kernels()
@@ -9,5 +10,4 @@ cache = os.environ.get("NUMBA_CACHE_DIR")
 message = f"simulation kernel ready in {seconds:.1f} s (numba cache {cache})"
 with open(snakemake.log[0], "w") as log:
     print(message, file=log)
-with open(snakemake.output[0], "w") as done:
-    print(message, file=done)
+write_text(snakemake.output[0], message + "\n")

@@ -3,7 +3,7 @@
 import numpy as np
 
 from hubbeam.eigen import critical_speed_sweep, critical_speed_table
-from hubbeam.io import write_netcdf
+from hubbeam.io import staged, write_netcdf
 from hubbeam.parameters import BeamParameters
 from hubbeam.provenance import global_attributes
 
@@ -14,6 +14,7 @@ ds = critical_speed_sweep(params, p.tip_masses, np.linspace(**p.positions), p.n_
 ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
 write_netcdf(ds, snakemake.output.grid)
 table = critical_speed_table(params, p.tip_masses, p.n_modes, p.search_max, p.n_quad)
-table.to_csv(snakemake.output.table, index=False)
+with staged(snakemake.output.table) as (csv,):
+    table.to_csv(csv, index=False)
 with open(snakemake.log[0], "w") as log:
     print(table.to_string(index=False), file=log)

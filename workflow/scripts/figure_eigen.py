@@ -5,12 +5,16 @@ The named inputs other than ``style`` and ``code`` are opened as datasets and pa
 """
 
 import importlib
+from pathlib import Path
 
-from hubbeam.io import open_result
+from hubbeam.io import open_result, staged
 from hubbeam.plotting import draw
 
 files = {name: path for name, path in snakemake.input.items() if name not in ("style", "code")}
 plot = importlib.import_module(f"hubbeam.plotting.{snakemake.params.module}").plot
-written = draw(plot, snakemake.output.pdf, **{name: open_result(path) for name, path in files.items()})
+datasets = {name: open_result(path) for name, path in files.items()}
+written = [Path(snakemake.output.pdf), Path(snakemake.output.pdf).with_suffix(".png")]
+with staged(*written) as (pdf, _png):  # save_figure writes the PNG beside the PDF
+    draw(plot, pdf, **datasets)
 with open(snakemake.log[0], "w") as log:
     print(f"{snakemake.params.module}.plot({files}) -> {', '.join(map(str, written))}", file=log)

@@ -2,13 +2,15 @@
 
 from collections import Counter
 
+from hubbeam.io import staged
 from hubbeam.report import Results, evaluate, write_claims
 
 results = Results(dict(zip(snakemake.params.cases, snakemake.input.datasets)),
                   table2_csv=snakemake.input.table2,
                   critical_speeds_csv=snakemake.input.critical_speeds)
 rows = evaluate(results)
-write_claims(rows, snakemake.output[0])
+with staged(snakemake.output[0]) as (claims,):
+    write_claims(rows, claims)
 with open(snakemake.log[0], "w") as log:
     print(f"{len(rows)} claims: {dict(Counter(row['verdict'] for row in rows))}", file=log)
     for row in rows:

@@ -1,18 +1,29 @@
-"""Snakemake shim: the reproduction report (Markdown and self-contained HTML)."""
+"""Snakemake shim: the reproduction report (Markdown and self-contained HTML).
+
+The published-table validation is read when the rule has its inputs (the config has a
+`validation` section, see `published_validation_inputs` in common.smk).
+"""
 
 from pathlib import Path
 
 from hubbeam.io import open_result
 from hubbeam.report import markdown_to_html, read_claims, reproduction_markdown
+from hubbeam.validation.report import published_section
 
 out = Path(snakemake.output.markdown)
 figures = {Path(path).stem: path for path in snakemake.input.figures}
 tables = {Path(path).stem: path for path in snakemake.input.tables}
 files = zip(snakemake.params.cases, snakemake.input.datasets)
 datasets = {case: open_result(path) for case, path in files}
+validation = None
+if "published" in snakemake.input.keys():
+    validation = published_section(snakemake.input.published, snakemake.input.tip_mass,
+                                   snakemake.input.curves, snakemake.input.published_figure,
+                                   out.parent)
 text = reproduction_markdown(read_claims(snakemake.input.claims), figures, tables, datasets,
-                             snakemake.params.numerics, out.parent)
+                             snakemake.params.numerics, out.parent, validation=validation)
 out.write_text(text)
 Path(snakemake.output.html).write_text(markdown_to_html(text, out.parent))
 with open(snakemake.log[0], "w") as log:
-    print(f"{out}: {len(figures)} figures, {len(tables)} tables, {len(datasets)} runs", file=log)
+    print(f"{out}: {len(figures)} figures, {len(tables)} tables, {len(datasets)} runs, "
+          f"validation: {validation.summary if validation else 'not configured'}", file=log)

@@ -13,5 +13,6 @@ p = snakemake.params
 n_modes = p.case["modes"]
 stored = open_result(snakemake.input.matrices)
 matrices = from_dataset(stored.isel(mode=slice(0, n_modes), mode_j=slice(0, n_modes)))
-ds = simulate(p.case, BeamParameters.from_config({"beam": p.beam}), p.numerics, matrices)
+ds = simulate(p.case, BeamParameters.from_config({"beam": p.beam}), p.numerics, matrices,
+              convergence_check=p.get("convergence_check"))
 write_netcdf(ds, snakemake.output[0])

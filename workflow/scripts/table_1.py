@@ -1,8 +1,11 @@
 """Snakemake shim: Table 1 (physical parameters) from the configuration, csv + md + tex."""
 
+from hubbeam.io import staged
 from hubbeam.tables import table1, to_markdown, write_table
 
 table = table1(snakemake.params.beam, snakemake.params.tip_masses)
-write_table(table, snakemake.output.csv)
+out = snakemake.output
+with staged(out.csv, out.md, out.tex) as (csv, _md, _tex):
+    write_table(table, csv)
 with open(snakemake.log[0], "w") as log:
     print(to_markdown(table), file=log)

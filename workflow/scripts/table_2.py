@@ -1,8 +1,10 @@
 """Snakemake shim: Markdown and LaTeX renderings of Table 2 (its csv comes from the eigen rule)."""
 
+from hubbeam.io import staged
 from hubbeam.tables import table2, to_markdown, write_table
 
 table = table2(snakemake.input.csv, snakemake.params.speed)
-write_table(table, snakemake.input.csv, csv=False)
+with staged(snakemake.output.md, snakemake.output.tex) as (md, _tex):
+    write_table(table, md.with_suffix(".csv"), csv=False)  # .md and .tex beside that name
 with open(snakemake.log[0], "w") as log:
     print(to_markdown(table), file=log)

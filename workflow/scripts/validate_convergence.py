@@ -2,7 +2,7 @@
 
 import xarray as xr
 
-from hubbeam.io import write_netcdf
+from hubbeam.io import staged, write_netcdf
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
 from hubbeam.validation.comparison import convergence_table
@@ -25,7 +25,8 @@ for setting in sorted(settings):
     runs[label] = spin_up(params, tip, maneuver["wf"], maneuver["tf"], p.case["t_end"], numerics)
 
 table = convergence_table(runs, p.exudyn)
-table.to_csv(snakemake.output.table, index=False)
+with staged(snakemake.output.table) as (csv,):
+    table.to_csv(csv, index=False)
 labels = list(runs)
 stacked = xr.concat([runs[label]["tip_transverse"] for label in labels], dim="run")
 ds = xr.Dataset(

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from hubbeam.io import open_result
+from hubbeam.io import open_result, staged
 from hubbeam.parameters import BeamParameters
 from hubbeam.validation.comparison import mode_study
 
@@ -16,6 +16,7 @@ for path in snakemake.input.references:
     tables.append(mode_study(name, p.cases[name], p.models, p.modes, params, p.numerics,
                              open_result(path)))
 table = pd.concat(tables, ignore_index=True)
-table.to_csv(snakemake.output[0], index=False)
+with staged(snakemake.output[0]) as (csv,):
+    table.to_csv(csv, index=False)
 with open(snakemake.log[0], "w") as log:
     print(table.to_string(index=False), file=log)

@@ -34,11 +34,14 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     for variant, (case, ds) in enumerate(ordered[:-1]):
         diff = ds["tip_transverse"].interp(time=ref["time"]) - ref["tip_transverse"]
         ax.plot(ref["time"].values, 1e3 * diff.values, **model_style(ds.attrs["model"], variant),
-                label=f"{curve_label(case, ds)} $-$ {curve_label(ref_case, ref)}")
+                label=curve_label(case, ds))
     mark_maneuver_end(ax, ref_case, ref)
-    panel_title(ax, 1, f"Difference from n = {n_modes(ref_case, ref)}")
+    panel_title(ax, 1, f"Difference from {curve_label(ref_case, ref)}")
     ax.set_ylabel(axis_label("$\\Delta v(L)$", "mm"))
-    ax.legend(loc="best")
+    # the differences oscillate over the whole run: free room above them for the legend
+    low, high = ax.get_ylim()
+    ax.set_ylim(low, high + 0.5 * (high - low))
+    ax.legend(loc="upper left")
     for row in axes[0]:
         row.set_xlabel(axis_label("Time $t$", "s"))
     counts = np.array([n_modes(c, d) for c, d in ordered])

@@ -43,7 +43,11 @@ def plot(critical: xr.Dataset, model: str = "TLAM"):
     ax.plot(*zip(*printed), "kx", markersize=6, label="paper (Sections 4.2, 4.4)")
     if "continuum_tlam_critical_speed_at_tip" in ds and model == "TLAM":
         ax.plot([], [], "ko", markerfacecolor="none", label="continuum beam, mass at the tip")
-    panel_title(ax, 0, f"Critical angular velocity of {model}")
+    title = f"Critical angular velocity of {model}"
+    if as_map:
+        panel_title(ax, 0, title)
+    else:  # a single panel needs no letter
+        ax.set_title(title)
     ax.set_xlabel(axis_label("Tip-mass position $l$", "m"))
     ax.set_ylabel(axis_label("$\\Omega_c$", "rad s-1"))
     ax.legend(loc="lower left")

@@ -1,8 +1,9 @@
 """Fig. 5: TLAM against FOAM below (2.8 rad/s) and above (3.5 rad/s) TLAM's critical speed.
 
-Rows: (a) transverse tip deflection v(L) = f2(L) q2, (b) pure axial tip deformation w1(L) = f1(L) q1
-(REPRODUCTION_NOTES 11: not w1 + wc). One column per final speed w_f. A diverged run is drawn up to
-its divergence time, marked, and allowed to leave the frame so the bounded runs stay readable.
+Rows: transverse tip deflection v(L) = f2(L) q2, pure axial tip deformation w1(L) = f1(L) q1
+(REPRODUCTION_NOTES 11: not w1 + wc). One column per final speed w_f; panels are labelled row by
+row, (a), (b) transverse, (c), (d) axial for two speeds. A diverged run is drawn up to its
+divergence time, marked, and allowed to leave the frame so the bounded runs stay readable.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ import xarray as xr
 
 from hubbeam.plotting.figures import (distinct, limit_to_bounded, mark_maneuver_end, plot_series,
                                       require_datasets, select)
-from hubbeam.plotting.style import axis_label, new_figure
+from hubbeam.plotting.style import axis_label, new_figure, panel_title
 
 ROWS = (
     ("tip_transverse", "Transverse tip deflection", "$v(L)$"),
@@ -34,7 +35,7 @@ def plot(datasets: Mapping[str, xr.Dataset]):
                 plot_series(ax, case, ds, name)
             limit_to_bounded(ax, at_speed, name)
             mark_maneuver_end(ax, *next(iter(at_speed.items())))
-            ax.set_title(f"({'ab'[row]}) {what}, $\\omega_f$ = {wf:g} rad/s")
+            panel_title(ax, row * len(speeds) + col, f"{what}, $\\omega_f$ = {wf:g} rad/s")
             ax.set_ylabel(axis_label(symbol, "m"))
             ax.legend(loc="lower left")
         axes[-1, col].set_xlabel(axis_label("Time $t$", "s"))

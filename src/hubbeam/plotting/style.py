@@ -30,6 +30,10 @@ VARIANT_LINESTYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1)), (0, (1, 1)))
 #: Colours for curves that are not distinguished by model (modal coordinates, speeds, ...).
 SEQUENCE_COLORS = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
 
+#: Background of a text label drawn over data (time marks, critical speeds): the curves stay
+#: visible through it, the label stays readable where a curve crosses it.
+LABEL_BOX = {"boxstyle": "square,pad=0.15", "facecolor": "white", "edgecolor": "none", "alpha": 0.75}
+
 PDF_METADATA = {"CreationDate": None, "Producer": None, "Creator": "hubbeam"}
 PNG_METADATA = {"Software": None}
 PNG_DPI = 200
@@ -75,6 +79,15 @@ def units_tex(units: str) -> str:
     return re.sub(r"(?<=[A-Za-z])(-?\d+(?:/\d+)?)", lambda m: "$^{" + m.group(1) + "}$", units)
 
 
+def number_tex(value: float, digits: int = 2) -> str:
+    """``value`` to ``digits`` significant figures in mathtext: ``0.21``, ``$4.4\\times10^{-5}$``."""
+    mantissa, _, exponent = f"{value:.{digits - 1}e}".partition("e")
+    power = int(exponent)
+    if -2 <= power < 3:
+        return f"{float(f'{value:.{digits}g}'):g}"
+    return f"${mantissa}\\times10^{{{power}}}$"
+
+
 def axis_label(quantity: str, units: str) -> str:
     """``"Tip deflection $v(L)$ (m)"`` style label: quantity followed by units in parentheses."""
     return f"{quantity} ({units_tex(units)})"
@@ -109,4 +122,4 @@ def mark_time(ax, t: float, text: str, color: str = "0.35") -> None:
     ax.axvline(t, color="0.55", linewidth=0.7, linestyle=":", zorder=0)
     ax.annotate(text, xy=(t, 1.0), xycoords=("data", "axes fraction"), xytext=(-2, -3),
                 textcoords="offset points", ha="right", va="top", rotation=90, fontsize=7,
-                color=color)
+                color=color, bbox=LABEL_BOX)

@@ -17,6 +17,7 @@ import pandas as pd
 import xarray as xr
 
 from hubbeam.plotting.style import axis_label, mark_time, model_style, new_figure
+from hubbeam.validation import published
 from hubbeam.validation.comparison import REFERENCE
 
 REFERENCE_STYLE = {"color": "0.1", "linestyle": "-", "linewidth": 2.4, "alpha": 0.35}
@@ -49,14 +50,15 @@ def exudyn_comparison(datasets: Mapping[str, xr.Dataset]):
         title = (f"$\\omega_f$ = {config['maneuver']['wf']:g} rad/s"
                  + (f", $m_t$ = {tip['mass']:g} kg" if tip["mass"] else ""))
         left.set_title(f"({chr(ord('a') + 2 * row)}) tip deflection, {title}")
-        right.set_title(f"({chr(ord('a') + 2 * row + 1)}) |model $-$ {REFERENCE}|, {title}")
+        right.set_title(f"({chr(ord('a') + 2 * row + 1)}) |model $-$ {REFERENCE}| (same case)")
         left.set_ylabel(axis_label("$v(L)$", "m"))
         right.set_ylabel(axis_label("$|\\Delta v(L)|$", "m"))
-        for ax in (left, right):
-            ax.axvline(float(config["maneuver"]["tf"]), color="0.55", linewidth=0.7,
-                       linestyle=":", zorder=0)
-        if row == 0:
-            left.legend(loc="lower left", ncol=2)
+        tf = float(config["maneuver"]["tf"])
+        mark_time(left, tf, f"$t_f$ = {tf:g} s")
+        right.axvline(tf, color="0.55", linewidth=0.7, linestyle=":", zorder=0)
+    # one legend for every panel, above them, clear of the curves
+    fig.legend(*axes[0][0].get_legend_handles_labels(), loc="outside upper center",
+               ncols=1 + len(datasets[next(iter(datasets))]["model"]))
     for ax in axes[-1]:
         ax.set_xlabel(axis_label("Time $t$", "s"))
     return fig
@@ -77,8 +79,8 @@ def rotating_frequencies(curves: xr.Dataset, table: pd.DataFrame):
         for (source, direction), rows in table.groupby(["source", "direction"]):
             marker = "o" if source.startswith("hamza") else "s"
             ax.plot(rows["gamma"], rows["published"], linestyle="none", marker=marker,
-                    markersize=4, markerfacecolor="none",
-                    color=lines[direction][0], label=f"{direction}, {source}")
+                    markersize=4, markerfacecolor="none", color=lines[direction][0],
+                    label=f"{direction}, {published.short_name(source)}")
     zoom.set_xlim(0.0, 12.5)
     zoom.set_ylim(3.0, 14.0)
     overview.set_title(f"(a) $\\alpha$ = {curves.attrs['alpha']:g}, $\\delta$ = "
@@ -87,5 +89,5 @@ def rotating_frequencies(curves: xr.Dataset, table: pd.DataFrame):
     for ax in (overview, zoom):
         ax.set_xlabel(axis_label("Speed ratio $\\gamma$", "1"))
         ax.set_ylabel(axis_label("First frequency $\\bar\\omega_1$", "1"))
-    zoom.legend(loc="upper left", fontsize=6)
+    fig.legend(*zoom.get_legend_handles_labels(), loc="outside lower center", ncols=2)
     return fig

@@ -63,6 +63,24 @@ CITATIONS = {
     ),
 }
 
+#: Author-year names of the sources for tables, legends and report text.
+SHORT_NAMES = {
+    "wright1982": "Wright et al. (1982)",
+    "hodges1981": "Hodges and Rutkowski (1981)",
+    "hamza-cherif2004": "Hamza-Cherif and Houmat (2004)",
+    "tip-mass-frequency-equation": "tip-mass frequency equation",
+}
+
+
+def short_name(source: str) -> str:
+    """Author-year name of ``source``, a key of :data:`CITATIONS` or several joined by ``+``."""
+    keys = source.split("+")
+    unknown = [key for key in keys if key not in SHORT_NAMES]
+    if unknown:
+        raise KeyError(f"source {source!r}: unknown key(s) {unknown}; allowed: {sorted(SHORT_NAMES)}")
+    return "; ".join(SHORT_NAMES[key] for key in keys)
+
+
 #: How the last printed digit of each table was obtained, as we read it (evidence in
 #: docs/validation.md): "rounded" (to nearest) or "truncated" (chopped towards zero).
 ROUNDING = {

@@ -150,7 +150,7 @@ def richardson(n_modes, values) -> tuple[float, float]:
     return float(f3 - d23 * n3**-p / (n2**-p - n3**-p)), float(p)
 
 
-def _allowed_interval(printed: str, rounding: str, modal_change: float) -> tuple[float, float]:
+def allowed_interval(printed: str, rounding: str, modal_change: float) -> tuple[float, float]:
     """Bounds on (ours - published) that count as agreement.
 
     The published precision gives the interval of exact values behind the printed digits:
@@ -189,7 +189,7 @@ def published_comparison(n_modes=(10, 15, 20), n_quad: int = 64) -> pd.DataFrame
             ours.append(float(frequencies(systems[key], entry.gamma, entry.direction)[0]))
         modal_change = abs(ours[-1] - ours[-2])
         rounding = published.ROUNDING[entry.source]
-        low, high = _allowed_interval(entry.printed, rounding, modal_change)
+        low, high = allowed_interval(entry.printed, rounding, modal_change)
         extrapolated, order = (richardson(n_modes[-3:], ours[-3:]) if len(n_modes) >= 3
                                else (float("nan"), float("nan")))
         difference = ours[-1] - entry.value
@@ -215,7 +215,7 @@ def tip_mass_comparison(n_modes=(10, 20), n_quad: int = 64) -> pd.DataFrame:
         ours = [float(np.sqrt(frequencies(assemble(params, tip, n, n_quad), 0.0, "flapwise")[0]))
                 for n in n_modes]
         modal_change = abs(ours[-1] - ours[-2])
-        low, high = _allowed_interval(entry.printed, "rounded", modal_change)
+        low, high = allowed_interval(entry.printed, "rounded", modal_change)
         difference = ours[-1] - entry.value
         rows.append({"mu": entry.mu, "printed": entry.printed, "published": entry.value,
                      **{f"root_n{n}": value for n, value in zip(n_modes, ours)},

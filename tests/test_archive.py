@@ -126,10 +126,30 @@ def test_workflow_builds_every_product_on_a_tiny_config(tmp_path):
                                                       "convergence") for e in ("pdf", "png")]
     expected += [f"results/tables/table{i}.{e}" for i in (1, 2, 3) for e in ("csv", "md", "tex")]
     expected += [f"results/report/{name}" for name in ("claims.csv", "reproduction.md", "reproduction.html")]
+    expected += [f"results/validation/{name}" for name in (  # the published-table validation is in `all`
+        "published_comparison.csv", "tip_mass_comparison.csv", "rotating_eigen.nc",
+        "rotating_frequencies.pdf", "rotating_frequencies.png")]
     expected += [f"results/simulations/{case}.nc" for case in config["cases"]]
     expected += ["results/hubbeam-results.tar.gz"]
     missing = [name for name in expected if not (tmp_path / name).is_file()]
     assert missing == []
     assert archive.verify_archive(tmp_path / "results" / "hubbeam-results.tar.gz") == []
+    report = (tmp_path / "results" / "report" / "reproduction.md").read_text()
+    assert "## Validation" in report and "published rotating-cantilever first frequencies" in report
+    assert not (tmp_path / "results" / "report" / "validation_exudyn.md").exists()  # `validate` only
     claims = (tmp_path / "results" / "report" / "claims.csv").read_text().splitlines()
     assert len(claims) > 40
+
+
+def test_without_a_validation_section_the_plan_has_no_validation_and_the_report_says_so(tmp_path):
+    config = yaml.safe_load(CONFIG_FILE.read_text())
+    del config["validation"]
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "config.yaml").write_text(yaml.safe_dump(config))
+    snakemake = Path(sys.executable).with_name("snakemake")
+    run = subprocess.run([str(snakemake), "--snakefile", str(REPO / "Snakefile"), "--directory", str(tmp_path),
+                          "--dry-run", "all"], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-4000:]
+    plan = run.stdout + run.stderr
+    assert "reproduction_report" in plan and "archive" in plan
+    assert "validate_published" not in plan and "results/validation/" not in plan

@@ -183,3 +183,21 @@ def test_eigen_figure_script_passes_named_inputs(key, module, inputs, tmp_path_f
                input={name: str(eigen[stem]) for name, stem in inputs.items()} | {"style": "x", "code": []},
                output={"pdf": str(out)}, params={"module": module})
     assert out.is_file() and out.with_suffix(".png").is_file()
+
+
+def test_fig05_panels_have_distinct_labels_row_by_row(datasets):
+    with styled():
+        fig = plotter("fig05")(group(datasets, "fig05"))
+    titles = [ax.get_title(loc="left") for ax in fig.axes]
+    assert [title[:3] for title in titles] == ["(a)", "(b)", "(c)", "(d)"]
+    assert "Transverse" in titles[1] and "3.5 rad/s" in titles[1] and "Axial" in titles[2]
+
+
+def test_campbell_legend_states_the_mode_count(tmp_path_factory):
+    from hubbeam.plotting import campbell
+    eigen = write_eigen(tmp_path_factory.mktemp("campbell"), n_modes=3, n_quad=16)
+    with styled():
+        fig = campbell.plot(open_result(eigen["campbell"]), open_result(eigen["critical_speeds"]))
+    labels = [text.get_text() for legend in fig.legends for text in legend.get_texts()]
+    assert labels == ["TLAM, n = 3 (modes 1-3)", "FOAM, n = 3 (modes 1-3)"]
+    assert all(len(ax.get_lines()) >= 2 * 3 for ax in fig.axes)  # every mode of both models drawn

@@ -249,8 +249,9 @@ def _physical_problems(cfg: Any) -> list[Problem]:
         return []
     problems = _non_finite_numbers_and_non_text_keys(cfg, [])
     beam, numerics, eigen, cases = (_section(cfg, key) for key in ("beam", "numerics", "eigen", "cases"))
-    length = _number(beam.get("length"))
-    output_step = _number(numerics.get("output_step"))
+    # bounds derived from a length or step the schema rejects would only repeat that problem
+    length = _positive(beam.get("length"))
+    output_step = _positive(numerics.get("output_step"))
 
     max_steps, step_warning = _integer(numerics.get("max_steps")), _integer(numerics.get("step_warning"))
     if max_steps is not None and step_warning is not None and step_warning > max_steps:
@@ -393,6 +394,12 @@ def _number(value: Any) -> float | None:
     if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
         return float(value)
     return None
+
+
+def _positive(value: Any) -> float | None:
+    """``value`` as float if it is a finite YAML number > 0, else None (the schema reports it)."""
+    number = _number(value)
+    return number if number is not None and number > 0.0 else None
 
 
 def _integer(value: Any) -> int | None:

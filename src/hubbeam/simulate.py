@@ -346,7 +346,7 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
         **integrator,
         "warnings": "; ".join(warnings),
     }
-    maneuver = json.dumps(dict(case["maneuver"]))
+    maneuver = json.dumps(dict(case["maneuver"]), sort_keys=True)  # as in case_config
     title = f"hubbeam simulation {case.get('name', '')}: {case['model']}, {maneuver}"
     attrs = global_attributes(title, case_config=dict(case), extra=attributes)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)

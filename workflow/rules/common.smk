@@ -229,8 +229,8 @@ def validation_config():
 
 
 def published_validation_inputs():
-    """Named products of rule `validate_published` that the reproduction report reads: every
-    key below, or none when the config has no `validation` section."""
+    """The products of `validate_published` the reproduction report reads, by input name (none
+    when the config has no `validation` section)."""
     if "validation" not in config:
         return {}
     return {
@@ -242,7 +242,7 @@ def published_validation_inputs():
 
 
 def published_validation_results():
-    """Every product of rule `validate_published` (empty without a `validation` section)."""
+    """Every product of `validate_published` (none without a `validation` section)."""
     inputs = published_validation_inputs()
     return sorted(inputs.values()) + ([f"{VALIDATION_DIR}/rotating_frequencies.pdf"] if inputs else [])
 

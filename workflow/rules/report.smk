@@ -33,7 +33,7 @@ rule reproduction_report:
         # the published-table validation (none when the config has no `validation` section)
         **published_validation_inputs(),
         code=hubbeam_sources("report.py", "io.py", "plotting/figures.py", "validation/report.py",
-                             "validation/published.py"),
+                             "validation/published.py", "validation/rotating_eigen.py"),
     output:
         markdown=ensure("results/report/reproduction.md", non_empty=True),
         html=report(

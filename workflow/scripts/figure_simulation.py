@@ -2,13 +2,12 @@
 
 from pathlib import Path
 
-from hubbeam.io import open_result, staged
-from hubbeam.plotting import render
+from hubbeam.io import staged
+from hubbeam.plotting import render_files
 
 p = snakemake.params
-datasets = {case: open_result(path) for case, path in zip(p.cases, snakemake.input.datasets)}
 written = [Path(snakemake.output.pdf), Path(snakemake.output.pdf).with_suffix(".png")]
 with staged(*written) as (pdf, _png):  # save_figure writes the PNG beside the PDF
-    render(p.figure, datasets, pdf)
+    render_files(p.figure, dict(zip(p.cases, snakemake.input.datasets)), pdf)
 with open(snakemake.log[0], "w") as log:
     print(f"{p.figure}: cases {', '.join(p.cases)} -> {', '.join(map(str, written))}", file=log)

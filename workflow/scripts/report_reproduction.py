@@ -6,7 +6,7 @@ The published-table validation is read when the rule has its inputs (the config 
 
 from pathlib import Path
 
-from hubbeam.io import open_result
+from hubbeam.io import open_result, write_text
 from hubbeam.report import markdown_to_html, read_claims, reproduction_markdown
 from hubbeam.validation.report import published_section
 
@@ -22,8 +22,8 @@ if "published" in snakemake.input.keys():
                                    out.parent)
 text = reproduction_markdown(read_claims(snakemake.input.claims), figures, tables, datasets,
                              snakemake.params.numerics, out.parent, validation=validation)
-out.write_text(text)
-Path(snakemake.output.html).write_text(markdown_to_html(text, out.parent))
+write_text(out, text)
+write_text(snakemake.output.html, markdown_to_html(text, out.parent))
 with open(snakemake.log[0], "w") as log:
     print(f"{out}: {len(figures)} figures, {len(tables)} tables, {len(datasets)} runs, "
           f"validation: {validation.summary if validation else 'not configured'}", file=log)

@@ -63,7 +63,8 @@ def plot(k22: xr.Dataset, critical: xr.Dataset, masses=(0.1, 0.5), speed: float 
         if printed is not None and model == "TLAM":
             ax.plot([float(k22["position"].max())], [printed], "x", color="k", clip_on=False,
                     label=f"paper, $l = L$: {printed:g} rad/s")
-        ax.axhline(speed, color="0.3", linewidth=0.7, linestyle=":")
+        ax.axhline(speed, color="0.3", linewidth=0.7, linestyle=":",
+                   label=rf"$\Omega$ = {speed:g} rad/s (panel ({chr(ord('a') + len(masses))}))")
         panel_title(ax, index, f"{model}, $m_t$ = {mass:g} kg")
         ax.set_xlabel(axis_label("tip-mass position $l$", "m"))
         ax.set_ylabel(axis_label(r"hub speed $\Omega$", "rad s-1"))
@@ -75,10 +76,10 @@ def plot(k22: xr.Dataset, critical: xr.Dataset, masses=(0.1, 0.5), speed: float 
         curve = labelled(k22, "dominant_eigenvalue", "k22", model=model, tip_mass=mass,
                          speed=speed)
         ax.plot(curve["position"], curve, color=SEQUENCE_COLORS[index],
-                label=f"$m_t$ = {mass:g} kg")
+                label=f"{model}, n = {k22.attrs.get('n_modes', '?')}, $m_t$ = {mass:g} kg")
     ax.axhline(0.0, color="k", linewidth=0.7)
     panel_title(ax, len(masses), rf"{model} at $\Omega$ = {speed:g} rad/s")
     ax.set_xlabel(axis_label("tip-mass position $l$", "m"))
     ax.set_ylabel(EIGENVALUE_LABEL)
-    ax.legend(loc="best")
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 0.2))  # below the curves, above the zero line
     return fig

@@ -373,13 +373,6 @@ def test_snakefile_stops_on_a_bad_config_before_any_rule(tmp_path, repo_root):
     assert "Building DAG" not in output and "Job stats" not in output
 
 
-needs_simulation_rule = pytest.mark.skipif(
-    not (Path(__file__).resolve().parents[1] / "workflow" / "rules" / "simulate.smk").exists(),
-    reason="workflow/rules/simulate.smk (the rule making results/simulations/<case>.nc) does not exist yet",
-)
-
-
-@needs_simulation_rule
 def test_dry_run_plans_every_case(tmp_path, repo_root, study_config):
     run = snakemake(repo_root, tmp_path, "--dry-run", "--configfile", str(repo_root / "config" / "config.yaml"))
     assert run.returncode == 0, run.stderr
@@ -389,7 +382,6 @@ def test_dry_run_plans_every_case(tmp_path, repo_root, study_config):
         assert f"results/simulations/{name}.nc" in output
 
 
-@needs_simulation_rule
 def test_a_case_added_in_an_extra_config_file_builds_without_code_change(tmp_path, repo_root):
     extra = write(tmp_path / "extra.yaml", yaml.safe_dump({"cases": {"my_spinup": {
         "model": "SFOAM", "maneuver": {"kind": "prescribed", "wf": 1.0, "tf": 2.0}, "t_end": 3.0}}}))
@@ -399,3 +391,19 @@ def test_a_case_added_in_an_extra_config_file_builds_without_code_change(tmp_pat
                     "--configfile", str(repo_root / "config" / "config.yaml"), str(extra))
     assert run.returncode == 0, run.stderr
     assert "results/simulations/my_spinup.nc" in run.stdout + run.stderr
+
+
+def test_a_config_without_the_cases_of_a_figure_stops_with_one_clear_message(tmp_path, repo_root,
+                                                                               study_config):
+    reduced = dict(study_config)
+    reduced["cases"] = {name: case for name, case in study_config["cases"].items()
+                        if not name.startswith(("fig03_", "tab3_"))}
+    config = write(tmp_path / "reduced.yaml", yaml.safe_dump(reduced))
+    workdir = tmp_path / "work"
+    workdir.mkdir()
+    run = snakemake(repo_root, workdir, "--dry-run", "--configfile", str(config))
+    output = run.stdout + run.stderr
+    assert run.returncode != 0
+    assert "no case for fig03: the config needs at least one case named fig03_*" in output
+    assert "no case for table3: the config needs at least one case named tab3_*" in output
+    assert "Traceback" not in output and 'File "' not in output

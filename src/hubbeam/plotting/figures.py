@@ -52,6 +52,20 @@ def cases_for(key: str, case_names: Iterable[str]) -> list[str]:
     return selected
 
 
+def check_figure_cases(case_names: Iterable[str]) -> None:
+    """Raise one ``FigureDataError`` listing every figure or table that no configured case feeds."""
+    names = list(case_names)
+    problems = []
+    for key in FIGURE_CASE_PREFIXES:
+        try:
+            cases_for(key, names)
+        except FigureDataError as error:
+            problems.append(f"  - {error}")
+    if problems:
+        raise FigureDataError("invalid hubbeam configuration: the figures and tables of the paper "
+                              "need their cases (config `cases`):\n" + "\n".join(problems))
+
+
 # --- dataset metadata ---------------------------------------------------------------------------
 
 def attr(case: str, ds: xr.Dataset, key: str):

@@ -285,6 +285,101 @@ def _physical_problems(cfg: Any) -> list[Problem]:
         if position is not None and length is not None and position > length:
             problems.append(Problem(f"cases.{name}.tip_mass.position",
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+    problems += _sweep_problems(_section(cfg, "sweeps"), length)
+    problems += _benchmark_problems(_section(cfg, "benchmark"), length)
+    return problems
+
+
+#: maneuver parameters of each kind (a sweep gives each either fixed or swept)
+_MANEUVER_PARAMETERS = {"prescribed": ("wf", "tf"), "torque": ("tau_max", "tf")}
+
+
+def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
+    """A sweep's grids increase, and its fixed and swept parameters complete the maneuver and the
+    tip mass without overlapping; the figure compares models of the sweep."""
+    problems = []
+    for name, spec in _section(sweeps, "maps").items():
+        if not isinstance(spec, dict):
+            continue
+        where = f"sweeps.maps.{name}"
+        grid = _section(spec, "grid")
+        for key in grid:
+            axis = _section(grid, key)
+            start, stop = _number(axis.get("start")), _number(axis.get("stop"))
+            if start is not None and stop is not None and stop <= start:
+                problems.append(Problem(f"{where}.grid.{key}.stop", f"got {stop}; allowed: a value > "
+                                        f"{where}.grid.{key}.start = {start}"))
+            if key in ("wf", "tf", "tau_max") and start is not None and start <= 0:
+                problems.append(Problem(f"{where}.grid.{key}.start", f"got {start}; allowed: a value > 0"))
+            if key == "tip_position" and stop is not None and length is not None and stop > length:
+                problems.append(Problem(f"{where}.grid.tip_position.stop", f"got {stop}; allowed: a "
+                                        f"position on the beam, <= beam.length = {length}"))
+        maneuver = _section(spec, "maneuver")
+        needed = _MANEUVER_PARAMETERS.get(maneuver.get("kind"))
+        if needed is not None:
+            for key in ("wf", "tf", "tau_max"):
+                fixed, swept = key in maneuver, key in grid
+                if key not in needed and swept:
+                    problems.append(Problem(f"{where}.grid.{key}", f"swept, but kind is {maneuver['kind']!r}; "
+                                            f"allowed parameters: {', '.join(needed)}"))
+                elif key in needed and fixed == swept:
+                    problems.append(Problem(f"{where}.maneuver.{key}",
+                                            ("given both here and under grid" if fixed else "missing")
+                                            + f"; allowed: exactly one of {where}.maneuver.{key} or "
+                                            f"{where}.grid.{key}"))
+        tip = _section(spec, "tip_mass")
+        for key, grid_key in (("mass", "tip_mass"), ("position", "tip_position")):
+            if key in tip and grid_key in grid:
+                problems.append(Problem(f"{where}.tip_mass.{key}", f"given, but {grid_key} is swept; "
+                                        f"allowed: either {where}.tip_mass.{key} or {where}.grid.{grid_key}"))
+        position = _number(tip.get("position"))
+        if position is not None and length is not None and position > length:
+            problems.append(Problem(f"{where}.tip_mass.position",
+                                    f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+        models = spec.get("models") if isinstance(spec.get("models"), list) else []
+        figure = _section(spec, "figure")
+        for key in ("model", "reference"):
+            if key in figure and figure[key] not in models:
+                problems.append(Problem(f"{where}.figure.{key}",
+                                        f"got {figure[key]!r}; allowed: one of {where}.models = {models}"))
+        if "model" in figure and figure.get("model") == figure.get("reference"):
+            problems.append(Problem(f"{where}.figure.reference",
+                                    f"got {figure['reference']!r}; allowed: a model other than figure.model"))
+    return problems
+
+
+def _benchmark_problems(benchmark: Mapping, length: float | None) -> list[Problem]:
+    """The benchmark's case references name benchmark cases, which fit the beam and the grid."""
+    problems = []
+    cases = _section(benchmark, "cases")
+    scipy_cases = benchmark.get("scipy_cases") if isinstance(benchmark.get("scipy_cases"), list) else []
+    references = [("python_rhs_case", benchmark.get("python_rhs_case")),
+                  ("scaling.case", _section(benchmark, "scaling").get("case"))]
+    references += [(f"scipy_cases[{i}]", name) for i, name in enumerate(scipy_cases)]
+    for key, name in references:
+        if isinstance(name, str) and name not in cases:
+            problems.append(Problem(f"benchmark.{key}", f"got {name!r}; allowed: a name of "
+                                    f"benchmark.cases ({', '.join(sorted(cases))})"))
+    python_case = benchmark.get("python_rhs_case")
+    if isinstance(python_case, str) and python_case not in scipy_cases:
+        problems.append(Problem("benchmark.python_rhs_case",
+                                f"got {python_case!r}; allowed: one of benchmark.scipy_cases"))
+    step = _number(benchmark.get("output_step"))
+    for name, case in cases.items():
+        if not isinstance(case, dict):
+            continue
+        t_end = _number(case.get("t_end"))
+        if t_end is not None and step is not None and t_end < step:
+            problems.append(Problem(f"benchmark.cases.{name}.t_end",
+                                    f"got {t_end}; allowed: t_end >= benchmark.output_step = {step}"))
+        position = _number(_section(case, "tip_mass").get("position"))
+        if position is not None and length is not None and position > length:
+            problems.append(Problem(f"benchmark.cases.{name}.tip_mass.position",
+                                    f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+    reference = _number(benchmark.get("reference_rtol"))
+    if reference is not None and reference < 100 * 2.0**-52:
+        problems.append(Problem("benchmark.reference_rtol", f"got {reference}; allowed: at least 100 "
+                                f"machine epsilons ({100 * 2.0**-52:.3g})"))
     return problems
 
 

@@ -455,15 +455,7 @@ NUMERIC_CLAIM_COLUMNS = ("paper", "computed", "rel_diff", "tolerance")
 
 def read_claims(path) -> list[dict]:
     """Rows of ``claims.csv`` with the numeric columns as floats (empty: NaN), the rest as text."""
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"claims file {path} does not exist (rule `claims` writes it)")
-    with path.open(newline="") as handle:
-        rows = list(csv.DictReader(handle))
-    for row in rows:
-        for column in NUMERIC_CLAIM_COLUMNS:
-            row[column] = float(row[column]) if row[column] != "" else math.nan
-    return rows
+    return read_csv_rows(path, NUMERIC_CLAIM_COLUMNS)
 
 
 # --- the reproduction report --------------------------------------------------------------------

@@ -138,8 +138,12 @@ def write_table(table: Table, csv_path, *, csv: bool = True) -> list[Path]:
     return written
 
 
-def read_csv_rows(path) -> list[dict]:
-    """Rows of a csv with numeric cells as floats (empty cells: NaN); clear error if unreadable."""
+def read_csv_rows(path, numeric_columns=None) -> list[dict]:
+    """Rows of a csv with numeric cells as floats (empty cells: NaN); clear error if unreadable.
+
+    With ``numeric_columns`` only those columns are converted (the others stay text, even when a
+    cell looks like a number); otherwise every cell that parses as a number is.
+    """
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"table file {path} does not exist (run the rule that writes it)")
@@ -148,13 +152,18 @@ def read_csv_rows(path) -> list[dict]:
     if not rows:
         raise ValueError(f"table file {path} has no rows")
 
-    def number(text):
+    def number(key, text):
+        if numeric_columns is not None and key not in numeric_columns:
+            return text
         try:
             return float(text) if text != "" else math.nan
         except ValueError:
+            if numeric_columns is not None:
+                raise ValueError(f"table file {path}: column {key!r} holds {text!r}, "
+                                 "not a number") from None
             return text
 
-    return [{key: number(value) for key, value in row.items()} for row in rows]
+    return [{key: number(key, value) for key, value in row.items()} for row in rows]
 
 
 # --- Table 1 ------------------------------------------------------------------------------------

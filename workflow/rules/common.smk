@@ -60,6 +60,7 @@ def final_targets():
         + figure_targets()
         + table_targets()
         + report_targets()
+        + sweep_targets()
         + published_validation_results()
         + ["results/hubbeam-results.tar.gz"]
     )
@@ -311,4 +312,28 @@ def validation_targets(wildcards):
             "results/report/validation_exudyn.html",
         ]
         + validation_case_files(wildcards)
+    )
+
+
+# --- parameter sweeps (rules in sweeps.smk) ------------------------------------------------------
+
+
+def sweeps():
+    """Names of the configured parameter sweeps (`sweeps.maps`), sorted; none without `sweeps`."""
+    from hubbeam.sweep import sweep_names
+
+    return sweep_names(config)
+
+
+def sweep_params(wildcards):
+    """`params:` function: the resolved sweep of the job's `{sweep}` wildcard."""
+    from hubbeam.sweep import sweep_settings
+
+    return sweep_settings(config, wildcards.sweep)
+
+
+def sweep_targets():
+    """Every sweep's netCDF result and its figure (PDF and PNG)."""
+    return expand("results/sweeps/{sweep}.nc", sweep=sweeps()) + expand(
+        "results/figures/sweep_{sweep}.{ext}", sweep=sweeps(), ext=("pdf", "png")
     )

@@ -1,0 +1,232 @@
+"""Beyond the paper: maps of the peak tip deflection from the parameter sweeps (hubbeam.sweep).
+
+``plot(sweep)`` draws the figure the sweep's configuration asks for (``figure.kind`` in the
+``sweep_config`` attribute), from the sweep dataset only:
+
+* ``peak``: one panel per model, the peak transverse tip deflection over the two swept
+  parameters (logarithmic colour scale), diverged runs hatched;
+* ``departure``: (a) the relative difference ``|peak_model - peak_reference| / peak_reference``
+  with the ``threshold`` contour, runs where ``model`` diverged hatched (they depart by
+  definition), (b) the reference model's peak with the same contour.
+
+Where ``wf`` is swept, TLAM's critical speed (``critical_speed`` of the dataset, from
+:func:`hubbeam.eigen.critical_speed_sweep`) is drawn: a line at ``wf = Omega_c``, or the curve
+``Omega_c(m_t)`` / ``Omega_c(l)`` when the tip mass or its position is the other axis.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import xarray as xr
+from matplotlib.colors import LogNorm
+from matplotlib.patches import Patch
+from matplotlib.ticker import NullFormatter
+
+from hubbeam.plotting.figures import FigureDataError
+from hubbeam.plotting.style import axis_label, new_figure, panel_title
+
+PEAK = "peak_tip_deflection"
+DIVERGED_HATCH = "////"
+DIVERGED_COLOR = "0.8"
+CRITICAL_COLOR = "#E69F00"
+DEPARTURE_COLOR = "cyan"
+#: axis labels of the swept parameters
+AXIS_LABELS = {"wf": "Final hub speed $\\omega_f$", "tf": "Maneuver time $t_f$",
+               "tau_max": "Torque amplitude $\\tau_m$", "tip_mass": "Tip mass $m_t$",
+               "tip_position": "Tip-mass position $l$"}
+
+
+def plot(sweep: xr.Dataset):
+    """The figure of the sweep dataset ``sweep`` (see the module docstring)."""
+    for name in (PEAK, "diverged", "critical_speed"):
+        if name not in sweep.variables:
+            raise FigureDataError(f"sweep dataset has no variable {name!r} "
+                                  f"(has: {', '.join(sorted(sweep.variables))})")
+    config = json.loads(sweep.attrs["sweep_config"])
+    figure = config["figure"]
+    if figure["kind"] == "peak":
+        return _peak_maps(sweep, config)
+    return _departure_map(sweep, config, figure["model"], figure["reference"],
+                          float(figure["threshold"]))
+
+
+def _axes_of(sweep: xr.Dataset, config: dict):
+    x_name, y_name = config["axes"]
+    return x_name, y_name, sweep[x_name], sweep[y_name]
+
+
+def _label(coord: xr.DataArray) -> str:
+    return axis_label(AXIS_LABELS.get(coord.name, coord.name), coord.attrs.get("units", ""))
+
+
+def _field(values: xr.DataArray) -> np.ndarray:
+    """(axis 1, axis 2) values as the (rows = axis 2, columns = axis 1) array pcolormesh wants."""
+    return np.asarray(values.values, dtype=float).T
+
+
+def _cell_edges(values: np.ndarray) -> np.ndarray:
+    """The grid values with one more half cell on each side (for region outlines on cell edges)."""
+    first = values[0] - 0.5 * (values[1] - values[0])
+    last = values[-1] + 0.5 * (values[-1] - values[-2])
+    return np.concatenate([[first], values, [last]])
+
+
+def _hatch_diverged(ax, x, y, diverged: xr.DataArray) -> bool:
+    """Hatch the cells where the run diverged (their peak is NaN, so the grey axes background
+    shows there); True if there are any.
+
+    The region is a filled contour at level 0.5 of the 0/1 mask padded by half a cell on each
+    side, so that its outline runs along the cell edges of the map.
+    """
+    mask = _field(diverged)
+    if not mask.any():
+        return False
+    padded = np.pad(mask.astype(float), 1, mode="edge")
+    ax.contourf(_cell_edges(np.asarray(x)), _cell_edges(np.asarray(y)), padded,
+                levels=[0.5, 1.5], colors="none", hatches=[DIVERGED_HATCH])
+    return True
+
+
+def log_ticks(vmin: float, vmax: float, most: int = 7) -> list[float]:
+    """Ticks 1, 2, 5 x 10^k within ``[vmin, vmax]``, or only the decades if that gives more
+    than ``most``."""
+    decades = range(math.floor(math.log10(vmin)), math.ceil(math.log10(vmax)) + 1)
+    ticks = [m * 10.0**k for k in decades for m in (1, 2, 5) if vmin <= m * 10.0**k <= vmax]
+    if len(ticks) > most:
+        ticks = [10.0**k for k in decades if vmin <= 10.0**k <= vmax]
+    return ticks
+
+
+def _colorbar(fig, mesh, ax, label: str, **kwargs) -> None:
+    """Colour bar of a logarithmic map, labelled at :func:`log_ticks` in plain numbers."""
+    bar = fig.colorbar(mesh, ax=ax, label=label, **kwargs)
+    ticks = log_ticks(mesh.norm.vmin, mesh.norm.vmax)
+    bar.set_ticks(ticks, labels=[f"{tick:g}" for tick in ticks])
+    bar.ax.xaxis.set_minor_formatter(NullFormatter())
+    bar.ax.yaxis.set_minor_formatter(NullFormatter())
+
+
+def _critical_speed(ax, sweep: xr.Dataset, x_name: str, y_name: str) -> bool:
+    """Draw TLAM's critical speed where ``wf`` is an axis; True if a line was drawn."""
+    if "wf" not in (x_name, y_name):
+        return False
+    critical = sweep["critical_speed"].sel(eigen_model="TLAM")
+    other = y_name if x_name == "wf" else x_name
+    style = {"color": CRITICAL_COLOR, "linestyle": "--", "linewidth": 1.5}
+    if other in critical.dims:
+        speeds, along = critical.values, sweep[other].values
+        xy = (speeds, along) if x_name == "wf" else (along, speeds)
+        ax.plot(*xy, **style)
+    else:
+        speed = float(critical)
+        if not np.isfinite(speed):
+            return False
+        (ax.axvline if x_name == "wf" else ax.axhline)(speed, **style)
+    return True
+
+
+def _legend(ax, diverged: bool, critical: bool, extra=()) -> None:
+    handles = list(extra)
+    if diverged:
+        handles.append(Patch(facecolor=DIVERGED_COLOR, hatch=DIVERGED_HATCH, edgecolor="0.3",
+                             label="diverged ($|v(L)| >$ limit)"))
+    if critical:
+        handles.append(ax.plot([], [], color=CRITICAL_COLOR, linestyle="--", linewidth=1.5,
+                               label="TLAM critical speed $\\Omega_c$")[0])
+    if handles:
+        ax.legend(handles=handles, loc="upper right", fontsize=7, frameon=True, framealpha=0.85)
+
+
+def _peak_norm(values: np.ndarray) -> LogNorm:
+    finite = values[np.isfinite(values) & (values > 0)]
+    if finite.size == 0:
+        raise FigureDataError("sweep dataset has no finite positive peak tip deflection to map")
+    return LogNorm(vmin=float(finite.min()), vmax=float(finite.max()))
+
+
+def _peak_maps(sweep: xr.Dataset, config: dict):
+    x_name, y_name, x, y = _axes_of(sweep, config)
+    models = list(sweep["model"].values)
+    fig, axes = new_figure(1, len(models), width=3.5 * len(models) + 0.8, height=3.5,
+                           sharex=True, sharey=True)
+    norm = _peak_norm(sweep[PEAK].values)
+    mesh = None
+    for k, model in enumerate(models):
+        ax = axes[0, k]
+        ax.set_facecolor(DIVERGED_COLOR)
+        mesh = ax.pcolormesh(x, y, _field(sweep[PEAK].sel(model=model)), norm=norm,
+                             cmap="viridis", shading="nearest", rasterized=True)
+        diverged = _hatch_diverged(ax, x, y, sweep["diverged"].sel(model=model))
+        critical = _critical_speed(ax, sweep, x_name, y_name)
+        _legend(ax, diverged, critical)
+        count = int(sweep["diverged"].sel(model=model).sum())
+        panel_title(ax, k, f"{model} ({count} of {sweep[x_name].size * sweep[y_name].size} "
+                           "runs diverged)")
+        ax.set_xlabel(_label(x))
+        if k == 0:
+            ax.set_ylabel(_label(y))
+        ax.grid(False)
+    _colorbar(fig, mesh, axes[0, :].tolist(),
+              axis_label("Peak $|v(L)|$", sweep[PEAK].attrs.get("units", "m")))
+    return fig
+
+
+def relative_departure(sweep: xr.Dataset, model: str, reference: str) -> xr.DataArray:
+    """``|peak_model - peak_reference| / peak_reference`` over the grid; ``inf`` where ``model``
+    diverged and ``reference`` did not, NaN where ``reference`` diverged."""
+    peak = sweep[PEAK]
+    difference = abs(peak.sel(model=model) - peak.sel(model=reference)) / peak.sel(model=reference)
+    model_diverged = sweep["diverged"].sel(model=model) == 1
+    reference_ok = sweep["diverged"].sel(model=reference) == 0
+    return xr.where(model_diverged & reference_ok, np.inf, difference).where(reference_ok)
+
+
+def _departure_map(sweep: xr.Dataset, config: dict, model: str, reference: str,
+                   threshold: float):
+    x_name, y_name, x, y = _axes_of(sweep, config)
+    departure = relative_departure(sweep, model, reference)
+    fig, axes = new_figure(1, 2, width=7.2, height=4.4, sharex=True, sharey=True)
+    ax = axes[0, 0]
+    ax.set_facecolor(DIVERGED_COLOR)
+    finite = departure.values[np.isfinite(departure.values) & (departure.values > 0)]
+    if finite.size == 0:
+        raise FigureDataError(f"sweep dataset: no grid point where both {model} and {reference} "
+                              "completed with different peaks; nothing to map")
+    norm = LogNorm(vmin=max(float(finite.min()), 1e-4),
+                   vmax=max(float(finite.max()), 10 * threshold))
+    mesh = ax.pcolormesh(x, y, _field(departure.where(np.isfinite(departure))), norm=norm,
+                         cmap="magma", shading="nearest", rasterized=True)
+    _colorbar(fig, mesh, ax, f"|{model} - {reference}| / {reference} of the peak $|v(L)|$",
+              location="bottom", shrink=0.9)
+    departs = _field((departure > threshold) | np.isinf(departure))
+    share = float(np.nanmean(departs))
+    contour_style = {"levels": [0.5], "colors": DEPARTURE_COLOR, "linewidths": 1.3}
+    for axis in axes[0]:
+        axis.contour(x, y, departs.astype(float), **contour_style)
+    diverged = _hatch_diverged(ax, x, y, sweep["diverged"].sel(model=model))
+    critical = _critical_speed(ax, sweep, x_name, y_name)
+    boundary = ax.plot([], [], color=DEPARTURE_COLOR,
+                       label=f"{model} departs by {threshold:.0%}")[0]
+    _legend(ax, diverged, critical, extra=[boundary])
+    panel_title(ax, 0, f"{model} vs {reference}: > {threshold:.0%} apart on {share:.0%} of the map")
+    ax.set_xlabel(_label(x))
+    ax.set_ylabel(_label(y))
+    ax.grid(False)
+
+    ax = axes[0, 1]
+    ax.set_facecolor(DIVERGED_COLOR)
+    peak = sweep[PEAK].sel(model=reference)
+    mesh = ax.pcolormesh(x, y, _field(peak), norm=_peak_norm(peak.values), cmap="viridis",
+                         shading="nearest", rasterized=True)
+    _colorbar(fig, mesh, ax, axis_label(f"{reference} peak $|v(L)|$", peak.attrs.get("units", "m")),
+              location="bottom", shrink=0.9)
+    diverged = _hatch_diverged(ax, x, y, sweep["diverged"].sel(model=reference))
+    critical = _critical_speed(ax, sweep, x_name, y_name)
+    _legend(ax, diverged, critical, extra=[boundary])
+    panel_title(ax, 1, f"{reference}: peak tip deflection")
+    ax.set_xlabel(_label(x))
+    ax.grid(False)
+    return fig

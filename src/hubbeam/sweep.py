@@ -1,0 +1,272 @@
+"""Parameter sweeps: maps of the peak tip deflection over two maneuver or tip-mass parameters.
+
+A sweep (``sweeps.maps.<name>`` of the config, resolved by :func:`sweep_settings`) fixes the
+models, the maneuver kind and its fixed parameters, the tip mass, and spans two swept parameters
+(``wf``, ``tf``, ``tau_max``, ``tip_mass``, ``tip_position``) on uniform grids. Every
+(model, grid point) is one simulation from rest over ``[0, tf + t_after]``, run by the parallel
+kernel :func:`hubbeam.core.sweep.sweep_tip_extrema` (the integrator and equations of
+:func:`hubbeam.simulate.simulate`, keeping only the extrema of the tip deflection).
+:func:`run_sweep` returns a self-describing dataset over ``(model, <axis 1>, <axis 2>)``; a run
+that diverges (tip deflection beyond ``numerics.divergence_limit * L``, a non-finite state or a
+vanishing step) is a result, flagged by ``diverged`` with NaN extrema.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import time
+from collections.abc import Mapping
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import xarray as xr
+
+from hubbeam import eigen
+from hubbeam.core import radau
+from hubbeam.core import sweep as kernels
+from hubbeam.core.eom import MODEL_IDS
+from hubbeam.matrices import SystemMatrices, assemble
+from hubbeam.parameters import CONFIG_KEYS, BeamParameters, TipMass
+from hubbeam.provenance import global_attributes
+from hubbeam.simulate import INTEGRATOR, MANEUVERS, kernel_matrices
+
+LOG = logging.getLogger(__name__)
+
+#: parameters a sweep may span: (units, long name)
+PARAMETERS = {
+    "wf": ("rad s-1", "final hub angular velocity w_f of the spin-up (Eq. 43)"),
+    "tf": ("s", "maneuver time t_f (spin-up duration, Eq. 43, or torque-pulse period, Eq. 44)"),
+    "tau_max": ("N m", "torque-pulse amplitude tau_m (Eq. 44)"),
+    "tip_mass": ("kg", "tip mass m_t"),
+    "tip_position": ("m", "tip-mass position l from the clamped root"),
+}
+TIP_PARAMETERS = ("tip_mass", "tip_position")
+
+#: outputs a sweep may store: (column of the kernel's result array, units, long name)
+OUTPUTS = {
+    "peak_tip_deflection": (kernels.PEAK, "m",
+                            "peak transverse tip deflection max |v(L)| over [0, t_end]"),
+    "peak_time": (kernels.PEAK_TIME, "s", "time of the peak transverse tip deflection"),
+    "residual_amplitude": (kernels.RESIDUAL, "m",
+                           "residual vibration amplitude max |v(L)| over [t_f, t_end]"),
+}
+
+#: radau5 statuses that make a run diverged (as in hubbeam.simulate)
+DIVERGED_STATUSES = (radau.DIVERGED, radau.NON_FINITE, radau.STEP_UNDERFLOW)
+
+
+def sweep_names(cfg: Mapping) -> list[str]:
+    """Names of the configured sweeps (``sweeps.maps``), sorted; none without ``sweeps``."""
+    return sorted(cfg.get("sweeps", {}).get("maps", {}))
+
+
+def sweep_settings(cfg: Mapping, name: str) -> dict:
+    """The fully resolved sweep ``name`` of a validated config (JSON-serialisable).
+
+    Defaults: ``modes`` is ``numerics.modes``; the tip mass is 0 at ``position = beam.length``
+    unless given (or swept). The integrator settings are ``sweeps.numerics``; the divergence
+    limit and quadrature come from ``numerics``, the critical-speed search from ``eigen``.
+    """
+    maps = cfg.get("sweeps", {}).get("maps", {})
+    if name not in maps:
+        raise KeyError(f"sweeps.maps.{name}: unknown sweep; defined: {', '.join(sorted(maps))}")
+    spec = maps[name]
+    tip = spec.get("tip_mass", {})
+    return {
+        "name": name,
+        "models": list(spec["models"]),
+        "maneuver": {key: value if key == "kind" else float(value)
+                     for key, value in spec["maneuver"].items()},
+        "axes": list(spec["grid"]),
+        "grid": {key: {"start": float(grid["start"]), "stop": float(grid["stop"]),
+                       "num": int(grid["num"])} for key, grid in spec["grid"].items()},
+        "t_after": float(spec["t_after"]),
+        "modes": int(spec.get("modes", cfg["numerics"]["modes"])),
+        "tip_mass": {"mass": float(tip.get("mass", 0.0)),
+                     "position": float(tip.get("position", cfg["beam"]["length"]))},
+        "outputs": list(spec["outputs"]),
+        "figure": dict(spec["figure"]),
+        "numerics": {key: cfg["sweeps"]["numerics"][key]
+                     for key in ("rtol", "atol", "output_step", "max_steps")},
+        "divergence_limit": float(cfg["numerics"]["divergence_limit"]),
+        "quadrature_points": int(cfg["numerics"]["quadrature_points"]),
+        "critical_speed_search_max": float(cfg["eigen"]["critical_speed_search_max"]),
+    }
+
+
+def axis_values(sweep: Mapping) -> dict[str, np.ndarray]:
+    """``{swept parameter: grid values}`` in the order of the sweep's axes."""
+    return {key: np.linspace(**sweep["grid"][key]) for key in sweep["axes"]}
+
+
+def _points(sweep: Mapping):
+    """Per-point inputs of the kernel, points ordered as ``(model, axis 1, axis 2)`` in C order.
+
+    Returns ``models, mp, matrix_index, t_end, t_mark`` and the distinct tip masses as a list
+    of ``TipMass`` (``matrix_index`` points into it).
+    """
+    axes = axis_values(sweep)
+    models = np.array([MODEL_IDS[model] for model in sweep["models"]])
+    shape = (models.size,) + tuple(values.size for values in axes.values())
+    grids = dict(zip(axes, np.meshgrid(*axes.values(), indexing="ij")))
+
+    def value(key, fixed):
+        swept = grids.get(key)
+        return np.broadcast_to(swept if swept is not None else fixed, shape[1:])
+
+    maneuver = sweep["maneuver"]
+    mp = np.stack([value(key, maneuver.get(key)) for key in MANEUVERS[maneuver["kind"]][1]],
+                  axis=-1).astype(float)
+    tf = value("tf", maneuver.get("tf")).astype(float)
+    tips = np.stack([value("tip_mass", sweep["tip_mass"]["mass"]),
+                     value("tip_position", sweep["tip_mass"]["position"])], axis=-1).astype(float)
+    distinct, inverse = np.unique(tips.reshape(-1, 2), axis=0, return_inverse=True)
+
+    def per_point(array):  # (grid..., extra...) -> (model x grid, extra...): a writable copy
+        extra = array.shape[len(shape) - 1:]
+        return np.array(np.broadcast_to(array, (models.size,) + array.shape).reshape((-1,) + extra),
+                        order="C")
+
+    return (np.repeat(models, np.prod(shape[1:], dtype=int)), per_point(mp),
+            per_point(inverse.reshape(shape[1:])), per_point(tf + sweep["t_after"]),
+            per_point(tf), [TipMass(float(m), float(l)) for m, l in distinct])
+
+
+def matrix_stack(matrices: list[SystemMatrices]) -> SystemMatrices:
+    """One :class:`SystemMatrices` whose fields stack those of ``matrices`` along a new first
+    axis (scalars become 1-D arrays), as :func:`hubbeam.core.sweep.matrices_at` reads it."""
+    matrices = [kernel_matrices(sm) for sm in matrices]
+    return SystemMatrices(*(np.ascontiguousarray(np.stack([np.asarray(field, float)
+                                                           for field in fields]))
+                            for fields in zip(*matrices)))
+
+
+def default_threads() -> int:
+    """The CPUs this process may run on."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+
+
+def run_sweep(sweep: Mapping, params: BeamParameters, threads: int | None = None) -> xr.Dataset:
+    """Simulate every point of the resolved ``sweep`` on ``threads`` threads (default: every
+    CPU this process may use) and return the sweep dataset. The numbers do not depend on the
+    thread count."""
+    models, mp, matrix_index, t_end, t_mark, tips = _points(sweep)
+    stack = matrix_stack([assemble(params, tip, sweep["modes"], sweep["quadrature_points"])
+                          for tip in tips])
+    numerics = sweep["numerics"]
+    n_points = models.size
+    threads = max(1, min(int(threads or default_threads()), n_points))
+    results = np.full((n_points, len(kernels.RESULT_COLUMNS)), np.nan)
+    status = np.zeros(n_points, np.int64)
+    stats = np.zeros((n_points, kernels.N_STATS), np.int64)
+    arguments = (models, MANEUVERS[sweep["maneuver"]["kind"]][0], mp, matrix_index, t_end,
+                 t_mark, stack, float(numerics["output_step"]), float(numerics["rtol"]),
+                 float(numerics["atol"]), sweep["divergence_limit"] * params.L,
+                 int(numerics["max_steps"]), results, status, stats)
+    start = time.perf_counter()
+    with ThreadPoolExecutor(threads) as pool:
+        shares = [pool.submit(kernels.sweep_tip_extrema, first, threads, *arguments)
+                  for first in range(threads)]
+        for share in shares:
+            share.result()
+    wall = time.perf_counter() - start
+    LOG.info("sweep %s: %d simulations in %.2f s on %d threads (%.2f ms each), %d diverged, "
+             "%d failed, %d rhs calls", sweep["name"], n_points, wall, threads,
+             1e3 * wall / max(n_points, 1), np.isin(status, DIVERGED_STATUSES).sum(),
+             (status == radau.TOO_MANY_STEPS).sum(), stats[:, radau.RHS_CALLS].sum())
+    return build_dataset(sweep, params, results, status, stats)
+
+
+def build_dataset(sweep: Mapping, params: BeamParameters, results: np.ndarray,
+                  status: np.ndarray, stats: np.ndarray) -> xr.Dataset:
+    """The labelled sweep dataset from the kernel's per-point arrays (points in C order of
+    ``(model, axis 1, axis 2)``)."""
+    axes = axis_values(sweep)
+    dims = ("model",) + tuple(axes)
+    shape = (len(sweep["models"]),) + tuple(values.size for values in axes.values())
+    status = status.reshape(shape)
+    diverged = np.isin(status, DIVERGED_STATUSES)
+    stopped = "NaN where the run stopped early (see diverged and status)"
+    data_vars = {
+        name: (dims, results[:, OUTPUTS[name][0]].reshape(shape),
+               {"units": OUTPUTS[name][1], "long_name": OUTPUTS[name][2], "comment": stopped})
+        for name in sweep["outputs"]
+    }
+    data_vars["diverged"] = (dims, diverged.astype(np.int8), {
+        "units": "1", "long_name": "run diverged (tip deflection beyond the divergence limit, "
+        "non-finite state or vanishing step size)", "flag_values": np.array([0, 1], np.int8),
+        "flag_meanings": "completed diverged"})
+    data_vars["status"] = (dims, status.astype(np.int8), {
+        "units": "1", "long_name": "integrator status",
+        "flag_values": np.arange(len(radau.STATUS_NAMES), dtype=np.int8),
+        "flag_meanings": " ".join(radau.STATUS_NAMES)})
+    data_vars["stopped_at"] = (dims, results[:, kernels.T_STOP].reshape(shape), {
+        "units": "s", "long_name": "time the run ended (t_end unless it stopped early)"})
+    for name, column, long_name in (
+            ("n_steps", radau.ACCEPTED, "accepted integrator steps"),
+            ("n_rhs", radau.RHS_CALLS, "right-hand-side evaluations (incl. Jacobians)")):
+        data_vars[name] = (dims, stats[:, column].reshape(shape).astype(np.int32),
+                           {"units": "1", "long_name": long_name})
+    data_vars["critical_speed"] = _critical_speeds(sweep, params, axes)
+    coords = {"model": ("model", list(sweep["models"]), {"long_name": "model (Section 3)"}),
+              "eigen_model": ("eigen_model", list(eigen.MODELS),
+                              {"long_name": "model of the eigen-analysis (Eq. 31)"})}
+    for key, values in axes.items():
+        units, long_name = PARAMETERS[key]
+        coords[key] = (key, values, {"units": units, "long_name": long_name})
+    numerics = sweep["numerics"]
+    failed = int((status == radau.TOO_MANY_STEPS).sum())
+    attributes = {
+        "sweep_name": sweep["name"],
+        "sweep_config": dict(sweep),
+        "integrator": INTEGRATOR,
+        "rtol": float(numerics["rtol"]),
+        "atol": float(numerics["atol"]),
+        "output_step": float(numerics["output_step"]),
+        "max_steps": int(numerics["max_steps"]),
+        "divergence_limit": float(sweep["divergence_limit"]),
+        "t_after_s": float(sweep["t_after"]),
+        "n_modes": int(sweep["modes"]),
+        "n_simulations": int(status.size),
+        "n_diverged": int(diverged.sum()),
+        "n_failed": failed,
+        **{key: float(getattr(params, field)) for field, key in CONFIG_KEYS.items()},
+        "warnings": (f"{failed} runs exhausted the step budget max_steps = "
+                     f"{numerics['max_steps']} (status too_many_steps)" if failed else ""),
+    }
+    title = (f"hubbeam sweep {sweep['name']}: {', '.join(sweep['models'])}, "
+             f"{json.dumps(sweep['maneuver'])} over {' x '.join(axes)}")
+    return xr.Dataset(data_vars, coords=coords, attrs=global_attributes(title, extra=attributes))
+
+
+def _critical_speeds(sweep: Mapping, params: BeamParameters, axes: Mapping):
+    """Critical speeds of TLAM and FOAM (:func:`hubbeam.eigen.critical_speed_sweep`) at the
+    sweep's tip masses and positions, over the swept tip parameters (a dataset variable)."""
+    masses = axes.get("tip_mass", np.array([sweep["tip_mass"]["mass"]]))
+    positions = axes.get("tip_position", np.array([sweep["tip_mass"]["position"]]))
+    critical = eigen.critical_speed_sweep(params, masses, positions, sweep["modes"],
+                                          sweep["critical_speed_search_max"],
+                                          sweep["quadrature_points"])["critical_speed"]
+    critical = critical.rename(model="eigen_model", position="tip_position")
+    critical = critical.isel({key: 0 for key in TIP_PARAMETERS if key not in axes})
+    dims = ("eigen_model",) + tuple(key for key in critical.dims if key != "eigen_model")
+    return xr.Variable(dims, critical.transpose(*dims).values, {
+        "units": "rad s-1", "long_name": "critical angular velocity of K22 (Eq. 31) at the "
+        "sweep's tip mass; NaN: none up to critical_speed_search_max (always for FOAM)"})
+
+
+def compile_kernel() -> float:
+    """Compile (or load from numba's cache) the sweep kernel; return the seconds it took."""
+    params = BeamParameters(L=1.0, rho=1.0, A=1.0, E=1.0, I=1.0, Jh=1.0, rA=0.1)
+    sweep = {"name": "compile_kernel", "models": ["FOAM"], "maneuver": {"kind": "prescribed"},
+             "axes": ["wf", "tf"], "grid": {"wf": {"start": 0.1, "stop": 0.1, "num": 1},
+                                            "tf": {"start": 0.05, "stop": 0.05, "num": 1}},
+             "t_after": 0.05, "modes": 1, "tip_mass": {"mass": 0.0, "position": 1.0},
+             "numerics": {"rtol": 1e-6, "atol": 1e-8, "output_step": 0.05, "max_steps": 1000},
+             "divergence_limit": 1.0, "quadrature_points": 8, "outputs": [],
+             "critical_speed_search_max": 1.0}
+    start = time.perf_counter()
+    run_sweep(sweep, params, threads=1)
+    return time.perf_counter() - start

@@ -1,0 +1,130 @@
+"""Smoke test of the benchmark machinery (``hubbeam.benchmark``) on a tiny case; no timings.
+
+The tolerance search finds the loosest rung that meets the error target (and none when the
+target is out of reach), errors are measured against the reference on the whole grid, slow
+scipy runs are aborted at their cap, the first-order right-hand side equals the accelerations
+kernel, its plain-Python version computes the same, and the command line writes the CSV files.
+"""
+
+import copy
+import json
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+import yaml
+
+from hubbeam import benchmark as bm
+from hubbeam.config import case_settings
+from hubbeam.parameters import BeamParameters
+
+TINY = {"model": "FOAM", "maneuver": {"kind": "prescribed", "wf": 0.5, "tf": 1.0}, "t_end": 2.0,
+        "modes": 1}
+LADDER = [1e-2, 1e-4, 1e-6, 1e-8]
+
+
+@pytest.fixture(scope="module")
+def tiny(_study_config):
+    case = case_settings({**_study_config, "cases": {"tiny": TINY}}, "tiny")
+    params = BeamParameters.from_config(_study_config)
+    return bm.prepare_case("tiny", case, params, _study_config["numerics"], 0.01)
+
+
+@pytest.fixture(scope="module")
+def reference(tiny):
+    tip, info = bm.reference_solution(tiny, 1e-12, 1e-2, cap=60.0)
+    return tip, info
+
+
+def test_reference_is_converged(reference):
+    tip, info = reference
+    assert info["max_abs_tip_m"] > 1e-4  # the case deflects the beam
+    assert info["change_to_10x_looser_m"] < 1e-9
+    assert info["scipy_radau_difference_m"] < 1e-9
+
+
+def test_first_order_rhs_is_velocity_and_acceleration(tiny):
+    from hubbeam.core.eom import accelerations
+
+    rng = np.random.default_rng(3)
+    z = rng.normal(scale=1e-2, size=2 * tiny.free.size)
+    dz = bm.first_order_rhs(0.4, z, tiny.problem)
+    n = tiny.case["modes"]
+    y, v, a = np.zeros(1 + 2 * n), np.zeros(1 + 2 * n), np.zeros(1 + 2 * n)
+    y[tiny.free], v[tiny.free] = z[:tiny.free.size], z[tiny.free.size:]
+    accelerations(tiny.model, tiny.kind, tiny.mp, 0.4, y, v, tiny.sm, tiny.free, a)
+    np.testing.assert_array_equal(dz[:tiny.free.size], z[tiny.free.size:])
+    np.testing.assert_allclose(dz[tiny.free.size:], a[tiny.free], rtol=1e-14)
+    # the plain-Python version computes the same numbers
+    np.testing.assert_allclose(bm._python_rhs()(0.4, z, tiny.problem), dz, rtol=1e-12)
+    # and the Jacobian's acceleration rows are the derivative of f
+    jac = bm.first_order_jacobian(0.4, z, tiny.problem)
+    step = 1e-6
+    for j in range(z.size):
+        dzj = np.zeros_like(z)
+        dzj[j] = step
+        central = (bm.first_order_rhs(0.4, z + dzj, tiny.problem)
+                   - bm.first_order_rhs(0.4, z - dzj, tiny.problem)) / (2 * step)
+        np.testing.assert_allclose(jac[:, j], central, rtol=1e-5, atol=1e-5 * abs(jac).max())
+
+
+@pytest.mark.parametrize("method", [bm.Method(bm.HUBBEAM), bm.Method("Radau", jacobian=True),
+                                    bm.Method("RK45")])
+def test_tolerance_search_returns_the_loosest_passing_rung(tiny, reference, method):
+    tip, _ = reference
+    target = 1e-6
+    search = bm.search_tolerance(tiny, method, tip, LADDER, 1e-2, target, cap=60.0)
+    assert search.rtol is not None and search.error <= target
+    assert search.error == bm.max_error(search.run.tip, tip)
+    # every looser rung tried first failed the target, the passing one is the last tried
+    assert [r for r, _, _ in search.tried] == sorted(LADDER, reverse=True)[:len(search.tried)]
+    assert all(error > target for _, error, _ in search.tried[:-1])
+    assert search.tried[-1][0] == search.rtol
+
+
+def test_unreachable_target_and_cap_are_reported(tiny, reference):
+    tip, _ = reference
+    search = bm.search_tolerance(tiny, bm.Method(bm.HUBBEAM), tip, [1e-2, 1e-3], 1e-2, 1e-15,
+                                 cap=None)
+    assert search.rtol is None and search.error > 1e-15 and len(search.tried) == 2
+    aborted = bm.search_tolerance(tiny, bm.Method("RK45"), tip, LADDER, 1e-2, 1e-6, cap=1e-9)
+    assert aborted.rtol is None and "cap" in aborted.note and math.isinf(aborted.error)
+
+
+def test_max_error_and_warm_timing():
+    reference = np.array([0.0, 1.0, -2.0])
+    assert bm.max_error(np.array([0.0, 1.5, -2.0]), reference) == 0.5
+    assert math.isinf(bm.max_error(np.array([0.0, np.nan, -2.0]), reference))
+    calls = []
+    median, count = bm.warm_timing(lambda: calls.append(1) or 2.0, 1.0, repeats=5, budget=100.0)
+    assert count == 5 and len(calls) == 4 and median == 2.0
+    median, count = bm.warm_timing(lambda: 1.0, 30.0, repeats=5, budget=10.0)
+    assert (median, count) == (30.0, 1)
+
+
+def test_command_line_writes_the_tables(_study_config, tmp_path):
+    config = copy.deepcopy(_study_config)
+    config["benchmark"] = {
+        "cases": {"tiny": TINY}, "output_step": 0.01, "error_target": 1e-6,
+        "tolerances": LADDER, "atol_ratio": 1e-2, "reference_rtol": 1e-12,
+        "methods": ["RK45", "Radau"], "jacobian_methods": ["Radau"], "scipy_cases": ["tiny"],
+        "python_rhs_case": "tiny", "scaling": {"case": "tiny", "modes": [1], "t_end": [2.0]},
+        "sweep_check": {"points": 2, "rtol": 1e-8}}
+    path = tmp_path / "config.yaml"
+    path.write_text(yaml.safe_dump(config))
+    assert bm.main(["--configfile", str(path), "--output", str(tmp_path / "out"), "--repeats", "2",
+                    "--skip-compilation", "--skip-extras"]) == 0
+    table = pd.read_csv(tmp_path / "out" / "integrators.csv")
+    assert list(table.columns[:6]) == ["method", "settings", "wall_s", "compile_s", "rhs_calls",
+                                       "max_err_m"]
+    python_rows = table[table.method.str.endswith("(plain-Python RHS)")]
+    assert len(python_rows) == 1 and (python_rows.compile_s == 0).all()
+    assert set(table.method) - set(python_rows.method) == {
+        "hubbeam radau5", "hubbeam simulate_kernel", "scipy RK45", "scipy Radau",
+        "scipy Radau (jitted Jacobian)"}
+    passed = table[table.passed]
+    assert (passed.max_err_m <= 1e-6).all() and (passed.wall_s > 0).all()
+    assert (passed.rhs_calls > 0).all()
+    machine = json.loads((tmp_path / "out" / "machine.json").read_text())
+    assert machine["logical_cpus"] >= 1 and machine["numba"]

@@ -12,7 +12,7 @@ import numpy as np
 
 from hubbeam.core.eom import (CFOAM, free_dofs, high_order_terms, outputs, rhs_accelerations,
                               tip_outputs, workspace)
-from hubbeam.core.jit import inline_kernel, kernel
+from hubbeam.core.jit import kernel
 from hubbeam.core.radau import radau5, register_rhs
 
 #: Columns of the output array: these, then ``q1[0..n-1]``, ``q2[0..n-1]``, then the CFOAM
@@ -54,7 +54,7 @@ def beam_problem(model, kind, mp, sm):
                        workspace(sm, free))
 
 
-@inline_kernel
+@kernel
 def beam_rhs(t, yf, vf, af, problem):
     """Accelerations ``af`` of the free coordinates at ``(t, yf, vf)`` (Eq. 24 solved for y'')."""
     free = problem.free

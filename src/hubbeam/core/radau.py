@@ -679,7 +679,7 @@ def radau5(problem, y0, v0, t_out, t_stops, rtol, atol, watch, watch_limit, max_
             factor = fac * err ** -0.25 if np.isfinite(err) else MIN_FACTOR
             h *= max(MIN_FACTOR, min(1.0, factor))
             rejected = True
-            need_jac = not jac_current
+            need_jac = False  # keep J: a rejection is about h, not about a stale Jacobian
             continue
         # ---- accepted
         t1 = t + h

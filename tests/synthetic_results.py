@@ -3,8 +3,9 @@
 The figures, tables, report and archive are built and tested against these files until (and
 besides) the real simulations exist. The signals are smooth closed-form stand-ins (a quasi-static
 lag during the maneuver plus a residual sinusoid of known amplitude and phase), not physics; what
-matters is that names, dimensions, units and attributes are those of ``docs/architecture.md``:
-a change of the contract breaks these tests on purpose.
+matters is that names, dimensions, units and attributes are those of ``docs/architecture.md``
+(the variable table is ``hubbeam.simulate.VARIABLES`` itself, so a renamed variable reaches the
+figure code through these files and breaks its tests on purpose).
 """
 
 from __future__ import annotations
@@ -15,30 +16,13 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from hubbeam.simulate import HIGH_ORDER_VARIABLES, VARIABLES
+
 BEAM = {"length": 8.0, "density": 2.7667e3, "area": 7.2968e-5, "youngs_modulus": 6.8952e10,
         "second_moment": 8.2189e-9, "hub_inertia": 200.0, "hub_radius": 0.5}
 
-#: contract variables: name -> (dims, units, long_name)
-SIMULATION_VARIABLES = {
-    "theta": (("time",), "rad", "hub angle"),
-    "theta_dot": (("time",), "rad s-1", "hub angular velocity"),
-    "theta_ddot": (("time",), "rad s-2", "hub angular acceleration"),
-    "torque": (("time",), "N m", "hub torque (applied or required)"),
-    "Q_theta": (("time",), "N m", "inertia torque Q_theta (Eq. 32)"),
-    "q1": (("time", "mode"), "kg1/2 m", "axial modal coordinates"),
-    "q2": (("time", "mode"), "kg1/2 m", "transverse modal coordinates"),
-    "tip_transverse": (("time",), "m", "transverse tip deflection v(L)"),
-    "tip_axial": (("time",), "m", "pure axial tip deformation w1(L)"),
-    "tip_foreshortening": (("time",), "m", "tip foreshortening wc(L)"),
-    "energy": (("time",), "J", "total mechanical energy"),
-    "angular_momentum": (("time",), "kg m2 s-1", "angular momentum about the hub axis"),
-}
-HIGH_ORDER_VARIABLES = {
-    "dM_thth": (("time",), "kg m2", "CFOAM minus FOAM rotary inertia"),
-    "dQ_theta": (("time",), "N m", "CFOAM minus FOAM velocity term of the theta equation"),
-    "dQ_q1": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM axial generalised force"),
-    "dQ_q2": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM transverse generalised force"),
-}
+#: the contract's variables (name -> (dims, units, long_name)), from the simulation module itself
+SIMULATION_VARIABLES = VARIABLES
 
 
 def residual_signal(t, tf, amplitude, omega, phase):

@@ -75,6 +75,31 @@ def _quad(A, a, b, n, off_a, off_b):
     return s
 
 
+@inline_kernel
+def _elastic_forces(cD, y, v, thdd, sm, out):
+    """The q1 and q2 rows of FOAM's right-hand side (``cD = 0``: TLAM) into ``out[1:]``.
+
+    ``Q_q1 - K_q1q1 q1 - 2 thd G_q1q2 q2'`` and ``-K_q2q2 q2 - 2 thd G_q2q1 q1'`` (Eqs. 29-31,
+    33-34), minus the hub-coupling ``M_qtheta thdd`` (Eqs. 26-27) when ``thdd`` is given (zero
+    leaves it on the mass-matrix side).
+    """
+    n = sm.M1.shape[0]
+    o1 = 1
+    o2 = 1 + n
+    thd = v[0]
+    thd2 = thd * thd
+    for i in range(n):
+        f1 = thd2 * sm.V1[i]
+        f2 = -sm.V2[i] * thdd
+        for j in range(n):
+            f1 += (-(sm.K1[i, j] - thd2 * sm.M1[i, j]) * y[o1 + j]
+                   + sm.R[i, j] * (2.0 * thd * v[o2 + j] + thdd * y[o2 + j]))
+            f2 += (-(sm.K2[i, j] - thd2 * sm.M2[i, j] + cD * thd2 * sm.D[i, j]) * y[o2 + j]
+                   - sm.R[j, i] * (2.0 * thd * v[o1 + j] + thdd * y[o1 + j]))
+        out[o1 + i] = f1
+        out[o2 + i] = f2
+
+
 @kernel
 def _foam_system(model, y, v, tau, sm, M, F):
     """Mass matrix and force of FOAM (Eqs. 24-34), TLAM (no D terms) or SFOAM (Eq. 40)."""
@@ -83,7 +108,6 @@ def _foam_system(model, y, v, tau, sm, M, F):
     o2 = 1 + n
     cD = 0.0 if model == TLAM else 1.0
     thd = v[0]
-    thd2 = thd * thd
 
     # M_thth, Eq. (25)
     m00 = sm.Jh + sm.Jb + _quad(sm.M1, y, y, n, o1, o1) + _quad(sm.M2, y, y, n, o2, o2)
@@ -117,17 +141,7 @@ def _foam_system(model, y, v, tau, sm, M, F):
     q_theta *= -2.0 * thd
     F[0] = tau + q_theta
 
-    for i in range(n):
-        # q1 row: Q_q1 - K_q1q1 q1 - 2 thd G_q1q2 q2d, Eqs. (29), (30), (33)
-        f1 = thd2 * sm.V1[i]
-        # q2 row: -K_q2q2 q2 - 2 thd G_q2q1 q1d, Eqs. (29), (31), (34)
-        f2 = 0.0
-        for j in range(n):
-            f1 += -(sm.K1[i, j] - thd2 * sm.M1[i, j]) * y[o1 + j] + 2.0 * thd * sm.R[i, j] * v[o2 + j]
-            f2 += (-(sm.K2[i, j] - thd2 * sm.M2[i, j] + cD * thd2 * sm.D[i, j]) * y[o2 + j]
-                   - 2.0 * thd * sm.R[j, i] * v[o1 + j])
-        F[o1 + i] = f1
-        F[o2 + i] = f2
+    _elastic_forces(cD, y, v, 0.0, sm, F)
 
     if model == SFOAM:
         # Eq. (40): q1 rows decoupled (held at zero by the caller), Q_theta deleted
@@ -370,20 +384,7 @@ def _prescribed_elastic_accelerations(model, y, v, sm, a_out, ws):
     n = sm.M1.shape[0]
     o1 = 1
     o2 = 1 + n
-    cD = 0.0 if model == TLAM else 1.0
-    thd = v[0]
-    thd2 = thd * thd
-    thdd = a_out[0]
-    for i in range(n):
-        f1 = thd2 * sm.V1[i]
-        f2 = -sm.V2[i] * thdd
-        for j in range(n):
-            f1 += (-(sm.K1[i, j] - thd2 * sm.M1[i, j]) * y[o1 + j]
-                   + sm.R[i, j] * (2.0 * thd * v[o2 + j] + thdd * y[o2 + j]))
-            f2 += (-(sm.K2[i, j] - thd2 * sm.M2[i, j] + cD * thd2 * sm.D[i, j]) * y[o2 + j]
-                   - sm.R[j, i] * (2.0 * thd * v[o1 + j] + thdd * y[o1 + j]))
-        a_out[o1 + i] = f1
-        a_out[o2 + i] = f2
+    _elastic_forces(0.0 if model == TLAM else 1.0, y, v, a_out[0], sm, a_out)
     if model == SFOAM:
         for i in range(n):
             a_out[o1 + i] = 0.0

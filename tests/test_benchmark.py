@@ -57,7 +57,7 @@ def test_first_order_rhs_is_velocity_and_acceleration(tiny):
     np.testing.assert_array_equal(dz[:tiny.free.size], z[tiny.free.size:])
     np.testing.assert_allclose(dz[tiny.free.size:], a[tiny.free], rtol=1e-14)
     # the plain-Python version computes the same numbers
-    np.testing.assert_allclose(bm._python_rhs()(0.4, z, tiny.problem), dz, rtol=1e-12)
+    np.testing.assert_allclose(bm._python_rhs(tiny.problem)(0.4, z, tiny.problem), dz, rtol=1e-12)
     # and the Jacobian's acceleration rows are the derivative of f
     jac = bm.first_order_jacobian(0.4, z, tiny.problem)
     step = 1e-6

@@ -16,7 +16,7 @@ velocity) that reaches ``max |v(L) - reference| <= benchmark.error_target``; its
 median of warm runs (compiled beforehand). The methods:
 
 * ``hubbeam radau5``: hubbeam's Radau IIA kernel with dense output of the states
-  (:func:`hubbeam.core.sweep.integrate_free`), and ``hubbeam simulate_kernel``: the same
+  (:func:`hubbeam.core.integrate.integrate_free`), and ``hubbeam simulate_kernel``: the same
   integration plus every output of a simulation dataset, at the tolerance found for the former;
 * ``scipy <method>``: ``scipy.integrate.solve_ivp`` with the same equations, the jitted
   first-order right-hand side (:mod:`hubbeam.core.first_order`) as ``fun`` (a fast RHS with
@@ -65,9 +65,8 @@ from hubbeam.config import case_settings, load_config
 from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS, free_dofs
 from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
-from hubbeam.core.integrate import (BeamProblem, beam_problem, n_output_columns, output_columns,
-                                    simulate_kernel, tip_watch)
-from hubbeam.core.sweep import integrate_free
+from hubbeam.core.integrate import (integrate_free, integration_problem, n_output_columns,
+                                    output_columns, simulate_kernel, tip_watch)
 from hubbeam.parameters import BeamParameters
 from hubbeam.provenance import RECORDED_VERSIONS, git_commit
 from hubbeam.simulate import case_matrices, maneuver_parameters, output_times, simulate
@@ -103,9 +102,9 @@ class BenchmarkCase:
     tip_limit: float
 
     @property
-    def problem(self) -> BeamProblem:
-        """A fresh ``BeamProblem`` (with its work arrays) of the case."""
-        return beam_problem(self.model, self.kind, self.mp, self.sm)
+    def problem(self) -> tuple:
+        """A fresh radau5 problem (with its work arrays) of the case, the one hubbeam runs."""
+        return integration_problem(self.model, self.kind, self.mp, self.sm)
 
 
 @dataclass(frozen=True)
@@ -185,17 +184,20 @@ def run_hubbeam(bench: BenchmarkCase, rtol: float, atol: float, full: bool = Fal
     return Run(tip, wall, int(stats[radau.RHS_CALLS]), status == radau.SUCCESS)
 
 
-def _python_rhs() -> Callable:
+def _python_rhs(problem: tuple) -> Callable:
+    """``first_order_rhs`` for ``problem`` with every jitted function replaced by its source."""
     from hubbeam.reference import pure_python
 
-    return pure_python(first_order_rhs)
+    fun = pure_python(first_order_rhs)
+    fun.__globals__["problem_rhs"] = pure_python(radau.registered_rhs(type(problem)))
+    return fun
 
 
 def run_scipy(bench: BenchmarkCase, method: Method, rtol: float, atol: float,
               cap: float | None = None) -> Run:
     """``solve_ivp`` over the case, split at the end of the maneuver; ``cap`` (s) aborts the run
     with :class:`RunTooLong` (the check wraps the right-hand side, checked every 256 calls)."""
-    fun = _python_rhs() if method.python_rhs else first_order_rhs
+    fun = _python_rhs(bench.problem) if method.python_rhs else first_order_rhs
     if cap is not None:
         deadline = time.perf_counter() + cap
         inner, calls = fun, [0]

@@ -28,7 +28,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from hubbeam.core.jit import inline_kernel, kernel
+from hubbeam.core.jit import kernel
 from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
 
 TLAM = 0
@@ -75,14 +75,11 @@ def _quad(A, a, b, n, off_a, off_b):
     return s
 
 
-@inline_kernel
-def _elastic_forces(cD, y, v, thdd, sm, out):
-    """The q1 and q2 rows of FOAM's right-hand side (``cD = 0``: TLAM) into ``out[1:]``.
-
+@kernel
+def _elastic_forces(cD, y, v, sm, out):
+    """The q1 and q2 rows of FOAM's right-hand side (``cD = 0``: TLAM) into ``out[1:]``:
     ``Q_q1 - K_q1q1 q1 - 2 thd G_q1q2 q2'`` and ``-K_q2q2 q2 - 2 thd G_q2q1 q1'`` (Eqs. 29-31,
-    33-34), minus the hub-coupling ``M_qtheta thdd`` (Eqs. 26-27) when ``thdd`` is given (zero
-    leaves it on the mass-matrix side).
-    """
+    33-34)."""
     n = sm.M1.shape[0]
     o1 = 1
     o2 = 1 + n
@@ -90,12 +87,12 @@ def _elastic_forces(cD, y, v, thdd, sm, out):
     thd2 = thd * thd
     for i in range(n):
         f1 = thd2 * sm.V1[i]
-        f2 = -sm.V2[i] * thdd
+        f2 = 0.0
         for j in range(n):
             f1 += (-(sm.K1[i, j] - thd2 * sm.M1[i, j]) * y[o1 + j]
-                   + sm.R[i, j] * (2.0 * thd * v[o2 + j] + thdd * y[o2 + j]))
+                   + 2.0 * thd * sm.R[i, j] * v[o2 + j])
             f2 += (-(sm.K2[i, j] - thd2 * sm.M2[i, j] + cD * thd2 * sm.D[i, j]) * y[o2 + j]
-                   - sm.R[j, i] * (2.0 * thd * v[o1 + j] + thdd * y[o1 + j]))
+                   - 2.0 * thd * sm.R[j, i] * v[o1 + j])
         out[o1 + i] = f1
         out[o2 + i] = f2
 
@@ -141,7 +138,7 @@ def _foam_system(model, y, v, tau, sm, M, F):
     q_theta *= -2.0 * thd
     F[0] = tau + q_theta
 
-    _elastic_forces(cD, y, v, 0.0, sm, F)
+    _elastic_forces(cD, y, v, sm, F)
 
     if model == SFOAM:
         # Eq. (40): q1 rows decoupled (held at zero by the caller), Q_theta deleted
@@ -242,7 +239,7 @@ def mass_matrix_and_force(model, y, v, tau, sm, M, F):
         _foam_system(model, y, v, tau, sm, M, F)
 
 
-@inline_kernel
+@kernel
 def impose_constraints(model, kind, mp, t, y, v, a):
     """Overwrite the constrained entries of y, y', y'' and return the applied torque.
 
@@ -289,35 +286,34 @@ def _cholesky(A):
     return True
 
 
-@inline_kernel
-def _cholesky_solve(C, b, off):
-    """Solve ``C C^T x = b[off:off+N]`` in place, ``C`` from :func:`_cholesky`."""
+@kernel
+def _cholesky_solve(C, b):
+    """Solve ``C C^T x = b`` in place, ``C`` from :func:`_cholesky`."""
     N = C.shape[0]
     for i in range(N):
-        s = b[off + i]
+        s = b[i]
         for k in range(i):
-            s -= C[i, k] * b[off + k]
-        b[off + i] = s / C[i, i]
+            s -= C[i, k] * b[k]
+        b[i] = s / C[i, i]
     for i in range(N - 1, -1, -1):
-        s = b[off + i]
+        s = b[i]
         for k in range(i + 1, N):
-            s -= C[k, i] * b[off + k]
-        b[off + i] = s / C[i, i]
+            s -= C[k, i] * b[k]
+        b[i] = s / C[i, i]
 
 
 @kernel
-def _solve_spd(A, b):
+def solve_spd(A, b):
     """Solve A x = b in place (b <- x) for a small SPD ``A`` (overwritten by its factor)."""
     if not _cholesky(A):
         return False
-    _cholesky_solve(A, b, 0)
+    _cholesky_solve(A, b)
     return True
 
 
 #: Work arrays of the acceleration kernels, allocated once per simulation by :func:`workspace`:
-#: the full mass matrix and force, the free block and its right-hand side, the free mask, and the
-#: Cholesky factors of the constant blocks M1 and M2 (prescribed-hub fast path).
-Workspace = namedtuple("Workspace", "M F Mff rhs is_free chol1 chol2")
+#: the full mass matrix and force, the free block and its right-hand side, and the free mask.
+Workspace = namedtuple("Workspace", "M F Mff rhs is_free")
 
 
 @kernel
@@ -329,12 +325,7 @@ def workspace(sm, free):
     is_free = np.zeros(N, dtype=np.bool_)
     for i in range(nf):
         is_free[free[i]] = True
-    chol1 = sm.M1.copy()
-    chol2 = sm.M2.copy()
-    _cholesky(chol1)
-    _cholesky(chol2)
-    return Workspace(np.empty((N, N)), np.empty(N), np.empty((nf, nf)), np.empty(nf), is_free,
-                     chol1, chol2)
+    return Workspace(np.empty((N, N)), np.empty(N), np.empty((nf, nf)), np.empty(nf), is_free)
 
 
 @kernel
@@ -359,7 +350,7 @@ def _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws):
         rhs[i] = r
         for j in range(nf):
             Mff[i, j] = M[fi, free[j]]
-    if not _solve_spd(Mff, rhs):
+    if not solve_spd(Mff, rhs):
         for i in range(nf):
             rhs[i] = np.nan
     for i in range(nf):
@@ -371,37 +362,6 @@ def _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws):
             ma0 += M[0, j] * a_out[j]
         tau = ma0 - q_theta
     return tau, q_theta
-
-
-@inline_kernel
-def _prescribed_elastic_accelerations(model, y, v, sm, a_out, ws):
-    """Fast path of TLAM, FOAM, SFOAM under a prescribed hub motion (theta, rates set).
-
-    The elastic rows of Eq. (24) have the constant mass blocks M1, M2, pre-factored in ``ws``:
-    ``M1 q1'' = Q_q1 - K_q1q1 q1 - 2 thd G_q1q2 q2' + R q2 thdd`` and
-    ``M2 q2'' = -K_q2q2 q2 - 2 thd G_q2q1 q1' - (V2 + R^T q1)^T thdd``.
-    """
-    n = sm.M1.shape[0]
-    o1 = 1
-    o2 = 1 + n
-    _elastic_forces(0.0 if model == TLAM else 1.0, y, v, a_out[0], sm, a_out)
-    if model == SFOAM:
-        for i in range(n):
-            a_out[o1 + i] = 0.0
-    else:
-        _cholesky_solve(ws.chol1, a_out, o1)
-    _cholesky_solve(ws.chol2, a_out, o2)
-
-
-@inline_kernel
-def rhs_accelerations(model, kind, mp, t, y, v, sm, free, a_out, ws):
-    """Accelerations for the integrator (hot path): like :func:`accelerations` without the hub-row
-    outputs, and without allocating (``ws`` from :func:`workspace`)."""
-    tau = impose_constraints(model, kind, mp, t, y, v, a_out)
-    if kind == PRESCRIBED and model != CFOAM:
-        _prescribed_elastic_accelerations(model, y, v, sm, a_out, ws)
-    else:
-        _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws)
 
 
 @kernel

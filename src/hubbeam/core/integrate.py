@@ -4,16 +4,19 @@
 dropped for a prescribed maneuver, q1 for SFOAM; see ``eom.free_dofs``) from rest with
 :func:`hubbeam.core.radau.radau5`, then evaluates every output of the simulation dataset on the
 uniform output grid from the interpolated states. Nothing returns to Python per step.
-"""
 
-from collections import namedtuple
+The integrator runs on right-hand sides built for speed (:mod:`hubbeam.core.foam_rhs`,
+:mod:`hubbeam.core.cfoam_rhs`); the outputs come from the general equations of
+:mod:`hubbeam.core.eom` (full mass matrix), which the tests hold equal to them.
+"""
 
 import numpy as np
 
-from hubbeam.core.eom import (CFOAM, free_dofs, high_order_terms, outputs, rhs_accelerations,
-                              tip_outputs, workspace)
-from hubbeam.core.jit import kernel
-from hubbeam.core.radau import radau5, register_rhs
+from hubbeam.core.cfoam_rhs import cfoam_problem
+from hubbeam.core.eom import CFOAM, free_dofs, high_order_terms, outputs, tip_outputs, workspace
+from hubbeam.core.foam_rhs import foam_problem
+from hubbeam.core.jit import inline_kernel, kernel
+from hubbeam.core.radau import radau5
 
 #: Columns of the output array: these, then ``q1[0..n-1]``, ``q2[0..n-1]``, then the CFOAM
 #: high-order terms ``dM_thth``, ``dQ_theta``, ``dQ_q1[0..n-1]``, ``dQ_q2[0..n-1]`` (NaN for the
@@ -40,34 +43,12 @@ def n_output_columns(n):
     return N_SCALAR + 4 * n + 2
 
 
-#: The hub-beam as a radau5 problem: model and maneuver ids, maneuver parameters, matrices, the
-#: free coordinates and full-length work vectors ``y, v, a``.
-BeamProblem = namedtuple("BeamProblem", "model kind mp sm free y v a ws")
-
-
-@kernel
-def beam_problem(model, kind, mp, sm):
-    """The :data:`BeamProblem` of a simulation from rest, with its work arrays allocated."""
-    N = 1 + 2 * sm.K1.shape[0]
-    free = free_dofs(model, kind, sm.K1.shape[0])
-    return BeamProblem(model, kind, mp, sm, free, np.zeros(N), np.zeros(N), np.zeros(N),
-                       workspace(sm, free))
-
-
-@kernel
-def beam_rhs(t, yf, vf, af, problem):
-    """Accelerations ``af`` of the free coordinates at ``(t, yf, vf)`` (Eq. 24 solved for y'')."""
-    free = problem.free
-    for i in range(free.shape[0]):
-        problem.y[free[i]] = yf[i]
-        problem.v[free[i]] = vf[i]
-    rhs_accelerations(problem.model, problem.kind, problem.mp, t, problem.y, problem.v,
-                      problem.sm, free, problem.a, problem.ws)
-    for i in range(free.shape[0]):
-        af[i] = problem.a[free[i]]
-
-
-register_rhs(BeamProblem, beam_rhs)
+def integration_problem(model, kind, mp, sm):
+    """The radau5 problem :func:`integrate_free` runs for ``model`` (for callers outside numba,
+    such as the benchmark's scipy runs, which must integrate the same equations)."""
+    if model == CFOAM:
+        return cfoam_problem(kind, mp, sm)
+    return foam_problem(model, kind, mp, sm)
 
 
 @kernel
@@ -124,30 +105,52 @@ def fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out):
                 out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
 
 
+@inline_kernel
+def integrate_free(model, kind, mp, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps, y_out,
+                   v_out, stats):
+    """Simulate from rest (``y = 0``, ``y' = 0``) and write the free positions and velocities
+    (``eom.free_dofs``) on ``t_out`` into ``y_out``, ``v_out`` (shape ``(len(t_out), n_free)``;
+    NaN after a stop).
+
+    TLAM, FOAM and SFOAM run on :data:`hubbeam.core.foam_rhs.FoamProblem` (constant modal mass
+    inverted once), CFOAM on :data:`hubbeam.core.cfoam_rhs.CfoamProblem` (point-cloud sums
+    contracted once). ``rtol`` and the scalar ``atol`` apply to every
+    free position and velocity (see ``radau5``); the run stops as diverged once
+    ``|tip deflection| > tip_limit``. ``stats`` (int64, ``len(radau.STAT_NAMES)``) receives
+    radau5's counters. Returns radau5's ``(status, t_stop)`` and the weights ``w`` with
+    ``w . y_free = v(L)``.
+    """
+    free = free_dofs(model, kind, sm.K1.shape[0])
+    nf = free.shape[0]
+    watch = tip_watch(free, sm)
+    atol_z = np.full(2 * nf, atol)
+    if model == CFOAM:
+        status, t_stop = radau5(cfoam_problem(kind, mp, sm), np.zeros(nf), np.zeros(nf),
+                                t_out, t_stops, rtol, atol_z, watch, tip_limit, max_steps, 0.0,
+                                False, y_out, v_out, stats)
+    else:
+        status, t_stop = radau5(foam_problem(model, kind, mp, sm), np.zeros(nf), np.zeros(nf),
+                                t_out, t_stops, rtol, atol_z, watch, tip_limit, max_steps, 0.0,
+                                False, y_out, v_out, stats)
+    return status, t_stop, watch
+
+
 @kernel
 def simulate_kernel(model, kind, mp, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps,
                     out, stats):
-    """Simulate from rest (``y = 0``, ``y' = 0``) over ``t_out`` and fill ``out``.
+    """Simulate from rest over ``t_out`` (:func:`integrate_free`) and fill ``out``.
 
     ``model``, ``kind``: ids of ``eom`` and ``maneuver``; ``mp``: maneuver parameters; ``sm``:
-    SystemMatrices; ``t_stops``: times no step may cross (end of the maneuver); ``rtol`` and the
-    scalar ``atol`` apply to every free position and velocity (see ``radau5``); the run stops as
-    diverged once ``|tip deflection| > tip_limit``. ``out`` has shape
+    SystemMatrices; ``t_stops``: times no step may cross (end of the maneuver); tolerances and
+    ``tip_limit`` as in :func:`integrate_free`. ``out`` has shape
     ``(len(t_out), n_output_columns(n))``, columns as in :func:`output_columns`; rows after the
     stop are NaN. ``stats`` (int64, ``len(radau.STAT_NAMES)``) receives radau5's counters.
     Returns radau5's ``(status, t_stop)``.
     """
-    problem = beam_problem(model, kind, mp, sm)
-    free = problem.free
-    nf = free.shape[0]
-    n_out = t_out.shape[0]
-    y_out = np.empty((n_out, nf))
-    v_out = np.empty((n_out, nf))
-    atol_z = np.empty(2 * nf)
-    for i in range(2 * nf):
-        atol_z[i] = atol
-    status, t_stop = radau5(problem, np.zeros(nf), np.zeros(nf), t_out, t_stops, rtol, atol_z,
-                            tip_watch(free, sm), tip_limit, max_steps, 0.0, False, y_out, v_out,
-                            stats)
+    free = free_dofs(model, kind, sm.K1.shape[0])
+    y_out = np.empty((t_out.shape[0], free.shape[0]))
+    v_out = np.empty_like(y_out)
+    status, t_stop, _ = integrate_free(model, kind, mp, sm, t_out, t_stops, rtol, atol,
+                                       tip_limit, max_steps, y_out, v_out, stats)
     fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out)
     return status, t_stop

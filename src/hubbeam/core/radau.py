@@ -134,9 +134,18 @@ def register_rhs(problem_class, rhs):
     _RHS_REGISTRY[problem_class] = rhs
 
 
+def registered_rhs(problem_class):
+    """The ``rhs`` declared for ``problem_class`` by :func:`register_rhs`."""
+    try:
+        return _RHS_REGISTRY[problem_class]
+    except KeyError:
+        raise TypeError(f"no right-hand side is registered for {problem_class!r}") from None
+
+
 def problem_rhs(t, y, v, a, problem):
-    """``a = y''(t, y, v)`` of ``problem`` (jitted code only; see :func:`register_rhs`)."""
-    raise NotImplementedError("problem_rhs is only callable from jitted code")
+    """``a = y''(t, y, v)`` of ``problem``: the registered ``rhs`` (see :func:`register_rhs`);
+    inside jitted code the call is resolved at compile time."""
+    registered_rhs(type(problem))(t, y, v, a, problem)
 
 
 @overload(problem_rhs, jit_options=JIT_OPTIONS, inline="always")

@@ -1,9 +1,9 @@
 """Parameter sweeps in one parallel kernel: many simulations, only tip-deflection extrema kept.
 
 Every point of a sweep is one simulation from rest, as in
-:func:`hubbeam.core.integrate.simulate_kernel`: the same right-hand side (``BeamProblem`` with
-``beam_rhs``), the same integrator (:func:`hubbeam.core.radau.radau5`) and the same divergence
-watch on the tip deflection. Instead of every output of the simulation dataset, a point keeps
+:func:`hubbeam.core.integrate.simulate_kernel`: the same integration
+(:func:`hubbeam.core.integrate.integrate_free`) and the same divergence watch on the tip
+deflection. Instead of every output of the simulation dataset, a point keeps
 only what a map shows, formed from the dense output of the free coordinates on a coarse uniform
 grid (plus the end of the maneuver ``t_mark``):
 
@@ -33,9 +33,9 @@ import numba
 import numpy as np
 
 from hubbeam.core.eom import free_dofs
-from hubbeam.core.integrate import beam_problem, tip_watch
+from hubbeam.core.integrate import integrate_free
 from hubbeam.core.jit import JIT_OPTIONS, inline_kernel, kernel
-from hubbeam.core.radau import SUCCESS, STAT_NAMES, radau5
+from hubbeam.core.radau import SUCCESS, STAT_NAMES
 from hubbeam.matrices import SystemMatrices
 
 #: columns of the float result array of :func:`sweep_tip_extrema`
@@ -117,24 +117,6 @@ def hermite_abs_max(p0, d0, p1, d1, h):
             if value > best:
                 best, s_best = value, s
     return best, s_best
-
-
-@inline_kernel
-def integrate_free(model, kind, mp, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps, y_out,
-                   v_out, stats):
-    """The integration of :func:`hubbeam.core.integrate.simulate_kernel` without its outputs.
-
-    Simulates from rest and writes the free positions and velocities (``eom.free_dofs``) on
-    ``t_out`` into ``y_out``, ``v_out`` (shape ``(len(t_out), n_free)``; NaN after a stop).
-    Returns radau5's ``(status, t_stop)`` and the weights ``w`` with ``w . y_free = v(L)``.
-    """
-    problem = beam_problem(model, kind, mp, sm)
-    nf = problem.free.shape[0]
-    watch = tip_watch(problem.free, sm)
-    status, t_stop = radau5(problem, np.zeros(nf), np.zeros(nf), t_out, t_stops, rtol,
-                            np.full(2 * nf, atol), watch, tip_limit, max_steps, 0.0, False, y_out,
-                            v_out, stats)
-    return status, t_stop, watch
 
 
 @inline_kernel

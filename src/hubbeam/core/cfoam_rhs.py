@@ -1,0 +1,67 @@
+"""The integrator's right-hand side of CFOAM, from the pre-contracted point-cloud tensors.
+
+CFOAM's mass matrix depends on the whole configuration (Eqs. 8-9 and the high-order terms of
+Eqs. 35-39, ``docs/cfoam.md``), so every evaluation assembles ``M(y)`` and ``F(y, y')`` --
+with :func:`hubbeam.core.cfoam_tensors.cfoam_system`, which contracts the state with tensors
+summed over the point cloud once per simulation instead of summing over the cloud at every
+call -- and solves Eq. (24) for the free accelerations by a Cholesky factorisation: the elastic
+block with the prescribed ``theta_ddot`` moved to the right-hand side (Eq. 43), or the whole
+system for a torque-driven hub (Eq. 44). These are the equations
+:func:`hubbeam.core.eom.accelerations` solves with the point-cloud kernel; the tests hold the two
+to rounding error.
+"""
+
+from collections import namedtuple
+
+import numpy as np
+
+from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
+from hubbeam.core.eom import solve_spd
+from hubbeam.core.jit import kernel
+from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
+from hubbeam.core.radau import register_rhs
+
+#: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, the tensors ``ct``, and
+#: work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F`` of Eq. (24), the free
+#: block ``Mff`` and its right-hand side ``rhs``.
+CfoamProblem = namedtuple("CfoamProblem", "kind mp ct y v M F Mff rhs")
+
+
+@kernel
+def cfoam_problem(kind, mp, sm):
+    """The :data:`CfoamProblem` of CFOAM under maneuver ``kind`` for ``SystemMatrices`` ``sm``."""
+    N = 1 + 2 * sm.M1.shape[0]
+    nf = N - 1 if kind == PRESCRIBED else N
+    return CfoamProblem(kind, mp, cfoam_tensors(sm), np.zeros(N), np.zeros(N), np.empty((N, N)),
+                        np.empty(N), np.empty((nf, nf)), np.empty(nf))
+
+
+@kernel
+def cfoam_rhs(t, yf, vf, af, problem):
+    """Accelerations ``af`` of the free coordinates (theta first unless prescribed, then q1, q2)."""
+    y, v, M, F, Mff, rhs = problem.y, problem.v, problem.M, problem.F, problem.Mff, problem.rhs
+    nf = yf.shape[0]
+    o = y.shape[0] - nf  # 1: theta is prescribed
+    thdd = 0.0
+    tau = 0.0
+    if o == 1:
+        y[0], thd, thdd = hub_motion(t, problem.mp)
+        v[0] = thd
+    else:
+        tau = applied_torque(t, problem.mp)
+    for i in range(nf):
+        y[o + i] = yf[i]
+        v[o + i] = vf[i]
+    cfoam_system(y, v, tau, problem.ct, M, F)
+    for i in range(nf):
+        rhs[i] = F[o + i] - M[o + i, 0] * thdd
+        for j in range(nf):
+            Mff[i, j] = M[o + i, o + j]
+    if not solve_spd(Mff, rhs):
+        for i in range(nf):
+            rhs[i] = np.nan
+    for i in range(nf):
+        af[i] = rhs[i]
+
+
+register_rhs(CfoamProblem, cfoam_rhs)

@@ -1,0 +1,129 @@
+"""The integrator's right-hand side of TLAM, FOAM and SFOAM with the modal mass inverted once.
+
+In these models the elastic rows of Eq. (24) have the constant mass blocks ``M1`` and ``M2``
+(Eq. 16 with the tip mass); only the hub row depends on the configuration. With ``e`` the free
+elastic coordinates (``(q1, q2)``, or ``q2`` for SFOAM, Eq. 40) and ``Me = diag(M1, M2)`` on them,
+the elastic rows (Eqs. 29-31, 33-34, the ``D`` terms dropped for TLAM) solved for ``e''`` are
+affine in the hub rate and acceleration:
+
+    e'' = u + theta_ddot r,
+    u   = thd^2 b0 + (P0 + thd^2 P1) e + 2 thd P2 e',       r = b1 + P2 e,
+
+    P0 = -Me^-1 diag(K1, K2),     P1 = Me^-1 diag(M1, M2 - D),   P2 = Me^-1 [[0, R], [-R^T, 0]],
+    b0 = Me^-1 (V1, 0),           b1 = Me^-1 (0, -V2),
+
+all restricted to the free elastic coordinates, so that an evaluation costs a few ``n x n``
+products instead of assembling and factoring ``M(y)``. For a prescribed hub (Eq. 43) theta_ddot
+is known. For a torque-driven hub (Eq. 44) the hub row ``m00 theta_ddot + c . e'' = tau + Q_theta``
+(Eqs. 25-27, 32) with ``c = C0 + C1 e = (-R q2, V2 + R^T q1)`` is solved by eliminating ``e''``
+(a Schur complement of the constant block):
+
+    theta_ddot = (tau + Q_theta - c . u) / (m00 + c . r),
+    m00 = J0 + e^T G e + 2 g . e,     Q_theta = -2 thd (e^T G e' + g . e'),
+
+with ``J0 = Jh + Jb``, ``G = diag(M1, M2 - D)`` and ``g = (V1, 0)`` (SFOAM: ``Q_theta`` deleted).
+These are the equations :func:`hubbeam.core.eom.accelerations` solves with the full mass matrix;
+the tests hold the two to rounding error. CFOAM, whose elastic mass blocks depend on ``q2``,
+has its own (:mod:`hubbeam.core.cfoam_rhs`).
+"""
+
+from collections import namedtuple
+
+import numpy as np
+
+from hubbeam.core.eom import SFOAM, TLAM, free_dofs
+from hubbeam.core.jit import kernel
+from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
+from hubbeam.core.radau import register_rhs
+
+#: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1`` and ``b`` stacks
+#: ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
+#: ``scalars = (J0, q_theta_factor)``; ``kind`` and ``mp`` the maneuver; ``work`` holds ``u, r``.
+FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work")
+
+P0, P1, P2, G, C1 = range(5)
+B0, B1, G_VEC, C0 = range(4)
+
+
+@kernel
+def foam_problem(model, kind, mp, sm):
+    """The :data:`FoamProblem` of ``model`` (TLAM, FOAM or SFOAM) under maneuver ``kind``."""
+    n = sm.M1.shape[0]
+    cD = 0.0 if model == TLAM else 1.0
+    Z = np.zeros((n, n))
+    mass = np.vstack((np.hstack((sm.M1, Z)), np.hstack((Z, sm.M2))))
+    stiffness = np.vstack((np.hstack((sm.K1, Z)), np.hstack((Z, sm.K2))))
+    G_full = np.vstack((np.hstack((sm.M1, Z)), np.hstack((Z, sm.M2 - cD * sm.D))))
+    R_full = np.vstack((np.hstack((Z, sm.R)), np.hstack((-sm.R.T, Z))))
+    zero = np.zeros(n)
+    mass_inv = np.linalg.inv(mass)
+    # free elastic coordinates as indices into (q1, q2)
+    free = free_dofs(model, kind, n)
+    elastic = free[free > 0] - 1
+    ne = elastic.shape[0]
+    full_P = (-mass_inv @ stiffness, mass_inv @ G_full, mass_inv @ R_full, G_full, -R_full)
+    full_b = (mass_inv @ np.concatenate((sm.V1, zero)),
+              mass_inv @ np.concatenate((zero, -sm.V2)),
+              np.concatenate((sm.V1, zero)), np.concatenate((zero, sm.V2)))
+    P = np.empty((len(full_P), ne, ne))
+    b = np.empty((len(full_b), ne))
+    for k in range(len(full_P)):
+        for i in range(ne):
+            for j in range(ne):
+                P[k, i, j] = full_P[k][elastic[i], elastic[j]]
+    for k in range(len(full_b)):
+        for i in range(ne):
+            b[k, i] = full_b[k][elastic[i]]
+    q_theta_factor = 0.0 if model == SFOAM else 1.0
+    scalars = np.array([sm.Jh + sm.Jb, q_theta_factor])
+    return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)))
+
+
+@kernel
+def foam_rhs(t, y, v, a, problem):
+    """Accelerations ``a`` of the free coordinates (theta first unless prescribed, then ``e``)."""
+    P = problem.P
+    b = problem.b
+    u = problem.work[0]
+    r = problem.work[1]
+    o = 0 if problem.kind == PRESCRIBED else 1
+    ne = y.shape[0] - o
+    if o == 0:
+        thd, thdd = hub_motion(t, problem.mp)[1:]
+    else:
+        thd = v[0]
+        thdd = 0.0
+    thd2 = thd * thd
+    for i in range(ne):
+        ui = thd2 * b[B0, i]
+        ri = b[B1, i]
+        for j in range(ne):
+            ej = y[o + j]
+            ui += (P[P0, i, j] + thd2 * P[P1, i, j]) * ej + 2.0 * thd * P[P2, i, j] * v[o + j]
+            ri += P[P2, i, j] * ej
+        u[i] = ui
+        r[i] = ri
+    if o == 1:
+        # hub row (Eqs. 25-27, 32) with e'' eliminated
+        m00 = problem.scalars[0]
+        gee = 0.0  # e^T G e' + g . e'
+        c_u = 0.0
+        c_r = 0.0
+        for i in range(ne):
+            ge = b[G_VEC, i]
+            ci = b[C0, i]
+            for j in range(ne):
+                ge += P[G, i, j] * y[1 + j]
+                ci += P[C1, i, j] * y[1 + j]
+            m00 += (ge + b[G_VEC, i]) * y[1 + i]
+            gee += ge * v[1 + i]
+            c_u += ci * u[i]
+            c_r += ci * r[i]
+        q_theta = -2.0 * thd * gee * problem.scalars[1]
+        thdd = (applied_torque(t, problem.mp) + q_theta - c_u) / (m00 + c_r)
+        a[0] = thdd
+    for i in range(ne):
+        a[o + i] = u[i] + thdd * r[i]
+
+
+register_rhs(FoamProblem, foam_rhs)

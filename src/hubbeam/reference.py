@@ -4,7 +4,9 @@ The same equations of motion (``hubbeam.core.eom.accelerations``), written as th
 system ``z = (y_free, v_free)``, are integrated by one of scipy's general-purpose integrators at a
 tight tolerance and sampled on the simulation's output grid; the outputs are then evaluated as in
 :func:`hubbeam.simulate.simulate`. This checks the fast path's time integration (Radau IIA kernel,
-step-size control, dense output) against code that shares nothing with it but the model.
+step-size control, dense output, and its right-hand sides ``core.foam_rhs`` and
+``core.cfoam_rhs``) against code that shares nothing with it but the model: the general
+mass-matrix equations with CFOAM's point-cloud sum.
 
 By default the accelerations are evaluated in plain Python: :func:`pure_python` rebuilds a jitted
 function from its source with every jitted function it calls replaced by its plain-Python

@@ -47,7 +47,7 @@ from collections import namedtuple
 import numpy as np
 from numba.extending import overload
 
-from hubbeam.core.jit import JIT_OPTIONS, kernel
+from hubbeam.core.jit import JIT_OPTIONS, inline_kernel, kernel
 
 # Status codes returned by :func:`radau5`.
 SUCCESS = 0
@@ -168,16 +168,28 @@ ForcedOscillator = namedtuple("ForcedOscillator", "K C g omega nonlinear")
 
 
 # --------------------------------------------------------------------------- linear algebra
+@inline_kernel
+def _magnitude(x):
+    """``|Re x| + |Im x|``: the pivot size LAPACK uses for complex matrices (no square root)."""
+    return abs(x.real) + abs(x.imag)
+
+
 @kernel
 def lu_factor(mat, piv):
-    """In-place LU factorisation with partial pivoting (real or complex); False if singular."""
+    """In-place LU factorisation with partial pivoting (real or complex); False if singular.
+
+    The unit lower factor is stored below the diagonal, the upper factor above it, and the
+    diagonal holds the reciprocals of the pivots: :func:`lu_solve` then multiplies where it would
+    divide, which takes the division latency off its chain of dependent operations.
+    """
     n = mat.shape[0]
     for k in range(n):
         p = k
-        big = abs(mat[k, k])
+        big = _magnitude(mat[k, k])
         for i in range(k + 1, n):
-            if abs(mat[i, k]) > big:
-                big = abs(mat[i, k])
+            size = _magnitude(mat[i, k])
+            if size > big:
+                big = size
                 p = i
         piv[k] = p
         if not (big > 0.0 and big < np.inf):
@@ -188,6 +200,7 @@ def lu_factor(mat, piv):
                 mat[k, j] = mat[p, j]
                 mat[p, j] = tmp
         inv = 1.0 / mat[k, k]
+        mat[k, k] = inv
         for i in range(k + 1, n):
             mat[i, k] *= inv
             f = mat[i, k]
@@ -215,7 +228,7 @@ def lu_solve(lu, piv, b):
         s = b[i]
         for j in range(i + 1, n):
             s -= lu[i, j] * b[j]
-        b[i] = s / lu[i, i]
+        b[i] = s * lu[i, i]
 
 
 @kernel
@@ -274,11 +287,12 @@ def _copy(src, dst):
 
 @kernel
 def _scale(y0, v0, y1, v1, rtol, atol, sc):
-    """Error weights ``atol_k + rtol max(|z0_k|, |z1_k|)`` of ``z = (y, v)``."""
+    """Reciprocal error weights ``1 / (atol_k + rtol max(|z0_k|, |z1_k|))`` of ``z = (y, v)``
+    (the norms below multiply by them)."""
     n = y0.shape[0]
     for i in range(n):
-        sc[i] = atol[i] + rtol * max(abs(y0[i]), abs(y1[i]))
-        sc[n + i] = atol[n + i] + rtol * max(abs(v0[i]), abs(v1[i]))
+        sc[i] = 1.0 / (atol[i] + rtol * max(abs(y0[i]), abs(y1[i])))
+        sc[n + i] = 1.0 / (atol[n + i] + rtol * max(abs(v0[i]), abs(v1[i])))
 
 
 @kernel
@@ -287,7 +301,7 @@ def _rms(dy, dv, sc):
     n = dy.shape[0]
     s = 0.0
     for i in range(n):
-        s += (dy[i] / sc[i]) ** 2 + (dv[i] / sc[n + i]) ** 2
+        s += (dy[i] * sc[i]) ** 2 + (dv[i] * sc[n + i]) ** 2
     return math.sqrt(s / (2 * n))
 
 
@@ -298,7 +312,7 @@ def _rms_stages(dy, dv, sc):
     s = 0.0
     for k in range(3):
         for i in range(n):
-            s += (dy[k, i] / sc[i]) ** 2 + (dv[k, i] / sc[n + i]) ** 2
+            s += (dy[k, i] * sc[i]) ** 2 + (dv[k, i] * sc[n + i]) ** 2
     return math.sqrt(s / (6 * n))
 
 

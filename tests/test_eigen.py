@@ -24,7 +24,7 @@ from hubbeam.paper import TABLE1
 from hubbeam.parameters import BeamParameters, TipMass
 
 PARAMS = BeamParameters(**TABLE1)
-RHO_A = PARAMS.rho * PARAMS.A
+RHO_A = PARAMS.rhoA
 #: omega = (beta L)^2 * SCALE for the Euler-Bernoulli cantilever
 SCALE = np.sqrt(PARAMS.E * PARAMS.I / (RHO_A * PARAMS.L**4))
 

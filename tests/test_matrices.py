@@ -18,7 +18,7 @@ from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.quadrature import effective_points
 
 PARAMS = BeamParameters(**TABLE1)
-RHO_A = PARAMS.rho * PARAMS.A
+RHO_A = PARAMS.rhoA
 MATRIX_FIELDS = ("Jb", "K1", "K2", "M1", "M2", "V1", "V2", "D", "R", "SL")
 INTERIOR_TIP = TipMass(mass=0.5, position=5.3)
 

@@ -13,6 +13,7 @@ All problems use ``radau.ForcedOscillator``: ``y'' = -K y - C y' + g cos(omega t
 """
 
 import math
+from collections import namedtuple
 
 import numpy as np
 import pytest
@@ -226,3 +227,20 @@ def test_stops_inside_the_span_leave_the_solution_unchanged():
     assert status == radau.SUCCESS
     assert np.allclose(y_stops, y_plain, rtol=1e-8)
     assert stats[radau.ACCEPTED] > stats_plain[radau.ACCEPTED]
+
+
+def test_problem_rhs_dispatches_on_the_registered_problem_type():
+    n = 3
+    rng = np.random.default_rng(5)
+    problem = radau.ForcedOscillator(np.diag([1.0, 4.0, 9.0]), 0.1 * np.eye(n), np.ones(n), 2.0,
+                                     0.0)
+    y, v = rng.normal(size=(2, n))
+    a = np.empty(n)
+    radau.problem_rhs(0.3, y, v, a, problem)  # from Python: the registered rhs
+    expected = np.cos(2.0 * 0.3) - problem.K @ y - problem.C @ v
+    np.testing.assert_allclose(a, expected, rtol=1e-14)
+    Unregistered = namedtuple("Unregistered", "K")
+    with pytest.raises(TypeError, match="no right-hand side is registered"):
+        radau.registered_rhs(Unregistered)
+    with pytest.raises(TypeError, match="expected a namedtuple class"):
+        radau.register_rhs(dict, radau.forced_oscillator_rhs)

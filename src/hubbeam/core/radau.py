@@ -343,26 +343,28 @@ def workspace(n):
 
 # --------------------------------------------------------------------------- building blocks
 @kernel
+def _difference_column(problem, t, y_st, v_st, a, a_st, perturbed, j, out):
+    """Column ``j`` of ``out = da/dx`` by a forward difference in ``perturbed[j]`` (``perturbed``
+    is ``y_st`` or ``v_st``, restored afterwards); ``a`` holds ``a(t, y_st, v_st)``."""
+    x = perturbed[j]
+    delta = math.sqrt(UROUND * max(1e-5, abs(x)))
+    perturbed[j] = x + delta
+    problem_rhs(t, y_st, v_st, a_st, problem)
+    perturbed[j] = x
+    for i in range(a.shape[0]):
+        out[i, j] = (a_st[i] - a[i]) / delta
+
+
+@kernel
 def jacobian(problem, t, y, v, w, stats):
     """Forward-difference ``w.Ka = da/dy`` and ``w.Ca = da/dv`` at ``(t, y, v)``; ``w.a`` must
     hold ``a(t, y, v)``. Costs ``2N`` right-hand-side calls."""
     n = y.shape[0]
-    a, y_st, v_st, a_st, Ka, Ca = w.a, w.y_st, w.v_st, w.a_st, w.Ka, w.Ca
-    _copy(y, y_st)
-    _copy(v, v_st)
+    _copy(y, w.y_st)
+    _copy(v, w.v_st)
     for j in range(n):
-        delta = math.sqrt(UROUND * max(1e-5, abs(y[j])))
-        y_st[j] = y[j] + delta
-        problem_rhs(t, y_st, v_st, a_st, problem)
-        y_st[j] = y[j]
-        for i in range(n):
-            Ka[i, j] = (a_st[i] - a[i]) / delta
-        delta = math.sqrt(UROUND * max(1e-5, abs(v[j])))
-        v_st[j] = v[j] + delta
-        problem_rhs(t, y_st, v_st, a_st, problem)
-        v_st[j] = v[j]
-        for i in range(n):
-            Ca[i, j] = (a_st[i] - a[i]) / delta
+        _difference_column(problem, t, w.y_st, w.v_st, w.a, w.a_st, w.y_st, j, w.Ka)
+        _difference_column(problem, t, w.y_st, w.v_st, w.a, w.a_st, w.v_st, j, w.Ca)
     stats[JACOBIANS] += 1
     stats[RHS_CALLS] += 2 * n
 

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from hubbeam.core import eom
-from hubbeam.core.integrate import integration_problem
+from hubbeam.core.integrate import N_SCALAR, fill_outputs, integration_problem, n_output_columns
 from hubbeam.core.radau import problem_rhs
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
 from hubbeam.matrices import SystemMatrices
@@ -289,14 +289,17 @@ def test_accelerations_solve_the_equations_with_constraints(sm, state):
 def test_high_order_terms_vanish_to_second_order(sm, state):
     y, v = state
     a = np.ones_like(y)
+    N = y.size
     dQ = np.empty_like(y)
+    Mc, Fc, Mf, Ff = np.empty((N, N)), np.empty(N), np.empty((N, N)), np.empty(N)
     sizes = []
     for eps in (1e-2, 1e-3):
         ys, vs, as_ = y.copy(), v.copy(), a.copy()
         ys[1:] *= eps
         vs[1:] *= eps
         as_[1:] *= eps
-        dM = eom.high_order_terms(ys, vs, as_, sm, dQ)
+        eom.mass_matrix_and_force(eom.CFOAM, ys, vs, 3.0, sm, Mc, Fc)
+        dM = eom.high_order_terms(Mc, Fc, 3.0, ys, vs, as_, sm, Mf, Ff, dQ)
         sizes.append((abs(dM), np.max(np.abs(dQ))))
     # Delta M_thth (Eq. 35) is cubic in q; the dropped generalised forces are quadratic
     assert sizes[1][0] == pytest.approx(sizes[0][0] / 1000, rel=0.05)
@@ -330,8 +333,48 @@ def test_outputs_give_energy_and_momentum_of_the_state(sm, state):
     for model in (eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM):
         free = eom.free_dofs(model, TORQUE, n)
         yy, vv, a = y.copy(), v.copy(), np.zeros_like(y)
-        torque, q_theta, e, p = eom.outputs(model, TORQUE, mp, 4.0, yy, vv, sm, free, a,
-                                            eom.workspace(sm, free))
+        ws = eom.workspace(sm, free)
+        tau = eom.impose_constraints(model, TORQUE, mp, 4.0, yy, vv, a)
+        eom.mass_matrix_and_force(model, yy, vv, tau, sm, ws.M, ws.F)
+        torque, q_theta, e, p = eom.outputs(TORQUE, tau, yy, vv, sm, free, a, ws)
         assert e == pytest.approx(eom.energy(model, yy, vv, sm), rel=1e-13)
         assert p == pytest.approx(eom.angular_momentum(model, yy, vv, sm), rel=1e-13)
         assert torque == pytest.approx(200.0 * np.sin(2 * np.pi * 4.0 / 10.0), rel=1e-13)
+
+
+@pytest.mark.parametrize("kind,mp", [(PRESCRIBED, np.array([2.8, 30.0])),
+                                     (TORQUE, np.array([200.0, 10.0]))])
+@pytest.mark.parametrize("model", [eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM])
+def test_dataset_outputs_equal_the_general_equations(sm, state, kind, mp, model):
+    """fill_outputs (CFOAM from the pre-contracted tensors) against the point-cloud equations of
+    eom, output by output, at states far outside the small-deformation range too."""
+    n = sm.M1.shape[0]
+    N = 1 + 2 * n
+    y, v = state
+    free = eom.free_dofs(model, kind, n)
+    t = np.array([1.0, 4.0, 12.0])
+    scales = np.array([1.0, 10.0, 40.0])[:, None]
+    y_out = np.ascontiguousarray(scales * y[free])
+    v_out = np.ascontiguousarray(scales * v[free])
+    out = np.empty((t.size, n_output_columns(n)))
+    fill_outputs(model, kind, mp, sm, free, t, y_out, v_out, out)
+    expected = np.full_like(out, np.nan)
+    ws = eom.workspace(sm, free)
+    Mf, Ff, dQ = np.empty((N, N)), np.empty(N), np.empty(N)
+    for k in range(t.size):
+        yy, vv, a = np.zeros(N), np.zeros(N), np.zeros(N)
+        yy[free], vv[free] = y_out[k], v_out[k]
+        tau = eom.impose_constraints(model, kind, mp, t[k], yy, vv, a)
+        eom.mass_matrix_and_force(model, yy, vv, tau, sm, ws.M, ws.F)
+        torque, q_theta, e, p = eom.outputs(kind, tau, yy, vv, sm, free, a, ws)
+        expected[k, :N_SCALAR] = (yy[0], vv[0], a[0], torque, q_theta,
+                                  *eom.tip_outputs(yy, sm), e, p)
+        expected[k, N_SCALAR:N_SCALAR + 2 * n] = yy[1:]
+        if model == eom.CFOAM:
+            dM = eom.high_order_terms(ws.M, ws.F, tau, yy, vv, a, sm, Mf, Ff, dQ)
+            expected[k, N_SCALAR + 2 * n:] = (dM, *dQ)
+    assert np.array_equal(np.isnan(out), np.isnan(expected))
+    # every column to rounding error of its own size
+    size = np.nanmax(np.abs(expected), axis=0, initial=0.0)
+    bound = np.broadcast_to(1e-11 * size + 1e-300, out.shape)
+    np.testing.assert_array_less(np.nan_to_num(np.abs(out - expected)), bound)

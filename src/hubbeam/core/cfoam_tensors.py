@@ -151,6 +151,14 @@ def cfoam_tensors(sm):
 
 
 @kernel
+def no_tensors():
+    """A :data:`CfoamTensors` without entries: the argument of code typed on CfoamTensors when
+    it runs a model other than CFOAM (see ``hubbeam.core.integrate.fill_outputs``)."""
+    return CfoamTensors(0.0, 0.0, np.zeros((2, 0)), np.zeros((8, 0, 0)), np.zeros((2, 0, 0, 0)),
+                        np.zeros((2, 0, 0)), np.zeros((4, 0)))
+
+
+@kernel
 def cfoam_system(y, v, tau, ct, M, F):
     """Mass matrix ``M(y)`` and force ``F(y, y')`` of CFOAM from the tensors ``ct``.
 

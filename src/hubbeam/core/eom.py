@@ -329,17 +329,14 @@ def workspace(sm, free):
 
 
 @kernel
-def _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws):
-    """Solve ``M_ff a_f = F_f - M_fc a_c`` with the constrained ``a_c`` already in ``a_out``.
-
-    Builds ``ws.M`` and ``ws.F`` (kept for :func:`outputs`); returns ``(torque, Q_theta)``.
-    """
-    N = y.shape[0]
+def solve_free(kind, tau, free, a_out, ws):
+    """Solve ``M_ff a_f = F_f - M_fc a_c`` from ``ws.M`` and ``ws.F`` (Eq. 24, already built),
+    with the constrained ``a_c`` already in ``a_out``; returns ``(torque, Q_theta)``."""
     M = ws.M
     F = ws.F
+    N = M.shape[0]
     Mff = ws.Mff
     rhs = ws.rhs
-    mass_matrix_and_force(model, y, v, tau, sm, M, F)
     nf = free.shape[0]
     for i in range(nf):
         fi = free[i]
@@ -375,16 +372,18 @@ def accelerations(model, kind, mp, t, y, v, sm, free, a_out):
     """
     ws = workspace(sm, free)
     tau = impose_constraints(model, kind, mp, t, y, v, a_out)
-    return _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws)
+    mass_matrix_and_force(model, y, v, tau, sm, ws.M, ws.F)
+    return solve_free(kind, tau, free, a_out, ws)
 
 
 @kernel
-def outputs(model, kind, mp, t, y, v, sm, free, a_out, ws):
-    """Accelerations and ``(torque, Q_theta, energy, angular_momentum)`` from one mass matrix."""
+def outputs(kind, tau, y, v, sm, free, a_out, ws):
+    """Accelerations and ``(torque, Q_theta, energy, angular_momentum)`` of a state whose mass
+    matrix and force are already in ``ws.M``, ``ws.F`` (applied torque ``tau``, constrained
+    entries of ``y, v, a_out`` imposed): one mass matrix for all of them."""
     n = sm.M1.shape[0]
     N = y.shape[0]
-    tau = impose_constraints(model, kind, mp, t, y, v, a_out)
-    torque, q_theta = _general_accelerations(model, kind, tau, y, v, sm, free, a_out, ws)
+    torque, q_theta = solve_free(kind, tau, free, a_out, ws)
     e = 0.5 * (_quad(sm.K1, y, y, n, 1, 1) + _quad(sm.K2, y, y, n, 1 + n, 1 + n))
     p = 0.0
     for i in range(N):
@@ -439,20 +438,17 @@ def tip_outputs(y, sm):
 
 
 @kernel
-def high_order_terms(y, v, a, sm, dQ):
+def high_order_terms(Mc, Fc, tau, y, v, a, sm, Mf, Ff, dQ):
     """The CFOAM terms FOAM drops (Eqs. 35-39, re-derived), along a state with accelerations ``a``.
 
-    Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the generalised force the high-order terms add
-    to FOAM's equations (theta, q1, q2 rows; accelerations moved to the right-hand side as in
-    Eqs. 38-39) and returns ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35).
+    ``Mc, Fc`` are CFOAM's mass matrix and force at ``(y, v)`` with applied torque ``tau``;
+    ``Mf, Ff`` are overwritten with FOAM's. Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the
+    generalised force the high-order terms add to FOAM's equations (theta, q1, q2 rows;
+    accelerations moved to the right-hand side as in Eqs. 38-39) and returns
+    ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35).
     """
     N = y.shape[0]
-    Mc = np.empty((N, N))
-    Fc = np.empty(N)
-    Mf = np.empty((N, N))
-    Ff = np.empty(N)
-    _cfoam_system(y, v, 0.0, sm, Mc, Fc)
-    _foam_system(FOAM, y, v, 0.0, sm, Mf, Ff)
+    _foam_system(FOAM, y, v, tau, sm, Mf, Ff)
     for i in range(N):
         s = Fc[i] - Ff[i]
         for j in range(N):

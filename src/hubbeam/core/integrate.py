@@ -6,14 +6,17 @@ dropped for a prescribed maneuver, q1 for SFOAM; see ``eom.free_dofs``) from res
 uniform output grid from the interpolated states. Nothing returns to Python per step.
 
 The integrator runs on right-hand sides built for speed (:mod:`hubbeam.core.foam_rhs`,
-:mod:`hubbeam.core.cfoam_rhs`); the outputs come from the general equations of
-:mod:`hubbeam.core.eom` (full mass matrix), which the tests hold equal to them.
+:mod:`hubbeam.core.cfoam_rhs`); the outputs come from the full mass matrix and force of Eq. (24):
+the general equations of :mod:`hubbeam.core.eom` for TLAM, FOAM and SFOAM, CFOAM's pre-contracted
+tensors (:mod:`hubbeam.core.cfoam_tensors`), which the tests hold equal to the point cloud.
 """
 
 import numpy as np
 
 from hubbeam.core.cfoam_rhs import cfoam_problem
-from hubbeam.core.eom import CFOAM, free_dofs, high_order_terms, outputs, tip_outputs, workspace
+from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors, no_tensors
+from hubbeam.core.eom import (CFOAM, free_dofs, high_order_terms, impose_constraints,
+                              mass_matrix_and_force, outputs, tip_outputs, workspace)
 from hubbeam.core.foam_rhs import foam_problem
 from hubbeam.core.jit import inline_kernel, kernel
 from hubbeam.core.radau import radau5
@@ -63,15 +66,16 @@ def tip_watch(free, sm):
 
 
 @kernel
-def fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out):
-    """Every output at the times ``t_out`` from the free positions and velocities ``y_out``,
-    ``v_out`` (rows with NaN give NaN rows): columns as in :func:`output_columns`."""
+def _fill_rows(model, kind, mp, sm, ct, free, t_out, y_out, v_out, out):
+    """:func:`fill_outputs` with the CFOAM tensors ``ct`` (:func:`no_tensors` for other models)."""
     n = sm.K1.shape[0]
     N = 1 + 2 * n
     y = np.zeros(N)
     v = np.zeros(N)
     a = np.zeros(N)
     dQ = np.zeros(N)
+    Mf = np.empty((N, N))
+    Ff = np.empty(N)
     ws = workspace(sm, free)
     nf = free.shape[0]
     for k in range(t_out.shape[0]):
@@ -85,7 +89,12 @@ def fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out):
         for i in range(nf):
             y[free[i]] = y_out[k, i]
             v[free[i]] = v_out[k, i]
-        torque, q_theta, e, p = outputs(model, kind, mp, t_out[k], y, v, sm, free, a, ws)
+        tau = impose_constraints(model, kind, mp, t_out[k], y, v, a)
+        if model == CFOAM:
+            cfoam_system(y, v, tau, ct, ws.M, ws.F)
+        else:
+            mass_matrix_and_force(model, y, v, tau, sm, ws.M, ws.F)
+        torque, q_theta, e, p = outputs(kind, tau, y, v, sm, free, a, ws)
         transverse, axial, foreshortening = tip_outputs(y, sm)
         out[k, 0] = y[0]
         out[k, 1] = v[0]
@@ -100,9 +109,23 @@ def fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out):
         for i in range(2 * n):
             out[k, N_SCALAR + i] = y[1 + i]
         if model == CFOAM:
-            out[k, N_SCALAR + 2 * n] = high_order_terms(y, v, a, sm, dQ)
+            out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, y, v, a, sm, Mf, Ff, dQ)
             for i in range(N):
                 out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
+
+
+@kernel
+def fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out):
+    """Every output at the times ``t_out`` from the free positions and velocities ``y_out``,
+    ``v_out`` (rows with NaN give NaN rows): columns as in :func:`output_columns`.
+
+    One mass matrix and force of Eq. (24) per output time gives the accelerations, the torque,
+    the energy, the angular momentum and, for CFOAM, the high-order terms; CFOAM's comes from
+    the pre-contracted tensors (``core/cfoam_tensors.py``), the other models' from
+    :func:`hubbeam.core.eom.mass_matrix_and_force`.
+    """
+    ct = cfoam_tensors(sm) if model == CFOAM else no_tensors()
+    _fill_rows(model, kind, mp, sm, ct, free, t_out, y_out, v_out, out)
 
 
 @inline_kernel

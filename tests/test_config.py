@@ -114,7 +114,8 @@ BAD_VALUES = [
     ("numerics.modes", 0, ["got 0", "an integer >= 1 and <= 20"]),
     ("numerics.modes", 21, ["got 21", "an integer >= 1 and <= 20"]),
     ("numerics.modes", 5.0, ["got 5.0 (decimal number)", "an integer >= 1"]),
-    ("numerics.quadrature_points", 1, ["got 1", "an integer >= 2"]),
+    ("numerics.quadrature_points", 7, ["got 7", "an integer >= 8 and <= 1000"]),
+    ("numerics.quadrature_points", 1001, ["got 1001", "an integer >= 8 and <= 1000"]),
     ("numerics.output_step", 0.0, ["got 0.0", "> 0"]),
     ("numerics.step_warning", 2_000_000, ["got 2000000", "at most numerics.max_steps = 1000000"]),
     ("cases.fig06_foam_n3.modes", 25, ["got 25", "an integer >= 1 and <= 20"]),
@@ -149,6 +150,44 @@ def reported_path(dotted: str) -> str:
 def test_bad_value_names_key_value_and_allowed(study_config, dotted, value, fragments):
     set_at(study_config, dotted, value)
     assert_reported(problems_of(study_config), reported_path(dotted), *fragments)
+
+
+VALIDATION_PROBLEMS = [
+    ("validation.published.modes", [20, 10], "validation.published.modes",
+     ["got [20, 10]", "increasing integers"]),
+    ("validation.published.gammas.start", 60.0, "validation.published.gammas.stop",
+     ["got 50.0", "> validation.published.gammas.start = 60.0"]),
+    ("validation.exudyn.time_step", 3.0e-3, "validation.exudyn.time_step",
+     ["got 0.003", "divides numerics.output_step = 0.01"]),
+    ("validation.convergence.time_steps", [5.0e-3, 3.0e-3], "validation.convergence.time_steps[1]",
+     ["got 0.003", "divides numerics.output_step = 0.01"]),
+    ("validation.cases.spinup_wf2p0.t_end", 50.005, "validation.cases.spinup_wf2p0.t_end",
+     ["got 50.005", "a multiple of numerics.output_step = 0.01"]),
+    ("validation.cases.spinup_wf2p0_mt0p5.tip_mass.position", 7.7,
+     "validation.cases.spinup_wf2p0_mt0p5.tip_mass.position",
+     ["got 7.7", "a node of the Exudyn mesh", "beam.length / validation.exudyn.elements = 0.5 m"]),
+    ("validation.cases.spinup_wf2p0_mt0p5.tip_mass.position", 8.5,
+     "validation.cases.spinup_wf2p0_mt0p5.tip_mass.position", ["got 8.5", "<= beam.length = 8.0"]),
+]
+
+
+@pytest.mark.parametrize("dotted, value, path, fragments", VALIDATION_PROBLEMS,
+                         ids=[f"{d}={v!r}" for d, v, _, _ in VALIDATION_PROBLEMS])
+def test_validation_section_is_checked_at_startup(study_config, dotted, value, path, fragments):
+    """What the validation rules would only find inside a job (mode counts, steps that do not fit
+    the output grid, a tip mass off the Exudyn mesh) stops the workflow before any rule runs."""
+    set_at(study_config, dotted, value)
+    assert_reported(problems_of(study_config), path, *fragments)
+
+
+def test_convergence_meshes_must_hold_the_tip_mass_of_their_case(study_config):
+    validation = study_config["validation"]
+    validation["convergence"]["case"] = "spinup_wf2p0_mt0p5"
+    validation["cases"]["spinup_wf2p0_mt0p5"]["tip_mass"]["position"] = 7.5  # a node of 16, not of 4
+    assert_reported(problems_of(study_config), "validation.cases.spinup_wf2p0_mt0p5.tip_mass.position",
+                    "got 7.5", "beam.length / validation.convergence.elements[0] = 2 m")
+    validation["convergence"]["elements"] = [16, 32]
+    validate_config(study_config)
 
 
 def test_bad_list_item_is_named_by_index(study_config):

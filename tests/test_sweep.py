@@ -211,6 +211,7 @@ def test_hermite_extremum_and_output_grid():
 
 @pytest.mark.parametrize("change, key", [
     (lambda s: s["maneuver"].update(wf=2.0), "sweeps.maps.spinup_peak.maneuver.wf"),
+    (lambda s: s["maneuver"].update(tau_max=50.0), "sweeps.maps.spinup_peak.maneuver.tau_max"),
     (lambda s: s["grid"].update(tau_max={"start": 1.0, "stop": 2.0, "num": 2}) or
      s["grid"].pop("tf"), "sweeps.maps.spinup_peak.grid.tau_max"),
     (lambda s: s["grid"]["wf"].update(start=0.0), "sweeps.maps.spinup_peak.grid.wf.start"),

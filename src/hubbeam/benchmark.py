@@ -1,7 +1,8 @@
 """Benchmark hubbeam's jitted integrator against what a user would otherwise run.
 
     python -m hubbeam.benchmark [--configfile FILE ...] [--output DIR] [--repeats 5]
-                                [--run-cap 20] [--skip-compilation] [--skip-extras]
+                                [--run-cap 20] [--timing-budget 10] [--skip-compilation]
+                                [--skip-extras]
 
 (``make benchmark`` runs it in the project environment.) Not part of the test suite or of the
 workflow: timings depend on the machine, which is recorded beside them.
@@ -685,7 +686,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--skip-compilation", action="store_true",
                         help="do not time cold and warm compilation in fresh processes")
     parser.add_argument("--skip-extras", action="store_true",
-                        help="only integrators.csv: no scaling, eigen or sweep tables")
+                        help="skip the scaling, eigen and sweep tables")
     args = parser.parse_args(argv)
     if args.repeats < 1 or args.run_cap <= 0 or args.timing_budget <= 0:
         parser.error(f"--repeats = {args.repeats}, --run-cap = {args.run_cap}, --timing-budget "

@@ -287,6 +287,7 @@ def _physical_problems(cfg: Any) -> list[Problem]:
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
     problems += _sweep_problems(_section(cfg, "sweeps"), length)
     problems += _benchmark_problems(_section(cfg, "benchmark"), length)
+    problems += _validation_problems(_section(cfg, "validation"), length, output_step)
     return problems
 
 
@@ -322,6 +323,10 @@ def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
                 if key not in needed and swept:
                     problems.append(Problem(f"{where}.grid.{key}", f"swept, but kind is {maneuver['kind']!r}; "
                                             f"allowed parameters: {', '.join(needed)}"))
+                elif key not in needed and fixed:
+                    problems.append(Problem(f"{where}.maneuver.{key}",
+                                            f"got {_show(maneuver[key])}; not allowed when kind is "
+                                            f"{maneuver['kind']!r}; allowed keys: kind, {', '.join(needed)}"))
                 elif key in needed and fixed == swept:
                     problems.append(Problem(f"{where}.maneuver.{key}",
                                             ("given both here and under grid" if fixed else "missing")
@@ -380,6 +385,69 @@ def _benchmark_problems(benchmark: Mapping, length: float | None) -> list[Proble
     if reference is not None and reference < 100 * 2.0**-52:
         problems.append(Problem("benchmark.reference_rtol", f"got {reference}; allowed: at least 100 "
                                 f"machine epsilons ({100 * 2.0**-52:.3g})"))
+    return problems
+
+
+def _divides(step: float, span: float) -> bool:
+    """``span`` is a whole number of ``step`` (to 1e-9 relative, as the Exudyn model requires)."""
+    ratio = span / step
+    return abs(ratio - round(ratio)) <= 1e-9 * max(ratio, 1.0)
+
+
+def _validation_problems(validation: Mapping, length: float | None,
+                         output_step: float | None) -> list[Problem]:
+    """The validation section's mode counts increase, its grids and steps fit the output grid,
+    and a tip mass sits on a node of every Exudyn mesh it is simulated on."""
+    problems = []
+    published = _section(validation, "published")
+    modes = published.get("modes")
+    if isinstance(modes, list) and all(_integer(m) is not None for m in modes):
+        if any(later <= earlier for earlier, later in zip(modes, modes[1:])):
+            problems.append(Problem("validation.published.modes", f"got {modes}; allowed: increasing "
+                                    "integers (the largest count is the result)"))
+    gammas = _section(published, "gammas")
+    start, stop = _number(gammas.get("start")), _number(gammas.get("stop"))
+    if start is not None and stop is not None and stop <= start:
+        problems.append(Problem("validation.published.gammas.stop",
+                                f"got {stop}; allowed: a value > validation.published.gammas.start = {start}"))
+    exudyn, convergence = _section(validation, "exudyn"), _section(validation, "convergence")
+    if output_step is not None:
+        steps = [("validation.exudyn.time_step", exudyn.get("time_step"))]
+        time_steps = convergence.get("time_steps")
+        if isinstance(time_steps, list):
+            steps += [(f"validation.convergence.time_steps[{i}]", v) for i, v in enumerate(time_steps)]
+        for where, value in steps:
+            step = _positive(value)
+            if step is not None and not _divides(step, output_step):
+                problems.append(Problem(where, f"got {step}; allowed: a step that divides "
+                                        f"numerics.output_step = {output_step} a whole number of times"))
+    meshes = [("validation.exudyn.elements", _integer(exudyn.get("elements")))]
+    elements = convergence.get("elements")
+    study_meshes = [(f"validation.convergence.elements[{i}]", _integer(e))
+                    for i, e in enumerate(elements)] if isinstance(elements, list) else []
+    for name, case in _section(validation, "cases").items():
+        if not isinstance(case, dict):
+            continue
+        where = f"validation.cases.{name}"
+        t_end = _positive(case.get("t_end"))
+        if t_end is not None and output_step is not None and not _divides(output_step, t_end):
+            problems.append(Problem(f"{where}.t_end", f"got {t_end}; allowed: a multiple of "
+                                    f"numerics.output_step = {output_step}"))
+        tip = _section(case, "tip_mass")
+        position, mass = _number(tip.get("position")), _number(tip.get("mass"))
+        if position is None or length is None:
+            continue
+        if position > length:
+            problems.append(Problem(f"{where}.tip_mass.position",
+                                    f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+            continue
+        if not mass:
+            continue
+        for mesh, count in meshes + (study_meshes if convergence.get("case") == name else []):
+            if count is not None and count >= 1 and not _divides(length / count, position):
+                problems.append(Problem(f"{where}.tip_mass.position", f"got {position}; allowed: a node "
+                                        f"of the Exudyn mesh, a multiple of beam.length / {mesh} = "
+                                        f"{length / count:g} m"))
     return problems
 
 

@@ -132,12 +132,12 @@ def report_targets():
 
 
 def archive_inputs(wildcards):
-    """Everything the archive bundles: netCDF results, figures, tables, the report and the
-    published-table validation (the optional Exudyn validation is not bundled)."""
-    netcdf = simulation_results() + matrices_results()
-    netcdf += [path for path in eigen_results() if path.endswith(".nc")]
+    """Everything the archive bundles: netCDF results (simulations, matrices, eigen-analysis,
+    sweeps), figures, tables, the report and the published-table validation (the optional Exudyn
+    validation is not bundled)."""
+    results = simulation_results() + matrices_results() + eigen_results() + sweep_targets()
     products = figure_targets() + table_targets() + report_targets() + published_validation_results()
-    return sorted(set(netcdf + products))
+    return sorted(set(results + products))
 
 
 # --- simulations (rule in simulate.smk) -----------------------------------------------------------

@@ -21,7 +21,8 @@ the form of Eq. (24) with the gyroscopic, stiffness and velocity terms moved to 
   summed over the point cloud (Gauss nodes of the beam and the tip mass).
 
 The kernels only use loops over small arrays: for the 5 to 20 modes of this study explicit loops
-beat BLAS calls, and nothing is allocated per call except the small linear solve's work arrays.
+beat BLAS calls. These are the general equations (dataset outputs, the tests' reference); the
+integrator's right-hand sides, which allocate nothing per call, are ``foam_rhs`` and ``cfoam_rhs``.
 """
 
 from collections import namedtuple

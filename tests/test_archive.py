@@ -97,7 +97,7 @@ def test_a_missing_input_leaves_no_archive_behind(files):
 def tiny_config() -> dict:
     """config/config.yaml shrunk: at most 2 modes, 6 s runs with the maneuver over 4 s (short enough
     to be quick, long enough that the hub acceleration does not make the bounded runs diverge),
-    coarse output and eigen grids."""
+    coarse output and eigen grids, sweep maps of 3 x 3 points."""
     config = yaml.safe_load(CONFIG_FILE.read_text())
     # numerics.modes stays: it sets the eigen-analysis (Table 2 has five modes); every case below
     # states its own mode count
@@ -108,6 +108,9 @@ def tiny_config() -> dict:
         case["t_end"] = 6.0
         case["maneuver"]["tf"] = 4.0
         case["modes"] = min(case.get("modes", 2), 2)
+    for sweep in config["sweeps"]["maps"].values():
+        for axis in sweep["grid"].values():
+            axis["num"] = 3
     return config
 
 
@@ -132,10 +135,16 @@ def test_workflow_builds_every_product_on_a_tiny_config(tmp_path):
         "published_comparison.csv", "tip_mass_comparison.csv", "rotating_eigen.nc",
         "rotating_frequencies.pdf", "rotating_frequencies.png")]
     expected += [f"results/simulations/{case}.nc" for case in config["cases"]]
+    expected += [f"results/sweeps/{name}.nc" for name in config["sweeps"]["maps"]]
+    expected += [f"results/figures/sweep_{name}.{e}" for name in config["sweeps"]["maps"]
+                 for e in ("pdf", "png")]
     expected += ["results/hubbeam-results.tar.gz"]
     missing = [name for name in expected if not (tmp_path / name).is_file()]
     assert missing == []
     assert archive.verify_archive(tmp_path / "results" / "hubbeam-results.tar.gz") == []
+    with tarfile.open(tmp_path / "results" / "hubbeam-results.tar.gz", "r:gz") as tar:
+        bundled = set(tar.getnames())
+    assert {f"{archive.TOP}/{name}" for name in expected[:-1]} <= bundled  # every product but itself
     report = (tmp_path / "results" / "report" / "reproduction.md").read_text()
     assert "## Validation" in report and "published rotating-cantilever first frequencies" in report
     assert not (tmp_path / "results" / "report" / "validation_exudyn.md").exists()  # `validate` only

@@ -126,15 +126,17 @@ def test_foam_stiffening_against_rotating_cantilever_tables():
 
 def test_coupled_foam_against_hamza_cherif_chordwise_values():
     """Axial stretch and Coriolis coupling included: delta = 0, slenderness alpha = 70
-    (Hamza-Cherif & Houmat 2004, Table 2, printed to 3-5 significant digits)."""
+    (Hamza-Cherif & Houmat 2004, Table 2, printed to 3-5 significant digits and truncated, see
+    hubbeam.validation.published): the exact value lies in [printed, printed + unit), and our
+    20-mode Rayleigh-Ritz value lies above the exact one."""
     params = dataclasses.replace(PARAMS, rA=0.0, I=PARAMS.A * PARAMS.L**2 / 70**2)
     scale = np.sqrt(params.E * params.I / (RHO_A * params.L**4))
     gamma = np.array([2.0, 4.0, 6.0, 8.0, 10.0])
     printed = np.array([3.6195, 3.888, 4.2393, 4.6105, 4.97])
-    rounding = np.array([5e-5, 5e-4, 5e-5, 5e-5, 5e-3])
+    unit = np.array([1e-4, 1e-3, 1e-4, 1e-4, 1e-2])  # of the last printed digit
     sm = assemble(params, None, 20)
     coupled = gyroscopic_frequencies(sm, "FOAM", gamma * scale)[:, 0] / scale
-    assert np.all(np.abs(coupled - printed) < rounding + 1e-4)
+    assert np.all((coupled - printed >= 0.0) & (coupled - printed < unit)), coupled - printed
     # the transverse subsystem alone misses the coupling by much more than that at gamma = 10
     uncoupled = transverse_frequencies(sm, "FOAM", gamma * scale)[:, 0] / scale
     assert uncoupled[-1] - printed[-1] > 0.05

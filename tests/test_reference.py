@@ -2,7 +2,9 @@
 
 * ``pure_python`` yields a right-hand side free of compiled code that agrees with the kernel;
 * on FOAM, w_f = 2.8 rad/s, t_f = 30 s, 0-50 s (Fig. 5) the fast path at the configured
-  tolerances agrees with scipy's Radau at rtol 1e-12 to 1e-6 m in tip deflection;
+  tolerances agrees with scipy's Radau at rtol 1e-12 in tip deflection to ten times the
+  configured rtol relative to the largest deflection (the rule of test_simulate's convergence
+  test: the global error of either run is well below its rtol);
 * so do CFOAM with a tip mass and the torque-driven FOAM and SFOAM (whose right-hand sides in the
   fast path are built differently from the reference's general mass-matrix solve);
 * both paths record the divergence of TLAM at w_f = 3.5 rad/s at the same time.
@@ -43,6 +45,15 @@ def _reachable_functions(func, seen=None):
     return seen
 
 
+def _assert_close_runs(fast, reference, rtol, variable, mask=slice(None)):
+    """``variable`` of two runs agrees to ``10 rtol`` of its largest magnitude (``rtol`` the
+    looser of the two runs' tolerances)."""
+    ref = reference[variable][mask]
+    scale = float(abs(ref).max())
+    assert scale > 0.0
+    assert float(abs(fast[variable][mask] - ref).max()) <= 10 * rtol * scale, variable
+
+
 def test_pure_python_accelerations_call_no_compiled_code_and_agree(setup):
     params, _, _ = setup
     plain = pure_python(eom.accelerations)
@@ -72,7 +83,7 @@ def test_fast_path_agrees_with_the_reference_on_fig5_foam(setup):
     fast = simulate(case, params, numerics)
     assert reference.attrs["integrator_status"] == fast.attrs["integrator_status"] == "success"
     np.testing.assert_array_equal(reference.time, fast.time)
-    assert float(abs(fast.tip_transverse - reference.tip_transverse).max()) <= 1e-6
+    _assert_close_runs(fast, reference, numerics["rtol"], "tip_transverse")
     assert float(abs(reference.tip_transverse).max()) > 0.1  # a real deflection was compared
 
 
@@ -93,8 +104,9 @@ def test_fast_right_hand_sides_agree_with_the_reference(setup, name, changes):
                                      pure_python_rhs=False)
     fast = simulate(case, params, numerics)
     assert reference.attrs["integrator_status"] == fast.attrs["integrator_status"] == "success"
-    assert float(abs(fast.tip_transverse - reference.tip_transverse).max()) <= 1e-6
-    assert float(abs(fast.theta - reference.theta).max()) <= 1e-6
+    rtol = max(numerics["rtol"], 1e-10)
+    _assert_close_runs(fast, reference, rtol, "tip_transverse")
+    _assert_close_runs(fast, reference, rtol, "theta")
     assert float(abs(reference.tip_transverse).max()) > 0.01  # a real deflection was compared
 
 
@@ -109,5 +121,5 @@ def test_both_paths_record_the_divergence_of_tlam_at_the_same_time(setup):
     # that crossed it
     lag = fast.attrs["diverged_at_s"] - reference.attrs["diverged_at_s"]
     assert 0.0 <= lag < 0.5
-    valid = fast.time < reference.attrs["diverged_at_s"] - 1.0
-    assert float(abs(fast.tip_transverse[valid] - reference.tip_transverse[valid]).max()) < 1e-6
+    valid = (fast.time < reference.attrs["diverged_at_s"] - 1.0).values
+    _assert_close_runs(fast, reference, max(numerics["rtol"], 1e-10), "tip_transverse", valid)

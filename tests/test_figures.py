@@ -201,3 +201,36 @@ def test_campbell_legend_states_the_mode_count(tmp_path_factory):
     labels = [text.get_text() for legend in fig.legends for text in legend.get_texts()]
     assert labels == ["TLAM, n = 3 (modes 1-3)", "FOAM, n = 3 (modes 1-3)"]
     assert all(len(ax.get_lines()) >= 2 * 3 for ax in fig.axes)  # every mode of both models drawn
+
+
+#: the y-axis symbol of a response panel and the dataset variable it must show
+PANEL_VARIABLES = {"$v(L)$": "tip_transverse", "$w_1(L)$": "tip_axial"}
+
+
+@pytest.mark.parametrize("key", ["fig04", "fig05", "fig06", "fig08", "fig10"])
+def test_response_panels_draw_the_variable_their_axis_names(key, datasets):
+    """Every model curve of a transverse or axial tip panel is exactly that variable of one of
+    the figure's cases with the curve's model and mode count (not another variable, case or
+    scaling); a diverged curve up to its divergence."""
+    runs = group(datasets, key)
+    with styled():
+        fig = plotter(key)(runs)
+    checked = 0
+    for ax in fig.axes:
+        name = next((v for symbol, v in PANEL_VARIABLES.items()
+                     if ax.get_ylabel().startswith(symbol)), None)
+        if name is None:
+            continue
+        for line in ax.get_lines():
+            label = re.match(r"(TLAM|FOAM|SFOAM|CFOAM), n = (\d+)", line.get_label())
+            if label is None:
+                continue
+            x, y = (np.asarray(a, dtype=float) for a in line.get_data())
+            candidates = [ds for ds in runs.values()
+                          if ds.attrs["model"] == label[1] and int(ds.attrs["n_modes"]) == int(label[2])
+                          and ds.sizes["time"] == x.size]
+            assert any(np.array_equal(x, ds["time"].values)
+                       and np.array_equal(y, ds[name].values, equal_nan=True)
+                       for ds in candidates), (key, ax.get_ylabel(), line.get_label())
+            checked += 1
+    assert checked >= 2, key

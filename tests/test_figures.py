@@ -4,6 +4,7 @@ loud failures on missing data, divergence handling, labels with units."""
 from __future__ import annotations
 
 import hashlib
+import json
 import re
 
 import matplotlib.text
@@ -207,6 +208,25 @@ def test_campbell_legend_states_the_mode_count(tmp_path_factory):
 PANEL_VARIABLES = {"$v(L)$": "tip_transverse", "$w_1(L)$": "tip_axial"}
 
 
+def _model_curves(ax):
+    """``(line, model, modes, label)`` of every curve of ``ax`` labelled like a legend entry."""
+    for line in ax.get_lines():
+        label = re.match(r"(TLAM|FOAM|SFOAM|CFOAM), n = (\d+)", line.get_label())
+        if label is not None:
+            yield line, label[1], int(label[2]), line.get_label()
+
+
+def _is_series_of_a_run(line, runs, model, modes, series):
+    """The curve is ``series(ds)`` against time for one of ``runs`` with that model and mode
+    count (NaN where the run diverged)."""
+    x, y = (np.asarray(a, dtype=float) for a in line.get_data())
+    return any(np.array_equal(x, ds["time"].values)
+               and np.array_equal(y, np.asarray(series(ds), dtype=float), equal_nan=True)
+               for ds in runs.values()
+               if ds.attrs["model"] == model and int(ds.attrs["n_modes"]) == modes
+               and ds.sizes["time"] == x.size)
+
+
 @pytest.mark.parametrize("key", ["fig04", "fig05", "fig06", "fig08", "fig10"])
 def test_response_panels_draw_the_variable_their_axis_names(key, datasets):
     """Every model curve of a transverse or axial tip panel is exactly that variable of one of
@@ -221,16 +241,42 @@ def test_response_panels_draw_the_variable_their_axis_names(key, datasets):
                      if ax.get_ylabel().startswith(symbol)), None)
         if name is None:
             continue
-        for line in ax.get_lines():
-            label = re.match(r"(TLAM|FOAM|SFOAM|CFOAM), n = (\d+)", line.get_label())
-            if label is None:
-                continue
-            x, y = (np.asarray(a, dtype=float) for a in line.get_data())
-            candidates = [ds for ds in runs.values()
-                          if ds.attrs["model"] == label[1] and int(ds.attrs["n_modes"]) == int(label[2])
-                          and ds.sizes["time"] == x.size]
-            assert any(np.array_equal(x, ds["time"].values)
-                       and np.array_equal(y, ds[name].values, equal_nan=True)
-                       for ds in candidates), (key, ax.get_ylabel(), line.get_label())
+        for line, model, modes, label in _model_curves(ax):
+            assert _is_series_of_a_run(line, runs, model, modes, lambda ds: ds[name].values), \
+                (key, ax.get_ylabel(), label)
             checked += 1
     assert checked >= 2, key
+
+
+def test_fig03_panels_draw_the_high_order_terms_they_name(datasets):
+    from hubbeam.plotting.fig03 import PANELS
+
+    runs = group(datasets, "fig03")
+    with styled():
+        fig = plotter("fig03")(runs)
+    for ax, (name, _, _) in zip(fig.axes, PANELS):
+        curves = list(_model_curves(ax))
+        assert curves
+        for line, model, modes, label in curves:
+            mode = re.search(r", mode (\d+)", label)
+            def series(ds, name=name, mode=mode):
+                da = ds[name]
+                return da.sel(mode=int(mode[1])).values if mode else da.values
+            assert _is_series_of_a_run(line, runs, model, modes, series), (name, label)
+
+
+def test_fig07_draws_q_theta_and_its_ratio_to_the_torque_amplitude(datasets):
+    runs = group(datasets, "fig07")
+    with styled():
+        fig = plotter("fig07")(runs)
+    absolute, relative = fig.axes[:2]
+    for line, model, modes, label in _model_curves(absolute):
+        assert _is_series_of_a_run(line, runs, model, modes, lambda ds: ds["Q_theta"].values), label
+    curves = list(_model_curves(relative))
+    assert curves
+    for line, model, modes, label in curves:
+        tau = float(re.search(r"= ([0-9.]+) N m", label)[1])
+        same_tau = {c: d for c, d in runs.items()
+                    if json.loads(d.attrs["maneuver"]).get("tau_max") == tau}
+        assert _is_series_of_a_run(line, same_tau, model, modes,
+                                   lambda ds: 100.0 / tau * ds["Q_theta"].values), label

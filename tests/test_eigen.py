@@ -202,6 +202,20 @@ def test_fig09_and_campbell_figures_draw_from_the_datasets():
     with styled():
         fig = fig09.plot(k22, crit, speed=2.0)
         assert isinstance(fig, Figure) and "2 rad/s" in fig.axes[2].get_title(loc="left")
+        # the plotted data: maps, critical-speed curves and single curves of the datasets
+        for ax, mass in zip(fig.axes[:2], (0.1, 0.5)):
+            dominant = k22.dominant_eigenvalue.sel(model="TLAM", tip_mass=mass)
+            drawn = np.asarray(ax.collections[0].get_array()).ravel()
+            np.testing.assert_array_equal(drawn, dominant.transpose("speed", "position").values.ravel())
+            line = next(l for l in ax.get_lines() if l.get_label().startswith("critical speed"))
+            np.testing.assert_array_equal(line.get_ydata(),
+                                          crit.critical_speed.sel(model="TLAM", tip_mass=mass).values)
+        curves = [l for l in fig.axes[2].get_lines() if l.get_label().startswith("TLAM")]
+        assert len(curves) == 2
+        for line, mass in zip(curves, (0.1, 0.5)):
+            assert f"$m_t$ = {mass:g} kg" in line.get_label()
+            np.testing.assert_array_equal(line.get_ydata(), k22.dominant_eigenvalue.sel(
+                model="TLAM", tip_mass=mass, speed=2.0).values)
         fig = campbell_figure.plot(campbell(PARAMS, masses, speeds, 3), crit)
         assert isinstance(fig, Figure) and len(fig.axes) == 3
         with pytest.raises(ValueError, match="speed = 2.5"):

@@ -388,9 +388,10 @@ def _benchmark_problems(benchmark: Mapping, length: float | None) -> list[Proble
     return problems
 
 
-def _divides(step: float, span: float) -> bool:
-    """``span`` is a whole number of ``step`` (to 1e-9 relative, as the Exudyn model requires)."""
-    ratio = span / step
+def is_multiple(value: float, step: float) -> bool:
+    """``value`` is a whole number of ``step`` (to 1e-9 relative): the rule of the startup checks
+    and of the Exudyn model (``hubbeam.validation.exudyn_model``), which relies on them."""
+    ratio = value / step
     return abs(ratio - round(ratio)) <= 1e-9 * max(ratio, 1.0)
 
 
@@ -418,7 +419,7 @@ def _validation_problems(validation: Mapping, length: float | None,
             steps += [(f"validation.convergence.time_steps[{i}]", v) for i, v in enumerate(time_steps)]
         for where, value in steps:
             step = _positive(value)
-            if step is not None and not _divides(step, output_step):
+            if step is not None and not is_multiple(output_step, step):
                 problems.append(Problem(where, f"got {step}; allowed: a step that divides "
                                         f"numerics.output_step = {output_step} a whole number of times"))
     meshes = [("validation.exudyn.elements", _integer(exudyn.get("elements")))]
@@ -430,7 +431,7 @@ def _validation_problems(validation: Mapping, length: float | None,
             continue
         where = f"validation.cases.{name}"
         t_end = _positive(case.get("t_end"))
-        if t_end is not None and output_step is not None and not _divides(output_step, t_end):
+        if t_end is not None and output_step is not None and not is_multiple(t_end, output_step):
             problems.append(Problem(f"{where}.t_end", f"got {t_end}; allowed: a multiple of "
                                     f"numerics.output_step = {output_step}"))
         tip = _section(case, "tip_mass")
@@ -444,7 +445,7 @@ def _validation_problems(validation: Mapping, length: float | None,
         if not mass:
             continue
         for mesh, count in meshes + (study_meshes if convergence.get("case") == name else []):
-            if count is not None and count >= 1 and not _divides(length / count, position):
+            if count is not None and count >= 1 and not is_multiple(position, length / count):
                 problems.append(Problem(f"{where}.tip_mass.position", f"got {position}; allowed: a node "
                                         f"of the Exudyn mesh, a multiple of beam.length / {mesh} = "
                                         f"{length / count:g} m"))

@@ -40,6 +40,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import xarray as xr
 
+from hubbeam.config import is_multiple
 from hubbeam.core.maneuver import hub_motion
 
 INSTALL_HINT = "pip install -e .[validation]"
@@ -94,16 +95,11 @@ class ExudynNumerics:
                 and 0.0 <= self.spectral_radius < 1.0):
             problems.append(f"spectral_radius = {self.spectral_radius!r}: expected 0 <= value < 1 "
                             "(index-3 constraints of the generalised-alpha method)")
-        if not problems and not _is_multiple(self.output_step, self.time_step):
+        if not problems and not is_multiple(self.output_step, self.time_step):
             problems.append(f"output_step = {self.output_step!r}: expected an integer multiple "
                             f"of time_step = {self.time_step!r}")
         if problems:
             raise ValueError("invalid Exudyn numerics: " + "; ".join(problems))
-
-
-def _is_multiple(value, step):
-    ratio = value / step
-    return abs(ratio - round(ratio)) <= 1e-9 * ratio
 
 
 @dataclass(frozen=True)
@@ -137,11 +133,10 @@ def build_model(params, tip=None, maneuver=None, elements: int = 16) -> HubBeamM
     length = params.L / elements
     tip_node_index = None
     if tip is not None and tip.mass > 0.0:
-        ratio = tip.position / length
-        if abs(ratio - round(ratio)) > 1e-9 * max(ratio, 1.0):
+        if not is_multiple(tip.position, length):
             raise ValueError(f"tip_mass.position = {tip.position!r}: the Exudyn model needs the "
                              f"tip mass at a node, a multiple of L / elements = {length!r} m")
-        tip_node_index = int(round(ratio))
+        tip_node_index = int(round(tip.position / length))
 
     system_container = exu.SystemContainer()
     mbs = system_container.AddSystem()
@@ -235,7 +230,7 @@ def spin_up(params, tip, wf: float, tf: float, t_end: float,
     solver's statistics as attributes. Raises ``RuntimeError`` if Exudyn's solver fails.
     """
     exu = require_exudyn()
-    if not (math.isfinite(t_end) and t_end > 0 and _is_multiple(t_end, numerics.output_step)):
+    if not (math.isfinite(t_end) and t_end > 0 and is_multiple(t_end, numerics.output_step)):
         raise ValueError(f"t_end = {t_end!r}: expected a positive multiple of output_step = "
                          f"{numerics.output_step!r} s")
     model = build_model(params, tip, (wf, tf), numerics.elements)

@@ -17,7 +17,7 @@ import numpy as np
 
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
 from hubbeam.core.eom import solve_spd
-from hubbeam.core.jit import kernel
+from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
 from hubbeam.core.radau import register_rhs
 
@@ -36,7 +36,7 @@ def cfoam_problem(kind, mp, sm):
                         np.empty(N), np.empty((nf, nf)), np.empty(nf))
 
 
-@kernel
+@borrowing_kernel
 def cfoam_rhs(t, yf, vf, af, problem):
     """Accelerations ``af`` of the free coordinates (theta first unless prescribed, then q1, q2)."""
     y, v, M, F, Mff, rhs = problem.y, problem.v, problem.M, problem.F, problem.Mff, problem.rhs

@@ -68,7 +68,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from hubbeam.core.jit import kernel
+from hubbeam.core.jit import borrowing_kernel, kernel
 
 #: Pre-contracted point-cloud sums of CFOAM (see the module docstring), built by
 #: :func:`cfoam_tensors`:
@@ -158,7 +158,7 @@ def no_tensors():
                         np.zeros((2, 0, 0)), np.zeros((4, 0)))
 
 
-@kernel
+@borrowing_kernel
 def cfoam_system(y, v, tau, ct, M, F):
     """Mass matrix ``M(y)`` and force ``F(y, y')`` of CFOAM from the tensors ``ct``.
 

@@ -29,7 +29,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from hubbeam.core.jit import kernel
+from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
 
 TLAM = 0
@@ -264,9 +264,11 @@ def impose_constraints(model, kind, mp, t, y, v, a):
     return tau
 
 
-@kernel
+@borrowing_kernel
 def _cholesky(A):
-    """Overwrite the lower triangle of a small SPD matrix with its Cholesky factor.
+    """Overwrite the lower triangle of a small SPD matrix with its Cholesky factor ``C``, the
+    diagonal holding ``1 / C_jj`` (the solve then multiplies where it would divide, which takes
+    the division latency off its chain of dependent operations).
 
     Returns False (and leaves ``A`` partly factored) if ``A`` is not positive definite.
     """
@@ -277,33 +279,33 @@ def _cholesky(A):
             d -= A[j, k] * A[j, k]
         if not d > 0.0:
             return False
-        d = np.sqrt(d)
-        A[j, j] = d
+        inv = 1.0 / np.sqrt(d)
+        A[j, j] = inv
         for i in range(j + 1, N):
             s = A[i, j]
             for k in range(j):
                 s -= A[i, k] * A[j, k]
-            A[i, j] = s / d
+            A[i, j] = s * inv
     return True
 
 
-@kernel
+@borrowing_kernel
 def _cholesky_solve(C, b):
-    """Solve ``C C^T x = b`` in place, ``C`` from :func:`_cholesky`."""
+    """Solve ``C C^T x = b`` in place, ``C`` from :func:`_cholesky` (reciprocal diagonal)."""
     N = C.shape[0]
     for i in range(N):
         s = b[i]
         for k in range(i):
             s -= C[i, k] * b[k]
-        b[i] = s / C[i, i]
+        b[i] = s * C[i, i]
     for i in range(N - 1, -1, -1):
         s = b[i]
         for k in range(i + 1, N):
             s -= C[k, i] * b[k]
-        b[i] = s / C[i, i]
+        b[i] = s * C[i, i]
 
 
-@kernel
+@borrowing_kernel
 def solve_spd(A, b):
     """Solve A x = b in place (b <- x) for a small SPD ``A`` (overwritten by its factor)."""
     if not _cholesky(A):

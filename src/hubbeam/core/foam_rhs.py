@@ -32,7 +32,7 @@ from collections import namedtuple
 import numpy as np
 
 from hubbeam.core.eom import SFOAM, TLAM, free_dofs
-from hubbeam.core.jit import kernel
+from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
 from hubbeam.core.radau import register_rhs
 
@@ -79,7 +79,7 @@ def foam_problem(model, kind, mp, sm):
     return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)))
 
 
-@kernel
+@borrowing_kernel
 def foam_rhs(t, y, v, a, problem):
     """Accelerations ``a`` of the free coordinates (theta first unless prescribed, then ``e``)."""
     P = problem.P

@@ -30,6 +30,19 @@ def kernel(func):
     return numba.njit(**JIT_OPTIONS)(func)
 
 
+def borrowing_kernel(func):
+    """A kernel that only borrows arrays: it neither allocates nor returns one.
+
+    Numba's runtime counts references to every array a function receives; for a function that
+    takes structures of arrays (the problem and work-array namedtuples) it cannot prove the counts
+    unnecessary, so each call and each field access costs an atomic increment and decrement.
+    On the integrator's hot path that was 40 % of a CFOAM run (``perf``, docs/architecture.md).
+    Compiled without the runtime, the kernel leaves every count to its caller, which owns the
+    arrays for the whole call; numba refuses to compile such a kernel if it allocates.
+    """
+    return numba.njit(_nrt=False, **JIT_OPTIONS)(func)
+
+
 def inline_kernel(func):
     """A small kernel on a hot path, inlined into its callers at numba's IR level.
 

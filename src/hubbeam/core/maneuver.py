@@ -15,13 +15,13 @@ tau = tau_max sin(2 pi t / tf) for 0 <= t <= tf and zero afterwards; the hub is 
 
 import math
 
-from hubbeam.core.jit import kernel
+from hubbeam.core.jit import borrowing_kernel
 
 PRESCRIBED = 0
 TORQUE = 1
 
 
-@kernel
+@borrowing_kernel
 def hub_motion(t, mp):
     """Prescribed hub angle, rate and acceleration of Eq. (43) at time ``t``."""
     wf = mp[0]
@@ -37,7 +37,7 @@ def hub_motion(t, mp):
     return theta, theta_dot, theta_ddot
 
 
-@kernel
+@borrowing_kernel
 def applied_torque(t, mp):
     """Hub torque of Eq. (44) at time ``t`` (zero outside the pulse)."""
     tau_max = mp[0]

@@ -47,7 +47,7 @@ from collections import namedtuple
 import numpy as np
 from numba.extending import overload
 
-from hubbeam.core.jit import JIT_OPTIONS, inline_kernel, kernel
+from hubbeam.core.jit import JIT_OPTIONS, borrowing_kernel, inline_kernel, kernel
 
 # Status codes returned by :func:`radau5`.
 SUCCESS = 0
@@ -174,7 +174,7 @@ def _magnitude(x):
     return abs(x.real) + abs(x.imag)
 
 
-@kernel
+@borrowing_kernel
 def lu_factor(mat, piv):
     """In-place LU factorisation with partial pivoting (real or complex); False if singular.
 
@@ -209,7 +209,7 @@ def lu_factor(mat, piv):
     return True
 
 
-@kernel
+@borrowing_kernel
 def lu_solve(lu, piv, b):
     """Solve ``lu x = b`` in place for factors from :func:`lu_factor`."""
     n = lu.shape[0]
@@ -231,7 +231,7 @@ def lu_solve(lu, piv, b):
         b[i] = s * lu[i, i]
 
 
-@kernel
+@borrowing_kernel
 def _form_reduced(mu, Ka, Ca, mat):
     """``mat = mu^2 I - mu Ca - Ka``: ``mu I - J`` after eliminating the velocity block."""
     n = Ka.shape[0]
@@ -241,7 +241,7 @@ def _form_reduced(mu, Ka, Ca, mat):
         mat[i, i] += mu * mu
 
 
-@kernel
+@borrowing_kernel
 def _reduced_solve(lu, piv, mu, Ca, ry, rv, dy, dv):
     """Solve ``(mu I - J) (dy, dv) = (ry, rv)`` for ``J = [[0, I], [Ka, Ca]]``."""
     n = ry.shape[0]
@@ -255,7 +255,7 @@ def _reduced_solve(lu, piv, mu, Ca, ry, rv, dy, dv):
         dv[i] = mu * dy[i] - ry[i]
 
 
-@kernel
+@borrowing_kernel
 def forced_oscillator_rhs(t, y, v, a, problem):
     """Right-hand side of :data:`ForcedOscillator`."""
     forcing = math.cos(problem.omega * t)
@@ -271,7 +271,7 @@ register_rhs(ForcedOscillator, forced_oscillator_rhs)
 
 
 # --------------------------------------------------------------------------- small helpers
-@kernel
+@borrowing_kernel
 def _all_finite(x):
     for i in range(x.shape[0]):
         if not np.isfinite(x[i]):
@@ -279,13 +279,13 @@ def _all_finite(x):
     return True
 
 
-@kernel
+@borrowing_kernel
 def _copy(src, dst):
     for i in range(src.shape[0]):
         dst[i] = src[i]
 
 
-@kernel
+@borrowing_kernel
 def _scale(y0, v0, y1, v1, rtol, atol, sc):
     """Reciprocal error weights ``1 / (atol_k + rtol max(|z0_k|, |z1_k|))`` of ``z = (y, v)``
     (the norms below multiply by them)."""
@@ -295,7 +295,7 @@ def _scale(y0, v0, y1, v1, rtol, atol, sc):
         sc[n + i] = 1.0 / (atol[n + i] + rtol * max(abs(v0[i]), abs(v1[i])))
 
 
-@kernel
+@borrowing_kernel
 def _rms(dy, dv, sc):
     """Weighted root-mean-square norm of ``(dy, dv)`` (NaN propagates)."""
     n = dy.shape[0]
@@ -305,7 +305,7 @@ def _rms(dy, dv, sc):
     return math.sqrt(s / (2 * n))
 
 
-@kernel
+@borrowing_kernel
 def _rms_stages(dy, dv, sc):
     """Weighted root-mean-square norm over the three stages of ``(dy, dv)``, shape (3, N)."""
     n = dy.shape[1]
@@ -342,7 +342,7 @@ def workspace(n):
 
 
 # --------------------------------------------------------------------------- building blocks
-@kernel
+@borrowing_kernel
 def _difference_column(problem, t, y_st, v_st, a, a_st, perturbed, j, out):
     """Column ``j`` of ``out = da/dx`` by a forward difference in ``perturbed[j]`` (``perturbed``
     is ``y_st`` or ``v_st``, restored afterwards); ``a`` holds ``a(t, y_st, v_st)``."""
@@ -355,7 +355,7 @@ def _difference_column(problem, t, y_st, v_st, a, a_st, perturbed, j, out):
         out[i, j] = (a_st[i] - a[i]) / delta
 
 
-@kernel
+@borrowing_kernel
 def jacobian(problem, t, y, v, w, stats):
     """Forward-difference ``w.Ka = da/dy`` and ``w.Ca = da/dv`` at ``(t, y, v)``; ``w.a`` must
     hold ``a(t, y, v)``. Costs ``2N`` right-hand-side calls."""
@@ -369,7 +369,7 @@ def jacobian(problem, t, y, v, w, stats):
     stats[RHS_CALLS] += 2 * n
 
 
-@kernel
+@borrowing_kernel
 def _factorize(h, w, stats):
     """LU factors of the reduced real and complex Newton matrices for step ``h``."""
     _form_reduced(GAMMA / h, w.Ka, w.Ca, w.lu_r)
@@ -379,7 +379,7 @@ def _factorize(h, w, stats):
     stats[FACTORIZATIONS] += 1
 
 
-@kernel
+@borrowing_kernel
 def _extrapolate_stages(ratio, w):
     """Starting values: the last accepted step's collocation polynomial, continued.
 
@@ -402,7 +402,7 @@ def _extrapolate_stages(ratio, w):
             Zv[i, m] = e0 * Zv_acc[0, m] + e1 * Zv_acc[1, m] + e2 * Zv_acc[2, m]
 
 
-@kernel
+@borrowing_kernel
 def hermite_interpolate(s, h, y0, v0, a0, y1, v1, a1, y_out, v_out):
     """Quintic Hermite position and its derivative at ``t0 + s h`` from ``(y, v, a)`` at both
     ends of a step of size ``h``."""
@@ -429,7 +429,7 @@ def hermite_interpolate(s, h, y0, v0, a0, y1, v1, a1, y_out, v_out):
                     + h * (d2 * a0[m] + d5 * a1[m]))
 
 
-@kernel
+@borrowing_kernel
 def _newton(problem, t, h, y, v, w, eta, tol, stats):
     """Simplified Newton iteration for the stage increments ``w.Zy, w.Zv`` (started from them).
 
@@ -518,7 +518,7 @@ def _newton(problem, t, h, y, v, w, eta, tol, stats):
     return False, NEWTON_MAX_ITER, theta, eta
 
 
-@kernel
+@borrowing_kernel
 def _error_estimate(problem, t, h, y, v, w, refine, stats):
     """Scaled norm of the embedded error estimate, which is left in ``w.ey, w.ev``.
 
@@ -613,7 +613,16 @@ def radau5(problem, y0, v0, t_out, t_stops, rtol, atol, watch, watch_limit, max_
     written for every output time up to the last accepted step (for ``DIVERGED``, up to and
     including the step that crossed the limit, ``t_stop``).
     """
-    n = y0.shape[0]
+    return _march(problem, y0.copy(), v0.copy(), workspace(y0.shape[0]), t_out, t_stops, rtol,
+                  atol, watch, watch_limit, max_steps, h_init, fixed_step, y_out, v_out, stats)
+
+
+@borrowing_kernel
+def _march(problem, y, v, w, t_out, t_stops, rtol, atol, watch, watch_limit, max_steps, h_init,
+           fixed_step, y_out, v_out, stats):
+    """:func:`radau5` from ``(y, v)`` (overwritten: the state as it goes) with the work arrays
+    ``w`` of :func:`workspace`: the whole integration, allocating nothing."""
+    n = y.shape[0]
     n_out = t_out.shape[0]
     t = t_out[0]
     t_end = t_out[n_out - 1]
@@ -624,11 +633,8 @@ def radau5(problem, y0, v0, t_out, t_stops, rtol, atol, watch, watch_limit, max_
         for m in range(n):
             y_out[k, m] = np.nan
             v_out[k, m] = np.nan
-    w = workspace(n)
     a, y1, v1, a1, sc = w.a, w.y1, w.v1, w.a1, w.sc
     Zy, Zv, Zy_acc, Zv_acc = w.Zy, w.Zv, w.Zy_acc, w.Zv_acc
-    y = y0.copy()
-    v = v0.copy()
     problem_rhs(t, y, v, a, problem)
     stats[RHS_CALLS] += 1
     if not (_all_finite(y) and _all_finite(v) and _all_finite(a)):

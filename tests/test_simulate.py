@@ -6,12 +6,18 @@
 * CFOAM and FOAM agree at w_f = 3 rad/s to within the relative size of the terms FOAM drops;
 * TLAM above its critical speed is recorded as diverged, without an exception;
 * the dataset follows the contract of docs/architecture.md (the synthetic fixtures' table);
-* the step budget, the step warning and bad input are reported as documented.
+* the step budget, the step warning and bad input are reported as documented;
+* the kernels compiled without reference counting leave numba's allocation books balanced.
 
 Runs use 2 modes where the purpose allows (the kernel is the same for every mode count).
 """
 
 import math
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -169,3 +175,37 @@ def test_workflow_script_writes_the_case_from_the_leading_matrix_blocks(setup, t
     xr.testing.assert_allclose(written, direct, rtol=1e-10, atol=1e-14)
     assert written.attrs["n_modes"] == 2 and written.attrs["model"] == "TLAM"
     assert "fig10_tlam_mt0p1" in (tmp_path / "case.log").read_text()
+
+
+def test_runs_free_every_allocation_of_the_numba_runtime():
+    """``jit.borrowing_kernel`` kernels leave the reference counts of the arrays they are given to
+    their callers; if a count went wrong, an array would be freed twice or never. In a fresh
+    process with numba's allocation statistics on, CFOAM and FOAM runs of both maneuver kinds
+    (with a tip mass) must free every block the runtime allocated for them."""
+    script = textwrap.dedent("""
+        from numba.core.runtime import rtsys
+        from hubbeam.config import load_config
+        from hubbeam.parameters import BeamParameters
+        from hubbeam.simulate import simulate
+        config = load_config("config/config.yaml")
+        params = BeamParameters.from_config(config)
+        maneuvers = [{"kind": "prescribed", "wf": 3.0, "tf": 4.0},
+                     {"kind": "torque", "tau_max": 100.0, "tf": 4.0}]
+        runs = [{"name": f"{model}_{m['kind']}", "model": model, "t_end": 6.0, "modes": 2,
+                 "maneuver": m, "tip_mass": {"mass": 0.2, "position": 8.0}}
+                for model in ("CFOAM", "FOAM") for m in maneuvers]
+        simulate(runs[0], params, config["numerics"])   # loads the kernels (their constants)
+        before = rtsys.get_allocation_stats()
+        for case in runs:
+            simulate(case, params, config["numerics"])
+        after = rtsys.get_allocation_stats()
+        print(after.alloc - before.alloc, after.free - before.free,
+              after.mi_alloc - before.mi_alloc, after.mi_free - before.mi_free)
+    """)
+    environment = dict(os.environ, NUMBA_NRT_STATS="1")
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         env=environment, cwd=Path(__file__).resolve().parents[1], timeout=900)
+    assert run.returncode == 0, run.stderr[-2000:]
+    alloc, free, mi_alloc, mi_free = (int(x) for x in run.stdout.split()[-4:])
+    assert alloc > 0 and mi_alloc > 0  # the statistics are on and the runs allocated
+    assert (alloc, mi_alloc) == (free, mi_free)

@@ -62,7 +62,7 @@ def free_dofs(model, kind, n):
     return free
 
 
-@kernel
+@borrowing_kernel
 def _quad(A, a, b, n, off_a, off_b):
     """a[off_a:off_a+n]^T A b[off_b:off_b+n]."""
     s = 0.0
@@ -76,7 +76,7 @@ def _quad(A, a, b, n, off_a, off_b):
     return s
 
 
-@kernel
+@borrowing_kernel
 def _elastic_forces(cD, y, v, sm, out):
     """The q1 and q2 rows of FOAM's right-hand side (``cD = 0``: TLAM) into ``out[1:]``:
     ``Q_q1 - K_q1q1 q1 - 2 thd G_q1q2 q2'`` and ``-K_q2q2 q2 - 2 thd G_q2q1 q1'`` (Eqs. 29-31,
@@ -98,8 +98,8 @@ def _elastic_forces(cD, y, v, sm, out):
         out[o2 + i] = f2
 
 
-@kernel
-def _foam_system(model, y, v, tau, sm, M, F):
+@borrowing_kernel
+def foam_system(model, y, v, tau, sm, M, F):
     """Mass matrix and force of FOAM (Eqs. 24-34), TLAM (no D terms) or SFOAM (Eq. 40)."""
     n = sm.M1.shape[0]
     o1 = 1
@@ -237,10 +237,10 @@ def mass_matrix_and_force(model, y, v, tau, sm, M, F):
     if model == CFOAM:
         _cfoam_system(y, v, tau, sm, M, F)
     else:
-        _foam_system(model, y, v, tau, sm, M, F)
+        foam_system(model, y, v, tau, sm, M, F)
 
 
-@kernel
+@borrowing_kernel
 def impose_constraints(model, kind, mp, t, y, v, a):
     """Overwrite the constrained entries of y, y', y'' and return the applied torque.
 
@@ -331,7 +331,7 @@ def workspace(sm, free):
     return Workspace(np.empty((N, N)), np.empty(N), np.empty((nf, nf)), np.empty(nf), is_free)
 
 
-@kernel
+@borrowing_kernel
 def solve_free(kind, tau, free, a_out, ws):
     """Solve ``M_ff a_f = F_f - M_fc a_c`` from ``ws.M`` and ``ws.F`` (Eq. 24, already built),
     with the constrained ``a_c`` already in ``a_out``; returns ``(torque, Q_theta)``."""
@@ -379,7 +379,7 @@ def accelerations(model, kind, mp, t, y, v, sm, free, a_out):
     return solve_free(kind, tau, free, a_out, ws)
 
 
-@kernel
+@borrowing_kernel
 def outputs(kind, tau, y, v, sm, free, a_out, ws):
     """Accelerations and ``(torque, Q_theta, energy, angular_momentum)`` of a state whose mass
     matrix and force are already in ``ws.M``, ``ws.F`` (applied torque ``tau``, constrained
@@ -427,7 +427,7 @@ def angular_momentum(model, y, v, sm):
     return p
 
 
-@kernel
+@borrowing_kernel
 def tip_outputs(y, sm):
     """Tip deflection v(L) = f2(L) q2, pure axial w1(L) = f1(L) q1 and wc(L) = -q2^T S(L) q2 / 2."""
     n = sm.f1L.shape[0]
@@ -440,7 +440,7 @@ def tip_outputs(y, sm):
     return transverse, axial, foreshortening
 
 
-@kernel
+@borrowing_kernel
 def high_order_terms(Mc, Fc, tau, y, v, a, sm, Mf, Ff, dQ):
     """The CFOAM terms FOAM drops (Eqs. 35-39, re-derived), along a state with accelerations ``a``.
 
@@ -451,7 +451,7 @@ def high_order_terms(Mc, Fc, tau, y, v, a, sm, Mf, Ff, dQ):
     ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35).
     """
     N = y.shape[0]
-    _foam_system(FOAM, y, v, tau, sm, Mf, Ff)
+    foam_system(FOAM, y, v, tau, sm, Mf, Ff)
     for i in range(N):
         s = Fc[i] - Ff[i]
         for j in range(N):

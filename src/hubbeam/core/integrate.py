@@ -15,8 +15,8 @@ import numpy as np
 
 from hubbeam.core.cfoam_rhs import cfoam_problem
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors, no_tensors
-from hubbeam.core.eom import (CFOAM, free_dofs, high_order_terms, impose_constraints,
-                              mass_matrix_and_force, outputs, tip_outputs, workspace)
+from hubbeam.core.eom import (CFOAM, foam_system, free_dofs, high_order_terms,
+                              impose_constraints, outputs, tip_outputs, workspace)
 from hubbeam.core.foam_rhs import foam_problem
 from hubbeam.core.jit import inline_kernel, kernel
 from hubbeam.core.radau import radau5
@@ -93,7 +93,7 @@ def _fill_rows(model, kind, mp, sm, ct, free, t_out, y_out, v_out, out):
         if model == CFOAM:
             cfoam_system(y, v, tau, ct, ws.M, ws.F)
         else:
-            mass_matrix_and_force(model, y, v, tau, sm, ws.M, ws.F)
+            foam_system(model, y, v, tau, sm, ws.M, ws.F)
         torque, q_theta, e, p = outputs(kind, tau, y, v, sm, free, a, ws)
         transverse, axial, foreshortening = tip_outputs(y, sm)
         out[k, 0] = y[0]
@@ -122,7 +122,7 @@ def fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out):
     One mass matrix and force of Eq. (24) per output time gives the accelerations, the torque,
     the energy, the angular momentum and, for CFOAM, the high-order terms; CFOAM's comes from
     the pre-contracted tensors (``core/cfoam_tensors.py``), the other models' from
-    :func:`hubbeam.core.eom.mass_matrix_and_force`.
+    :func:`hubbeam.core.eom.foam_system` (which ``eom.mass_matrix_and_force`` calls for them).
     """
     ct = cfoam_tensors(sm) if model == CFOAM else no_tensors()
     _fill_rows(model, kind, mp, sm, ct, free, t_out, y_out, v_out, out)

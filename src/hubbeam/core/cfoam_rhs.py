@@ -22,24 +22,22 @@ from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
 from hubbeam.core.radau import register_rhs
 
 #: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, the tensors ``ct``, and
-#: work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F`` of Eq. (24), the free
-#: block ``Mff`` and its right-hand side ``rhs``.
-CfoamProblem = namedtuple("CfoamProblem", "kind mp ct y v M F Mff rhs")
+#: work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F`` of Eq. (24).
+CfoamProblem = namedtuple("CfoamProblem", "kind mp ct y v M F")
 
 
 @kernel
 def cfoam_problem(kind, mp, sm):
     """The :data:`CfoamProblem` of CFOAM under maneuver ``kind`` for ``SystemMatrices`` ``sm``."""
     N = 1 + 2 * sm.M1.shape[0]
-    nf = N - 1 if kind == PRESCRIBED else N
     return CfoamProblem(kind, mp, cfoam_tensors(sm), np.zeros(N), np.zeros(N), np.empty((N, N)),
-                        np.empty(N), np.empty((nf, nf)), np.empty(nf))
+                        np.empty(N))
 
 
 @borrowing_kernel
 def cfoam_rhs(t, yf, vf, af, problem):
     """Accelerations ``af`` of the free coordinates (theta first unless prescribed, then q1, q2)."""
-    y, v, M, F, Mff, rhs = problem.y, problem.v, problem.M, problem.F, problem.Mff, problem.rhs
+    y, v, M, F = problem.y, problem.v, problem.M, problem.F
     nf = yf.shape[0]
     o = y.shape[0] - nf  # 1: theta is prescribed
     thdd = 0.0
@@ -54,14 +52,11 @@ def cfoam_rhs(t, yf, vf, af, problem):
         v[o + i] = vf[i]
     cfoam_system(y, v, tau, problem.ct, M, F)
     for i in range(nf):
-        rhs[i] = F[o + i] - M[o + i, 0] * thdd
-        for j in range(nf):
-            Mff[i, j] = M[o + i, o + j]
-    if not solve_spd(Mff, rhs):
+        af[i] = F[o + i] - M[o + i, 0] * thdd
+    # the free block is factored where it lies (M is rebuilt at every call)
+    if not solve_spd(M[o:, o:], af):
         for i in range(nf):
-            rhs[i] = np.nan
-    for i in range(nf):
-        af[i] = rhs[i]
+            af[i] = np.nan
 
 
 register_rhs(CfoamProblem, cfoam_rhs)

@@ -38,7 +38,9 @@ def borrowing_kernel(func):
     unnecessary, so each call and each field access costs an atomic increment and decrement.
     On the integrator's hot path that was 40 % of a CFOAM run (``perf``, docs/architecture.md).
     Compiled without the runtime, the kernel leaves every count to its caller, which owns the
-    arrays for the whole call; numba refuses to compile such a kernel if it allocates.
+    arrays for the whole call; numba refuses to compile such a kernel if it allocates or returns
+    a new array. ``_nrt`` is a private numba option (hence the pinned numba version);
+    ``tests/test_simulate.py`` checks that runs still free every block the runtime allocates.
     """
     return numba.njit(_nrt=False, **JIT_OPTIONS)(func)
 

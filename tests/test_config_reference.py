@@ -35,10 +35,46 @@ def test_every_schema_property_has_a_description():
     assert not missing, f"schema properties without a description: {missing}"
 
 
-def test_every_property_is_listed_in_the_reference():
-    text = reference()
-    for key, _ in _properties(SCHEMA, SCHEMA["$defs"]):
-        assert f"| `{key.rsplit('.', 1)[-1]}` |" in text, key
+def _sections(markdown: str) -> dict[str, set[str]]:
+    """The keys of the table rows under each heading of ``markdown``, by heading text."""
+    sections: dict[str, set[str]] = {"": set()}
+    title = ""
+    for line in markdown.splitlines():
+        if line.startswith("#"):
+            title = line.lstrip("#").strip()
+            sections[title] = set()
+        elif line.startswith("| `"):
+            sections[title].add(line.split("`")[1])
+    return sections
+
+
+def _node_at(title: str) -> dict:
+    """The schema mapping a section title names: a dotted path from the top level or from a $def."""
+    defs = SCHEMA["$defs"]
+    first, *rest = title.split(".")
+    node = resolve(SCHEMA["properties"][first] if first in SCHEMA["properties"] else defs[first], defs)
+    for part in rest:
+        child = node["additionalProperties"] if part == "<name>" else node["properties"][part]
+        node = resolve(child, defs)
+    return node
+
+
+def test_every_section_lists_exactly_the_keys_of_its_mapping():
+    sections = _sections(reference())
+    assert sections.pop("") == set(SCHEMA["properties"])
+    sections.pop("Shared definitions")
+    assert {"beam", "numerics.convergence_check", "case", "maneuver", "sweep.figure"} <= set(sections)
+    for title, keys in sections.items():
+        assert keys == set(_node_at(title).get("properties", {})), title
+
+
+def test_every_mapping_of_the_schema_has_a_section():
+    sections = list(_sections(reference()).values())
+    mappings = [(key, node) for key, node in _properties(SCHEMA, SCHEMA["$defs"])]
+    mappings += [(f"$defs.{name}", resolve(node, SCHEMA["$defs"])) for name, node in SCHEMA["$defs"].items()]
+    for key, node in mappings:
+        if node.get("properties"):
+            assert set(node["properties"]) in sections, f"no section lists the keys of {key}"
 
 
 SMALL = {

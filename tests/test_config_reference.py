@@ -41,7 +41,7 @@ def _sections(markdown: str) -> dict[str, set[str]]:
     title = ""
     for line in markdown.splitlines():
         if line.startswith("#"):
-            title = line.lstrip("#").strip()
+            title = line.lstrip("#").strip().strip("`")
             sections[title] = set()
         elif line.startswith("| `"):
             sections[title].add(line.split("`")[1])
@@ -107,14 +107,14 @@ SMALL = {
 
 def test_reference_with_siblings_is_merged_in_place():
     text = reference(SMALL)
-    assert "\n## run\n" in text  # a section of its own: the $ref carries extra keywords
+    assert "\n## `run`\n" in text  # a section of its own: the $ref carries extra keywords
     assert "| `kind` | text | yes | - | only `spin` | spin only. |" in text
 
 
 def test_whole_mapping_definition_is_linked_once_and_scalar_definition_inlined():
     text = reference(SMALL)
     assert "| `grid` | mapping | no | - | see [`range`](#range) | Values swept. |" in text
-    assert text.count("### range") == 1
+    assert text.count("### `range`") == 1
     assert "| `start` | number | yes | `1.0` | > 0 | First value. |" in text
     assert "| `count` | integer | no | - | >= 1; <= 20 | How many. |" in text
 
@@ -144,3 +144,9 @@ def test_check_fails_on_a_stale_file_and_says_how_to_regenerate(tmp_path, monkey
     assert REGENERATE in capsys.readouterr().err
     assert config_reference.main([]) == 0
     assert config_reference.main(["--check"]) == 0
+
+
+def test_placeholders_in_descriptions_survive_markdown():
+    schema = {"type": "object", "description": "Each run becomes `runs/<name>.nc` and figures/<name>.pdf, <= 3.",
+              "properties": {}}
+    assert "Each run becomes `runs/<name>.nc` and figures/&lt;name>.pdf, <= 3." in reference(schema)

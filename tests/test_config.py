@@ -14,7 +14,6 @@ import yaml
 
 from hubbeam.config import (
     CASE_NAME_PATTERN,
-    SCHEMA,
     ConfigError,
     case_names,
     case_settings,
@@ -340,46 +339,6 @@ def test_extra_file_adds_a_case_and_overrides_like_snakemake(tmp_path, repo_root
     assert case_settings(cfg, "fig04_foam")["t_end"] == 40.0  # merged into the existing case
     assert case_settings(cfg, "fig04_foam")["maneuver"] == {"kind": "prescribed", "wf": 3.0, "tf": 30.0}
     assert case_settings(cfg, "fig06_foam_n1")["modes"] == 1  # a case's own modes win
-
-
-# ---------------------------------------------------------------------------------------------
-# documentation follows the schema
-
-
-def schema_keys(node: dict, prefix: str) -> list[str]:
-    keys = []
-    for key, child in node.get("properties", {}).items():
-        path = f"{prefix}.{key}" if prefix else key
-        target = child
-        if "$ref" in child:
-            target = SCHEMA["$defs"][child["$ref"].rsplit("/", 1)[-1]]
-        if child.get("$ref") == "#/$defs/grid" or "properties" not in target and "additionalProperties" not in target:
-            keys.append(path)
-        elif isinstance(target.get("additionalProperties"), dict):
-            case = SCHEMA["$defs"][target["additionalProperties"]["$ref"].rsplit("/", 1)[-1]]
-            keys += schema_keys(case, f"{path}.<name>")
-        else:
-            keys += schema_keys(target, path)
-    return keys
-
-
-def test_every_key_of_the_schema_has_a_description():
-    def walk(node, where):
-        for key, child in node.get("properties", {}).items():
-            assert "description" in child or "$ref" in child and "description" in SCHEMA["$defs"][
-                child["$ref"].rsplit("/", 1)[-1]], f"{where}.{key} has no description"
-            walk(child, f"{where}.{key}")
-    walk(SCHEMA, "")
-    for name, definition in SCHEMA["$defs"].items():
-        walk(definition, f"$defs.{name}")
-
-
-def test_readme_lists_every_config_key(repo_root):
-    readme = (repo_root / "README.md").read_text(encoding="utf-8")
-    keys = schema_keys(SCHEMA, "")
-    assert "cases.<name>.maneuver.tau_max" in keys and "eigen.speeds" in keys
-    missing = [key for key in keys if f"`{key}`" not in readme]
-    assert not missing, f"README.md does not describe {missing}"
 
 
 # ---------------------------------------------------------------------------------------------

@@ -1,11 +1,15 @@
 """Gauss-Legendre quadrature on beam intervals and the point cloud of the mass distribution.
 
-Every beam integral of the paper (Eqs. 13-20) is evaluated by an ``n``-point Gauss-Legendre rule.
-The *point cloud* is the discrete mass distribution that these rules integrate against: the
-Gauss nodes of ``[0, L]`` carrying the masses ``rho A w_k``, followed by the tip mass ``m_t`` at
-``x = l`` (REPRODUCTION_NOTES, Section 3.2: every ``int (.) rho A dx`` gains ``m_t (.)(l)``).
+Every beam integral of the paper (Eqs. 13-20) is evaluated by an ``n``-point Gauss-Legendre rule
+on ``[0, L]`` (:func:`beam_rule`). A beam with tabulated sections (``hubbeam.beam``) has
+properties with kinks at its stations; there the rule is composite, one Gauss rule per segment
+between stations, so that each rule integrates a smooth integrand. The *point cloud* is the
+discrete mass distribution that these rules integrate against: the Gauss nodes carrying the
+masses ``rho A(x_k) w_k``, followed by the tip mass ``m_t`` at ``x = l`` (every ``int (.) rho A dx``
+gains ``m_t (.)(l)``).
 """
 
+import math
 from functools import lru_cache
 
 import numpy as np
@@ -14,6 +18,8 @@ import numpy as np
 MIN_POINTS = 8
 #: Above this many nodes numpy's Legendre rule is no longer accurate to double precision.
 MAX_POINTS = 1000
+#: Fewest nodes on one segment of a composite rule (short segments between close stations).
+MIN_SEGMENT_POINTS = 4
 
 
 @lru_cache(maxsize=32)
@@ -59,14 +65,39 @@ def effective_points(n_quad, n_modes):
     return int(max(n_quad, 30 + 3 * n_modes))
 
 
-def point_cloud(params, mass, position, n_points):
-    """Abscissae and masses of the discrete mass distribution (beam Gauss nodes, then the tip).
+def segment_points(n_points, a, b, L):
+    """Nodes of the Gauss rule on the segment ``[a, b]`` of a composite rule of ``n_points`` on
+    ``[0, L]``: ``max(MIN_SEGMENT_POINTS, ceil(n_points (b - a) / L))``.
 
-    Returns ``x`` (m) and ``w`` (kg), both of shape ``(n_points + 1,)``; the last entry is the
-    tip mass ``mass`` at ``position`` (zero mass when there is none).
+    The admissible functions oscillate uniformly along the beam, so a segment gets its share of
+    the nodes by length; a segment as long as the beam gets exactly ``n_points``.
     """
-    x, w = gauss_legendre(n_points, 0.0, params.L)
+    return max(MIN_SEGMENT_POINTS, math.ceil(n_points * (b - a) / L))
+
+
+def beam_rule(params, n_points):
+    """Nodes (m) and plain weights (m) of the quadrature on ``[0, L]``, broken at the stations.
+
+    One Gauss-Legendre rule of :func:`segment_points` nodes per segment between consecutive
+    ``params.stations``; for a uniform beam (stations ``0, L``) this is the ``n_points`` rule on
+    ``[0, L]``.
+    """
+    stations = params.stations
+    rules = [gauss_legendre(segment_points(n_points, a, b, params.L), a, b)
+             for a, b in zip(stations[:-1], stations[1:])]
+    return (np.concatenate([nodes for nodes, _ in rules]),
+            np.concatenate([weights for _, weights in rules]))
+
+
+def point_cloud(params, mass, position, n_points):
+    """Abscissae and masses of the discrete mass distribution (beam nodes, then the tip).
+
+    Beam nodes of :func:`beam_rule` with masses ``rho A(x_k) w_k``. Returns ``x`` (m) and ``w``
+    (kg), of shape ``(n_points + 1,)`` for a uniform beam (more beam nodes for a beam with
+    several segments); the last entry is the tip mass ``mass`` at ``position`` (zero when there is none).
+    """
+    x, w = beam_rule(params, n_points)
     return (
         np.append(x, float(position)),
-        np.append(params.rho * params.A * w, float(mass)),
+        np.append(params.rhoA_at(x) * w, float(mass)),
     )

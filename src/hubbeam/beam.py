@@ -30,6 +30,8 @@ from hubbeam.parameters import CONFIG_KEYS, BeamParameters
 SECTION_PROPERTIES = ("rhoA", "EI", "EA")
 #: keys of a ``beam`` section with ``sections`` (besides ``sections`` itself)
 SECTIONS_BEAM_KEYS = ("length", "hub_inertia", "hub_radius")
+#: config key -> field name
+CONFIG_FIELDS = {key: name for name, key in CONFIG_KEYS.items()}
 
 # two-point Gauss-Legendre rule on [-1, 1]: exact for the cubic rho A(s) (rA + s) on a segment
 _GAUSS2 = np.array([-1.0, 1.0]) / math.sqrt(3.0)
@@ -190,11 +192,25 @@ def beam_from_config(beam: Mapping) -> BeamParameters | BeamSections:
                         **{name: sections[name] for name in expected})
 
 
-def parameter_attributes(params: BeamParameters | BeamSections) -> dict:
-    """Dataset attributes describing a beam: ``param_<field>``, floats (and the station tables as
-    arrays for :class:`BeamSections`)."""
+def beam_attributes(params: BeamParameters | BeamSections) -> dict:
+    """Dataset attributes describing a beam, under its config keys (``beam`` section).
+
+    Uniform: the seven keys of :data:`hubbeam.parameters.CONFIG_KEYS` as floats. With sections:
+    ``length``, ``hub_inertia``, ``hub_radius`` and the tables as float arrays ``sections_x``,
+    ``sections_rhoA``, ``sections_EI``, ``sections_EA``. :func:`beam_from_attributes` inverts it.
+    """
     if isinstance(params, BeamParameters):
-        return {f"param_{name}": float(getattr(params, name)) for name in CONFIG_KEYS}
-    return ({f"param_{name}": float(getattr(params, name)) for name in ("L", "Jh", "rA")}
-            | {f"param_{name}": np.asarray(getattr(params, name), dtype=float)
+        return {key: float(getattr(params, name)) for name, key in CONFIG_KEYS.items()}
+    return ({key: float(getattr(params, CONFIG_FIELDS[key])) for key in SECTIONS_BEAM_KEYS}
+            | {f"sections_{name}": np.asarray(getattr(params, name), dtype=float)
                for name in ("x",) + SECTION_PROPERTIES})
+
+
+def beam_from_attributes(attrs: Mapping) -> BeamParameters | BeamSections:
+    """The beam described by :func:`beam_attributes` (e.g. a dataset's attributes)."""
+    if "sections_x" not in attrs:
+        return beam_from_config(attrs)
+    beam = {key: attrs[key] for key in SECTIONS_BEAM_KEYS if key in attrs}
+    beam["sections"] = {name: np.atleast_1d(attrs[f"sections_{name}"]).tolist()
+                        for name in ("x",) + SECTION_PROPERTIES}
+    return beam_from_config(beam)

@@ -28,7 +28,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from hubbeam.beam import parameter_attributes
+from hubbeam.beam import beam_attributes
 from hubbeam.modes import axial_modes, transverse_modes
 from hubbeam.quadrature import beam_rule, effective_points, gauss_legendre, point_cloud
 
@@ -232,8 +232,8 @@ def configuration_name(tip):
 def to_dataset(sm, params, tip, n_quad_requested=None):
     """Self-describing :class:`xarray.Dataset` of ``sm`` (units, long names, mode coordinates).
 
-    Global attributes record a ``title``, the configuration name, the tip mass, every Table 1
-    parameter, the number of modes and of Gauss nodes, and the mode normalisation. Provenance
+    Global attributes record a ``title``, the configuration name, the tip mass, the beam under
+    its config keys (``hubbeam.beam.beam_attributes``), the number of modes and of Gauss nodes, and the mode normalisation. Provenance
     attributes (``Conventions``, ``history``, ...) are added by the writer.
     """
     import xarray as xr
@@ -264,7 +264,7 @@ def to_dataset(sm, params, tip, n_quad_requested=None):
     }
     if n_quad_requested is not None:
         attrs["n_quad_requested"] = int(n_quad_requested)
-    attrs |= parameter_attributes(params)
+    attrs |= beam_attributes(params)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 

@@ -9,7 +9,6 @@ masses ``rho A(x_k) w_k``, followed by the tip mass ``m_t`` at ``x = l`` (every 
 gains ``m_t (.)(l)``).
 """
 
-import math
 from functools import lru_cache
 
 import numpy as np
@@ -65,26 +64,31 @@ def effective_points(n_quad, n_modes):
     return int(max(n_quad, 30 + 3 * n_modes))
 
 
-def segment_points(n_points, a, b, L):
-    """Nodes of the Gauss rule on the segment ``[a, b]`` of a composite rule of ``n_points`` on
-    ``[0, L]``: ``max(MIN_SEGMENT_POINTS, ceil(n_points (b - a) / L))``.
+def segment_points(n_points, stations):
+    """Gauss nodes per segment between consecutive ``stations`` for a composite rule of
+    ``n_points`` nodes in all.
 
-    The admissible functions oscillate uniformly along the beam, so a segment gets its share of
-    the nodes by length; a segment as long as the beam gets exactly ``n_points``.
+    The admissible functions oscillate uniformly along the beam, so each segment gets its share
+    of the nodes by length (largest remainders rounded up, so the counts add up to ``n_points``),
+    and at least ``MIN_SEGMENT_POINTS``. A single segment gets exactly ``n_points``.
     """
-    return max(MIN_SEGMENT_POINTS, math.ceil(n_points * (b - a) / L))
+    lengths = np.diff(np.asarray(stations, dtype=float))
+    share = n_points * lengths / lengths.sum()
+    counts = np.floor(share).astype(int)
+    counts[np.argsort(counts - share)[: n_points - counts.sum()]] += 1
+    return np.maximum(counts, MIN_SEGMENT_POINTS).tolist()
 
 
 def beam_rule(params, n_points):
     """Nodes (m) and plain weights (m) of the quadrature on ``[0, L]``, broken at the stations.
 
-    One Gauss-Legendre rule of :func:`segment_points` nodes per segment between consecutive
-    ``params.stations``; for a uniform beam (stations ``0, L``) this is the ``n_points`` rule on
-    ``[0, L]``.
+    One Gauss-Legendre rule per segment between consecutive ``params.stations``, with
+    :func:`segment_points` nodes; for a uniform beam (stations ``0, L``) this is the
+    ``n_points`` rule on ``[0, L]``.
     """
     stations = params.stations
-    rules = [gauss_legendre(segment_points(n_points, a, b, params.L), a, b)
-             for a, b in zip(stations[:-1], stations[1:])]
+    rules = [gauss_legendre(n, a, b) for n, a, b
+             in zip(segment_points(n_points, stations), stations[:-1], stations[1:])]
     return (np.concatenate([nodes for nodes, _ in rules]),
             np.concatenate([weights for _, weights in rules]))
 
@@ -93,8 +97,8 @@ def point_cloud(params, mass, position, n_points):
     """Abscissae and masses of the discrete mass distribution (beam nodes, then the tip).
 
     Beam nodes of :func:`beam_rule` with masses ``rho A(x_k) w_k``. Returns ``x`` (m) and ``w``
-    (kg), of shape ``(n_points + 1,)`` for a uniform beam (more beam nodes for a beam with
-    several segments); the last entry is the tip mass ``mass`` at ``position`` (zero when there is none).
+    (kg), of shape ``(n_points + 1,)`` (more when short segments need their minimum of nodes);
+    the last entry is the tip mass ``mass`` at ``position`` (zero when there is none).
     """
     x, w = beam_rule(params, n_points)
     return (

@@ -25,6 +25,7 @@ with the Ritz model: other shape functions, quadrature and assembly.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -79,7 +80,7 @@ def matrices(params, tip=None, n_elements: int = 160):
     n_dof = 2 * nodes.size
     M, Kb, G = (np.zeros((n_dof, n_dof)) for _ in range(3))
     xi = 0.5 * (_GAUSS_T + 1.0)
-    for e, (a, b) in enumerate(zip(nodes[:-1], nodes[1:])):
+    for e, (a, b) in enumerate(itertools.pairwise(nodes)):
         h = b - a
         x = a + h * xi
         weights = 0.5 * h * _GAUSS_W

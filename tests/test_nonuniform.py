@@ -220,3 +220,36 @@ def test_ritz_converges_to_fe_in_modes(case):
     # algebraic convergence in the number of modes, at least n^-2.5 (measured n^-3 to n^-4.5)
     assert worst[5] / worst[10] > 2**2.5 and worst[10] / worst[20] > 2**2.5, worst.to_dict()
     assert (table["rel_diff"] > -1e-7).all()  # Ritz frequencies are upper bounds (up to FE error)
+
+
+# -- the rest of the package with a non-uniform beam -------------------------------------------
+
+def test_eigen_analysis_of_a_non_uniform_beam():
+    from hubbeam.eigen import campbell, critical_speed_sweep
+
+    sweep = critical_speed_sweep(KINKED, [0.0, 0.2], [KINKED.L], 5, search_max=50.0)
+    assert np.isnan(sweep["continuum_tlam_critical_speed_at_tip"]).all()  # uniform beams only
+    assert np.isfinite(sweep["critical_speed"].sel(model="TLAM")).all()
+    assert np.isnan(sweep["critical_speed"].sel(model="FOAM")).all()
+    diagram = campbell(KINKED, [0.0], [0.0, 6.0], 5)
+    fe = fe_beam.frequencies(KINKED, [0.0, 6.0], "inplane", None, 80, 1)[:, 0]
+    np.testing.assert_allclose(diagram["frequency"].sel(model="FOAM", mode=1)[0] * 2 * np.pi, fe,
+                               rtol=1e-3)
+    assert diagram.attrs["sections_EI"].tolist() == [800.0, 500.0, 300.0]
+
+
+@pytest.mark.parametrize("model", ["TLAM", "FOAM", "SFOAM", "CFOAM"])
+def test_every_model_simulates_a_non_uniform_beam_and_reruns_from_its_attributes(model):
+    from hubbeam.simulate import simulate, simulation_inputs
+
+    numerics = {"rtol": 1e-7, "atol": 1e-9, "output_step": 0.1, "max_steps": 100_000,
+                "step_warning": 100_000, "divergence_limit": 1.0, "quadrature_points": 64}
+    case = {"name": "kinked", "model": model, "modes": 3, "t_end": 1.0,
+            "maneuver": {"kind": "prescribed", "wf": 1.0, "tf": 1.0},
+            "tip_mass": {"mass": 0.2, "position": KINKED.L}}
+    ds = simulate(case, KINKED, numerics)
+    assert ds.attrs["integrator_status"] == "success"
+    assert ds.attrs["sections_x"].tolist() == [0.0, 3.0, 8.0]
+    assert np.abs(ds["tip_transverse"]).max() > 0.0
+    rerun = simulate(**simulation_inputs(ds.attrs))
+    np.testing.assert_array_equal(rerun["tip_transverse"], ds["tip_transverse"])

@@ -31,8 +31,9 @@ import scipy.optimize
 import xarray as xr
 
 from hubbeam import paper
+from hubbeam.beam import beam_attributes
 from hubbeam.matrices import MODE_NORMALISATION, assemble, point_mass_terms
-from hubbeam.parameters import TipMass
+from hubbeam.parameters import BeamParameters, TipMass
 
 #: coefficient of the underlined D terms of Eq. (31) per model
 D_COEFFICIENT = {"TLAM": 0.0, "FOAM": 1.0}
@@ -180,8 +181,7 @@ def _attributes(params, n_modes, n_quad):
              "mode_normalisation": MODE_NORMALISATION,
              "subsystem": "transverse coordinates q2 only (Coriolis coupling to q1 and the hub "
                           "left out), K22 of Eq. (31) with the tip-mass terms of Section 4.4"}
-    for key in ("L", "rho", "A", "E", "I", "Jh", "rA"):
-        attrs[f"param_{key}"] = float(getattr(params, key))
+    attrs |= beam_attributes(params)
     return attrs
 
 
@@ -241,9 +241,11 @@ def critical_speed_sweep(params, masses, positions, n_modes, search_max, n_quad=
     _check_search_max(search_max)
     bare, M2, D = _mass_position_matrices(params, masses, positions, n_modes, n_quad)
     mu = np.stack([_mu_max(bare.K2, M2 - D_COEFFICIENT[model] * D) for model in MODELS])
-    scale = np.sqrt(params.E * params.I / (params.rho * params.A * params.L**4))
+    # the continuum frequency equation holds for a uniform beam only: NaN for tabulated sections
+    uniform = isinstance(params, BeamParameters)
     continuum = [
-        tip_mass_frequency_roots(m / (params.rho * params.A * params.L), 1)[0] ** 2 * scale
+        tip_mass_frequency_roots(m / params.beam_mass, 1)[0] ** 2
+        * np.sqrt(params.EI / (params.rhoA * params.L**4)) if uniform else np.nan
         for m in np.asarray(masses, float)
     ]
     return xr.Dataset(
@@ -260,7 +262,7 @@ def critical_speed_sweep(params, masses, positions, n_modes, search_max, n_quad=
                 ("tip_mass",), np.array(continuum),
                 {"units": "rad s-1",
                  "long_name": "first natural frequency of the continuum cantilever with the tip "
-                              "mass at l = L (exact TLAM critical speed)"}),
+                              "mass at l = L (exact TLAM critical speed; NaN: non-uniform beam)"}),
         },
         coords=_coords(masses, positions),
         attrs=_attributes(params, n_modes, n_quad)

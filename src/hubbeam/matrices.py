@@ -1,7 +1,7 @@
 """System matrices of the hub-beam with a tip mass (Eqs. 13-20 and the Appendix).
 
 With the point tip mass ``m_t`` at ``x = l`` every mass integral ``int_0^L (.) rho A dx`` gains the
-term ``m_t (.)(l)`` (REPRODUCTION_NOTES, Section 3.2, note 4); for ``l = L`` this reproduces the
+term ``m_t (.)(l)``; for ``l = L`` this reproduces the
 Appendix, Eqs. (A1)-(A10), with ``(r_A + L)`` and ``S(L)``:
 
     J_b = int rho A (rA + x)^2 dx           + m_t (rA + l)^2                  (13), (A1)
@@ -12,10 +12,15 @@ Appendix, Eqs. (A1)-(A10), with ``(r_A + L)`` and ``S(L)``:
     R   = int rho A f1^T f2 dx              + m_t f1(l)^T f2(l)                (19), (A6)
     S(x) = int_0^x f2'(xi)^T f2'(xi) dxi                                       (20)
 
-The beam part of ``D`` is evaluated as the single integral ``int rho A g(xi) f2'^T f2' dxi`` with
-``g(xi) = int_xi^L (rA + x) dx = rA (L - xi) + (L^2 - xi^2) / 2`` (order of integration swapped),
-so that one Gauss rule integrates the double integral. ``S`` at the point-cloud nodes uses its own
-Gauss rule on ``[0, x]``.
+``rho A``, ``EI`` and ``EA`` may vary along the beam (``hubbeam.beam.BeamSections``): they are
+evaluated at the quadrature nodes, and the rule breaks at the stations of the tables
+(``hubbeam.quadrature.beam_rule``). For the uniform beam they are the constants of Table 1.
+
+The beam part of ``D`` is evaluated as the single integral ``int g(xi) f2'^T f2' dxi`` with
+``g(xi) = int_xi^L rho A(x) (rA + x) dx`` (order of integration swapped; ``params.outboard_moment``,
+exact for piecewise-linear ``rho A``, ``rho A (rA (L - xi) + (L^2 - xi^2) / 2)`` for a uniform
+beam), so that one Gauss rule integrates the double integral. ``S`` at the point-cloud nodes uses
+its own Gauss rule on ``[0, x]``.
 """
 
 import math
@@ -23,8 +28,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from hubbeam.beam import beam_attributes
 from hubbeam.modes import axial_modes, transverse_modes
-from hubbeam.quadrature import effective_points, gauss_legendre, point_cloud
+from hubbeam.quadrature import beam_rule, effective_points, gauss_legendre, point_cloud
 
 
 class SystemMatrices(NamedTuple):
@@ -128,8 +134,8 @@ def assemble(params, tip=None, n_modes=5, n_quad=64):
 
     Parameters
     ----------
-    params : BeamParameters
-        Table 1 (``L, rho, A, E, I, Jh, rA``).
+    params : BeamParameters or BeamSections
+        Table 1 (``L, rho, A, E, I, Jh, rA``) or a beam with tabulated sections.
     tip : TipMass or None
         Point mass ``tip.mass`` (kg) at ``0 <= tip.position <= L`` (m); ``None`` for none.
     n_modes : int
@@ -139,34 +145,33 @@ def assemble(params, tip=None, n_modes=5, n_quad=64):
         The rule actually used has ``effective_points(n_quad, n_modes) = max(n_quad,
         30 + 3 n_modes)`` nodes (64 for 5 modes with the configured 64, 90 for 20 modes), enough
         for every matrix to be converged to 1e-12 relative; the point cloud then has that many
-        nodes plus the tip.
+        nodes plus the tip. A beam with sections gets a composite rule broken at its stations
+        with at least that many nodes (``hubbeam.quadrature.beam_rule``).
     """
     mass, position = _tip_values(params, tip)
     nq = effective_points(n_quad, n_modes)
     x, w = point_cloud(params, mass, position, nq)
-    xb, wb, lever = x[:-1], w[:-1], params.rA + x[:-1]
+    xb, gauss = beam_rule(params, nq)  # the beam nodes of x and their plain weights
+    wb, lever = w[:-1], params.rA + xb
     F1 = axial_modes(x, n_modes, params)
     F2 = transverse_modes(x, n_modes, params)
     F1b, F2b = F1[:-1], F2[:-1]
     dF1 = axial_modes(xb, n_modes, params, derivative=1)
     dF2 = transverse_modes(xb, n_modes, params, derivative=1)
     ddF2 = transverse_modes(xb, n_modes, params, derivative=2)
-    # (wb / rho A) are the plain Gauss weights of [0, L]
-    gauss = wb / (params.rho * params.A)
-    g = params.rA * (params.L - xb) + 0.5 * (params.L**2 - xb**2)
 
     tip_terms = point_mass_terms(params, mass, position, n_modes, n_quad)
     S = S_matrix(params, x, n_modes, n_quad)
     return SystemMatrices(
         Jh=float(params.Jh),
         Jb=float(wb @ lever**2 + tip_terms["Jb"]),
-        K1=params.E * params.A * _gram(dF1, gauss),
-        K2=params.E * params.I * _gram(ddF2, gauss),
+        K1=_gram(dF1, params.EA_at(xb) * gauss),
+        K2=_gram(ddF2, params.EI_at(xb) * gauss),
         M1=_gram(F1b, wb) + tip_terms["M1"],
         M2=_gram(F2b, wb) + tip_terms["M2"],
         V1=(wb * lever) @ F1b + tip_terms["V1"],
         V2=(wb * lever) @ F2b + tip_terms["V2"],
-        D=_gram(dF2, wb * g) + tip_terms["D"],
+        D=_gram(dF2, gauss * params.outboard_moment(xb)) + tip_terms["D"],
         R=(F1b.T * wb) @ F2b + tip_terms["R"],
         rA=float(params.rA),
         x=x,
@@ -195,7 +200,7 @@ _FIELD_META = {
           ("mode", "mode_j")),
     "rA": ("m", "hub radius r_A", ()),
     "x": ("m", "point-cloud abscissa (Gauss nodes on [0, L], then the tip mass)", ("point",)),
-    "w": ("kg", "point-cloud mass (rho A times Gauss weight, then m_t)", ("point",)),
+    "w": ("kg", "point-cloud mass (rho A(x) times Gauss weight, then m_t)", ("point",)),
     "F1": ("kg-1/2", "axial admissible functions f1 at the points", ("point", "mode")),
     "F2": ("kg-1/2", "transverse admissible functions f2 at the points", ("point", "mode")),
     "S": ("kg-1 m-1", "foreshortening matrix S(x) at the points (Eq. 20)",
@@ -207,7 +212,9 @@ _FIELD_META = {
 
 MODE_NORMALISATION = (
     "f1 and f2 normalised to unit modal mass of the bare beam, int_0^L rho A f_i f_j dx = "
-    "delta_ij (units kg-1/2); f2: clamped-free Euler-Bernoulli modes, f1: clamped-free rod modes"
+    "delta_ij (units kg-1/2); f2: clamped-free Euler-Bernoulli modes, f1: clamped-free rod modes; "
+    "for a beam with tabulated sections those of the uniform beam of the same length and mass "
+    "(rho A = beam mass / L)"
 )
 
 
@@ -225,8 +232,8 @@ def configuration_name(tip):
 def to_dataset(sm, params, tip, n_quad_requested=None):
     """Self-describing :class:`xarray.Dataset` of ``sm`` (units, long names, mode coordinates).
 
-    Global attributes record a ``title``, the configuration name, the tip mass, every Table 1
-    parameter, the number of modes and of Gauss nodes, and the mode normalisation. Provenance
+    Global attributes record a ``title``, the configuration name, the tip mass, the beam under
+    its config keys (``hubbeam.beam.beam_attributes``), the number of modes and of Gauss nodes, and the mode normalisation. Provenance
     attributes (``Conventions``, ``history``, ...) are added by the writer.
     """
     import xarray as xr
@@ -257,8 +264,7 @@ def to_dataset(sm, params, tip, n_quad_requested=None):
     }
     if n_quad_requested is not None:
         attrs["n_quad_requested"] = int(n_quad_requested)
-    for key in ("L", "rho", "A", "E", "I", "Jh", "rA"):
-        attrs[f"param_{key}"] = float(getattr(params, key))
+    attrs |= beam_attributes(params)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 

@@ -6,7 +6,10 @@
 * Axial deformation ``w1 = f1(x) q1``: clamped-free rod modes ``sin((2i - 1) pi x / 2L)``.
 
 Both families are scaled to unit modal mass of the bare beam, ``int_0^L rho A f_i f_j dx =
-delta_ij`` (units kg^-1/2), so that ``M1 = M2 = I`` without a tip mass.
+delta_ij`` (units kg^-1/2), so that ``M1 = M2 = I`` without a tip mass. For a non-uniform beam
+(``hubbeam.beam.BeamSections``) the same functions of the uniform beam of the same length serve
+as a Ritz basis, scaled to unit modal mass of the uniform beam of the same total mass,
+``rho A_ref = m_beam / L`` (``params.rhoA_ref``); ``M1`` and ``M2`` are then not diagonal.
 
 The textbook form of the beam function subtracts two numbers of size ``e^{beta L}`` to obtain a
 number of order one, which loses every digit by the 12th mode or so. Here it is rewritten as
@@ -80,8 +83,8 @@ def transverse_modes(x, n_modes, params, derivative=0):
         Positions along the beam, ``0 <= x <= L`` (m).
     n_modes : int
         Number of modes, 1..20.
-    params : BeamParameters
-        Supplies ``L``, ``rho`` and ``A``.
+    params : BeamParameters or BeamSections
+        Supplies ``L`` and the normalising mass per unit length ``rhoA_ref``.
     derivative : int
         0 for ``f2``, 1 for ``f2'``, 2 for ``f2''``, 3 for ``f2'''``.
 
@@ -106,13 +109,14 @@ def transverse_modes(x, n_modes, params, derivative=0):
         + s * sin_sign * sin_fun(z)
     )
     # int_0^L phi^2 dx = L for the clamped-free eigenfunctions, hence the scale 1/sqrt(rho A L).
-    return phi * (Z / L) ** k / np.sqrt(params.rho * params.A * L)
+    return phi * (Z / L) ** k / np.sqrt(params.rhoA_ref * L)
 
 
 def axial_modes(x, n_modes, params, derivative=0):
     """Rod functions ``f1`` (Eq. 11) or their ``derivative``-th x-derivative at abscissae ``x``.
 
-    ``f1_i = sqrt(2 / (rho A L)) sin(a_i x)`` with ``a_i = (2i - 1) pi / (2L)`` (unit modal mass);
+    ``f1_i = sqrt(2 / (rho A_ref L)) sin(a_i x)`` with ``a_i = (2i - 1) pi / (2L)`` (unit modal
+    mass; ``rho A_ref = params.rhoA_ref``);
     returns an array of shape (m, n_modes), units kg^-1/2 m^-derivative.
     """
     _check_request(n_modes, derivative)
@@ -121,5 +125,5 @@ def axial_modes(x, n_modes, params, derivative=0):
     a = (2.0 * np.arange(1, n_modes + 1) - 1.0) * np.pi / (2.0 * L)
     sign, fun = _SIN_DERIVATIVES[derivative % 4]
     return sign * fun(np.multiply.outer(x, a)) * a**derivative * np.sqrt(
-        2.0 / (params.rho * params.A * L)
+        2.0 / (params.rhoA_ref * L)
     )

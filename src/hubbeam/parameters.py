@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, fields
 
+import numpy as np
+
 #: BeamParameters field -> key of the ``beam`` section of the config.
 CONFIG_KEYS = {
     "L": "length",
@@ -55,9 +57,44 @@ class BeamParameters:
         return self.E * self.I
 
     @property
+    def EA(self) -> float:
+        """Axial stiffness, N."""
+        return self.E * self.A
+
+    @property
     def beam_mass(self) -> float:
         """Mass of the beam, kg."""
         return self.rhoA * self.L
+
+    @property
+    def rhoA_ref(self) -> float:
+        """Mass per unit length that normalises the admissible functions (``hubbeam.modes``)."""
+        return self.rhoA
+
+    @property
+    def stations(self) -> tuple[float, float]:
+        """Abscissae (m) between which the properties are smooth: the two ends."""
+        return (0.0, self.L)
+
+    def rhoA_at(self, x):
+        """Mass per unit length (kg m-1) at abscissae ``x``: the constant ``rho A``."""
+        return np.full(np.shape(x), self.rhoA)
+
+    def EI_at(self, x):
+        """Bending stiffness (N m2) at abscissae ``x``: the constant ``E I``."""
+        return np.full(np.shape(x), self.EI)
+
+    def EA_at(self, x):
+        """Axial stiffness (N) at abscissae ``x``: the constant ``E A``."""
+        return np.full(np.shape(x), self.EA)
+
+    def outboard_moment(self, x):
+        """``int_x^L rho A (rA + s) ds`` (kg m) at ``x``: the centrifugal tension per ``Omega^2``.
+
+        The weight ``g`` of ``D`` (Eq. 18, order of integration swapped) times ``rho A``.
+        """
+        x = np.asarray(x, dtype=float)
+        return self.rhoA * (self.rA * (self.L - x) + 0.5 * (self.L**2 - x**2))
 
 
 @dataclass(frozen=True)

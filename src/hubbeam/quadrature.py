@@ -1,9 +1,12 @@
 """Gauss-Legendre quadrature on beam intervals and the point cloud of the mass distribution.
 
-Every beam integral of the paper (Eqs. 13-20) is evaluated by an ``n``-point Gauss-Legendre rule.
-The *point cloud* is the discrete mass distribution that these rules integrate against: the
-Gauss nodes of ``[0, L]`` carrying the masses ``rho A w_k``, followed by the tip mass ``m_t`` at
-``x = l`` (REPRODUCTION_NOTES, Section 3.2: every ``int (.) rho A dx`` gains ``m_t (.)(l)``).
+Every beam integral of the paper (Eqs. 13-20) is evaluated by an ``n``-point Gauss-Legendre rule
+on ``[0, L]`` (:func:`beam_rule`). A beam with tabulated sections (``hubbeam.beam``) has
+properties with kinks at its stations; there the rule is composite, one Gauss rule per segment
+between stations, so that each rule integrates a smooth integrand. The *point cloud* is the
+discrete mass distribution that these rules integrate against: the Gauss nodes carrying the
+masses ``rho A(x_k) w_k``, followed by the tip mass ``m_t`` at ``x = l`` (every ``int (.) rho A dx``
+gains ``m_t (.)(l)``).
 """
 
 from functools import lru_cache
@@ -14,6 +17,8 @@ import numpy as np
 MIN_POINTS = 8
 #: Above this many nodes numpy's Legendre rule is no longer accurate to double precision.
 MAX_POINTS = 1000
+#: Fewest nodes on one segment of a composite rule (short segments between close stations).
+MIN_SEGMENT_POINTS = 4
 
 
 @lru_cache(maxsize=32)
@@ -59,14 +64,44 @@ def effective_points(n_quad, n_modes):
     return int(max(n_quad, 30 + 3 * n_modes))
 
 
-def point_cloud(params, mass, position, n_points):
-    """Abscissae and masses of the discrete mass distribution (beam Gauss nodes, then the tip).
+def segment_points(n_points, stations):
+    """Gauss nodes per segment between consecutive ``stations`` for a composite rule of
+    ``n_points`` nodes in all.
 
-    Returns ``x`` (m) and ``w`` (kg), both of shape ``(n_points + 1,)``; the last entry is the
-    tip mass ``mass`` at ``position`` (zero mass when there is none).
+    The admissible functions oscillate uniformly along the beam, so each segment gets its share
+    of the nodes by length (largest remainders rounded up, so the counts add up to ``n_points``),
+    and at least ``MIN_SEGMENT_POINTS``. A single segment gets exactly ``n_points``.
     """
-    x, w = gauss_legendre(n_points, 0.0, params.L)
+    lengths = np.diff(np.asarray(stations, dtype=float))
+    share = n_points * lengths / lengths.sum()
+    counts = np.floor(share).astype(int)
+    counts[np.argsort(counts - share)[: n_points - counts.sum()]] += 1
+    return np.maximum(counts, MIN_SEGMENT_POINTS).tolist()
+
+
+def beam_rule(params, n_points):
+    """Nodes (m) and plain weights (m) of the quadrature on ``[0, L]``, broken at the stations.
+
+    One Gauss-Legendre rule per segment between consecutive ``params.stations``, with
+    :func:`segment_points` nodes; for a uniform beam (stations ``0, L``) this is the
+    ``n_points`` rule on ``[0, L]``.
+    """
+    stations = params.stations
+    rules = [gauss_legendre(n, a, b) for n, a, b
+             in zip(segment_points(n_points, stations), stations[:-1], stations[1:])]
+    return (np.concatenate([nodes for nodes, _ in rules]),
+            np.concatenate([weights for _, weights in rules]))
+
+
+def point_cloud(params, mass, position, n_points):
+    """Abscissae and masses of the discrete mass distribution (beam nodes, then the tip).
+
+    Beam nodes of :func:`beam_rule` with masses ``rho A(x_k) w_k``. Returns ``x`` (m) and ``w``
+    (kg), of shape ``(n_points + 1,)`` (more when short segments need their minimum of nodes);
+    the last entry is the tip mass ``mass`` at ``position`` (zero when there is none).
+    """
+    x, w = beam_rule(params, n_points)
     return (
         np.append(x, float(position)),
-        np.append(params.rho * params.A * w, float(mass)),
+        np.append(params.rhoA_at(x) * w, float(mass)),
     )

@@ -27,12 +27,13 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
+from hubbeam.beam import beam_attributes, beam_from_attributes
 from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
 from hubbeam.matrices import SystemMatrices, assemble
-from hubbeam.parameters import CONFIG_KEYS, BeamParameters, TipMass
+from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
 
 LOG = logging.getLogger(__name__)
@@ -334,7 +335,7 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
         "tip_mass_kg": float(tip["mass"]),
         "tip_position_m": float(tip["position"]),
         "n_modes": int(n),
-        **{key: float(getattr(params, field)) for field, key in CONFIG_KEYS.items()},
+        **beam_attributes(params),
         "diverged": int(diverged),
         "diverged_at_s": float(t_stop) if diverged else math.nan,
         "integrator_status": radau.STATUS_NAMES[status],
@@ -371,7 +372,7 @@ def simulation_inputs(attrs: Mapping) -> dict:
     settings = attrs.get("convergence_check")
     return {
         "case": json.loads(get("case_config")),
-        "params": BeamParameters(**{field: float(get(key)) for field, key in CONFIG_KEYS.items()}),
+        "params": beam_from_attributes(attrs),
         "numerics": numerics,
         "convergence_check": json.loads(settings) if settings else None,
     }

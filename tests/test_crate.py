@@ -1,5 +1,5 @@
-"""The Workflow Run RO-Crate of the results archive (hubbeam.crate), on small synthetic archives;
-the crate of a real workflow run is checked in test_archive.py."""
+"""The Workflow Run RO-Crate of the results archive (hubbeam.crate), on small synthetic archives
+(the crate of a real workflow run is checked in test_archive.py), and CITATION.cff."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ import json
 
 import pytest
 import xarray as xr
+import yaml
 
 import hubbeam
 from hubbeam import crate, provenance
@@ -97,3 +98,13 @@ def test_first_sentence():
                           "really. Next one.\n\nSecond paragraph.") == (
         "Fig. 5. A caption that is long enough to be a sentence, really.")
     assert first_sentence("Short. Text without a later\nsentence end") == "Short. Text without a later sentence end"
+
+
+def test_citation_file_names_the_package_version_and_the_paper(repo_root):
+    citation = yaml.safe_load((repo_root / "CITATION.cff").read_text())
+    assert citation["cff-version"] == "1.2.0" and citation["version"] == hubbeam.__version__
+    assert citation["authors"] == [{"name": "hubbeam developers"}]
+    (paper,) = citation["references"]
+    assert [author["family-names"] for author in paper["authors"]] == ["Bai", "Ben-Tzvi", "Zhou", "Huang"]
+    assert paper["title"] == "A Study on Dynamic Stiffening of a Rotating Beam with a Tip Mass"
+    assert (paper["year"], paper["start"], paper["end"]) == (2009, 53, 68)

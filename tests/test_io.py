@@ -17,7 +17,7 @@ import xarray as xr
 
 import hubbeam
 from hubbeam import provenance
-from hubbeam.io import FLOAT_ENCODING, ResultFileError, open_result, write_netcdf
+from hubbeam.io import FILE_TIME_ATTRS, FLOAT_ENCODING, ResultFileError, open_result, write_netcdf
 
 
 def result_dataset(scale: float = 1.0) -> xr.Dataset:
@@ -135,6 +135,42 @@ def test_result_read_back_can_be_rewritten_in_place(tmp_path):
     ds.attrs["note"] = "edited"
     write_netcdf(ds, path)
     assert open_result(path).attrs["note"] == "edited"
+
+
+def test_coordinates_carry_no_fill_value(tmp_path):
+    """CF 2.5.1: a coordinate variable may not have missing values, hence no _FillValue; data
+    variables keep theirs (NaN marks the output after a diverged run's stop)."""
+    ds = result_dataset().assign_coords(speed=("speed", [0.0, 1.5], {"units": "rad s-1"}))
+    with netCDF4.Dataset(write_netcdf(ds, tmp_path / "case.nc")) as nc:
+        for name in ("time", "mode", "speed"):
+            assert "_FillValue" not in nc[name].ncattrs(), name
+        assert np.isnan(nc["theta"].getncattr("_FillValue"))
+
+
+def test_time_is_stored_with_a_reference_and_read_back_in_seconds(tmp_path):
+    """CF 4.4: the time coordinate's units name a reference time (the nominal epoch); hubbeam and
+    ``decode_times=False`` read the seconds unchanged, plain xarray the epoch plus the seconds."""
+    ds = result_dataset()
+    path = write_netcdf(ds, tmp_path / "case.nc")
+    with netCDF4.Dataset(path) as nc:
+        assert {name: nc["time"].getncattr(name) for name in FILE_TIME_ATTRS} == FILE_TIME_ATTRS
+        assert nc["time"].long_name == "time" and nc["time"].dtype == np.float64
+    assert FILE_TIME_ATTRS["units"].startswith("seconds since ")
+    back = open_result(path)
+    assert back["time"].attrs == ds["time"].attrs  # units "s" again, nothing added
+    np.testing.assert_array_equal(back["time"].values, ds["time"].values)
+    with xr.open_dataset(path, decode_times=False) as raw:
+        np.testing.assert_array_equal(raw["time"].values, ds["time"].values)
+    with xr.open_dataset(path) as decoded:
+        elapsed = (decoded["time"].values - np.datetime64("1970-01-01T00:00:00")) / np.timedelta64(1, "s")
+        np.testing.assert_allclose(elapsed, ds["time"].values, rtol=0, atol=1e-9)
+
+
+def test_a_time_coordinate_not_in_seconds_is_written_as_it_is(tmp_path):
+    ds = result_dataset()
+    ds["time"].attrs["units"] = "days since 2009-03-23"
+    with netCDF4.Dataset(write_netcdf(ds, tmp_path / "case.nc")) as nc:
+        assert nc["time"].units == "days since 2009-03-23" and "comment" not in nc["time"].ncattrs()
 
 
 # ---------------------------------------------------------------------------------------------

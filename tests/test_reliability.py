@@ -308,7 +308,7 @@ def script_runs(synthetic, out: Path, config: dict):
          {"markdown": str(out / "report" / "reproduction.md"), "html": str(out / "report" / "reproduction.html")},
          {"cases": cases, "numerics": numerics}),
         ("archive.py", {"table": "tables/table1.csv", "figure": "figures/fig04.pdf"},
-         {"archive": str(out / "hubbeam-results.tar.gz")}, {"config": config}),
+         {"archive": str(out / "hubbeam-results.tar.gz")}, {"config": config, "workflow_root": str(REPO)}),
     ]
 
 

@@ -1,7 +1,13 @@
 """Writing result files atomically and reading them back with a clear error.
 
 Results are netCDF-4 files written by xarray with the netcdf4 engine. Float variables are
-compressed losslessly (zlib + shuffle); nothing is packed into integers.
+compressed losslessly (zlib + shuffle); nothing is packed into integers. The files follow CF-1.11:
+coordinate variables carry no ``_FillValue`` (CF 2.5.1), and the time coordinate, seconds from the
+start of the run in memory (units ``s``), is stored with a reference time as CF 4.4 requires
+(:data:`FILE_TIME_ATTRS`: a nominal epoch, explained in the variable's ``comment``).
+:func:`open_result` reads it back as plain seconds; so does
+``xarray.open_dataset(path, decode_times=False)`` (the ``units`` then name the epoch), whereas a
+plain ``xarray.open_dataset(path)`` decodes it to dates from 1970-01-01.
 
 Every file a rule produces is written atomically: first under a temporary name in the
 destination directory, then renamed over the destination (``os.replace``, atomic on POSIX). A
@@ -30,6 +36,19 @@ import xarray as xr
 
 #: Lossless compression of every floating-point variable.
 FLOAT_ENCODING = {"zlib": True, "shuffle": True, "complevel": 4}
+
+
+#: The time coordinate's name and its attributes on disk. A run's t = 0 (the start of the maneuver)
+#: has no date, but CF 4.4 wants a reference time in a time coordinate's units; the epoch below is
+#: nominal, and the comment says so to anyone reading a file without hubbeam.
+TIME = "time"
+FILE_TIME_ATTRS = {
+    "units": "seconds since 1970-01-01 00:00:00",
+    "calendar": "standard",
+    "units_metadata": "leap_seconds: none",
+    "comment": "seconds from the start of the run; the reference date in units is nominal (CF "
+               "requires one), so read with decode_times=False to get seconds",
+}
 
 
 class ResultFileError(OSError):
@@ -115,13 +134,16 @@ def write_netcdf(ds: xr.Dataset, path: os.PathLike | str) -> Path:
     """Write ``ds`` to ``path`` (NETCDF4) atomically; return the path.
 
     Encodings carried by ``ds`` (for example from a file it was read from) are replaced: float
-    variables get :data:`FLOAT_ENCODING`, all others the defaults. The temporary file's name does
-    not end in ``.nc``, so no partial file ever looks like a result.
+    variables get :data:`FLOAT_ENCODING`, all others the defaults, and no coordinate gets a
+    ``_FillValue``. A time coordinate in seconds (units ``s``) is stored with
+    :data:`FILE_TIME_ATTRS`. The temporary file's name does not end in ``.nc``, so no partial file
+    ever looks like a result.
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     remove_stale_temporaries(path)
-    encoding = {name: dict(FLOAT_ENCODING) if np.issubdtype(variable.dtype, np.floating) else {}
+    ds = _time_for_file(ds)
+    encoding = {name: _encoding(variable, is_coordinate=name in ds.coords)
                 for name, variable in ds.variables.items()}
     temporary = temporary_path(path)
     try:
@@ -134,8 +156,37 @@ def write_netcdf(ds: xr.Dataset, path: os.PathLike | str) -> Path:
     return path
 
 
+def _encoding(variable: xr.Variable, is_coordinate: bool) -> dict:
+    encoding = dict(FLOAT_ENCODING) if np.issubdtype(variable.dtype, np.floating) else {}
+    if is_coordinate:
+        encoding["_FillValue"] = None  # CF 2.5.1: no missing values in coordinate variables
+    return encoding
+
+
+def _time_for_file(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with its time coordinate in seconds given :data:`FILE_TIME_ATTRS` (a shallow copy)."""
+    if TIME not in ds.coords or ds[TIME].attrs.get("units") != "s":
+        return ds
+    return _with_time_attrs(ds, {**ds[TIME].attrs, **FILE_TIME_ATTRS})
+
+
+def _time_from_file(ds: xr.Dataset) -> xr.Dataset:
+    """Undo :func:`_time_for_file`: the time coordinate back in plain seconds (units ``s``)."""
+    if TIME not in ds.coords or ds[TIME].attrs.get("units") != FILE_TIME_ATTRS["units"]:
+        return ds
+    attrs = {key: value for key, value in ds[TIME].attrs.items() if FILE_TIME_ATTRS.get(key) != value}
+    return _with_time_attrs(ds, {**attrs, "units": "s"})
+
+
+def _with_time_attrs(ds: xr.Dataset, attrs: dict) -> xr.Dataset:
+    time = ds[TIME].copy(deep=False)
+    time.attrs = attrs
+    return ds.assign_coords({TIME: time})
+
+
 def open_result(path: os.PathLike | str) -> xr.Dataset:
-    """Read a result file completely into memory (the file is closed on return).
+    """Read a result file completely into memory (the file is closed on return), with the time
+    coordinate in seconds from the start of the run (units ``s``, as the dataset was built).
 
     Raises :class:`ResultFileError` naming the file if it is missing or cannot be decoded.
     """
@@ -143,8 +194,8 @@ def open_result(path: os.PathLike | str) -> xr.Dataset:
     if not path.is_file():
         raise ResultFileError(f"result file {path} does not exist; build it with `snakemake {path}`")
     try:
-        with xr.open_dataset(path, engine="netcdf4", decode_timedelta=False) as ds:
-            return ds.load()
+        with xr.open_dataset(path, engine="netcdf4", decode_times=False, decode_timedelta=False) as ds:
+            return _time_from_file(ds.load())
     except Exception as error:
         raise ResultFileError(
             f"result file {path} cannot be read, it is corrupted or truncated "

@@ -7,7 +7,8 @@ import json
 import os
 import platform
 import subprocess
-from collections.abc import Mapping
+import time
+from collections.abc import Iterable, Mapping
 from functools import lru_cache
 from importlib import metadata
 from pathlib import Path
@@ -23,6 +24,10 @@ REFERENCES = (
 )
 #: Distributions whose versions are recorded as ``<name>_version`` attributes.
 RECORDED_VERSIONS = ("numpy", "numba", "llvmlite", "scipy", "xarray", "netCDF4")
+#: Distributions the results archive lists as the workflow's software: those above, the workflow
+#: engine, what draws the figures and tables, and what writes the archive's description.
+WORKFLOW_DISTRIBUTIONS = (*RECORDED_VERSIONS, "snakemake", "matplotlib", "pandas", "PyYAML",
+                          "jsonschema", "rocrate")
 
 
 @lru_cache(maxsize=1)
@@ -42,12 +47,21 @@ def git_commit() -> str:
     return f"{commit}-dirty" if dirty else commit
 
 
+def versions(distributions: Iterable[str]) -> dict[str, str]:
+    """Installed version of each distribution (name as given -> version)."""
+    return {name: metadata.version(name) for name in distributions}
+
+
+def iso_utc(seconds: float) -> str:
+    """POSIX time ``seconds`` in ISO 8601, UTC, to the second: ``2009-03-23T00:00:00+00:00``."""
+    return datetime.datetime.fromtimestamp(int(seconds), tz=datetime.timezone.utc).isoformat()
+
+
 def timestamp() -> str:
-    """Current UTC time in ISO 8601, or ``SOURCE_DATE_EPOCH`` when set (reproducible builds)."""
+    """Current UTC time in ISO 8601 (``...Z``), or ``SOURCE_DATE_EPOCH`` when set (reproducible
+    builds)."""
     epoch = os.environ.get("SOURCE_DATE_EPOCH")
-    moment = (datetime.datetime.fromtimestamp(int(epoch), tz=datetime.timezone.utc) if epoch
-              else datetime.datetime.now(datetime.timezone.utc))
-    return moment.replace(microsecond=0).isoformat().replace("+00:00", "Z")
+    return iso_utc(int(epoch) if epoch else time.time()).replace("+00:00", "Z")
 
 
 def global_attributes(title: str, case_config: Mapping | None = None,
@@ -69,7 +83,7 @@ def global_attributes(title: str, case_config: Mapping | None = None,
         "hubbeam_version": __version__,
         "git_commit": commit,
         "python_version": platform.python_version(),
-        **{f"{name.lower()}_version": metadata.version(name) for name in RECORDED_VERSIONS},
+        **{f"{name.lower()}_version": version for name, version in versions(RECORDED_VERSIONS).items()},
     }
     if case_config is not None:
         attributes["case_config"] = json.dumps(case_config, sort_keys=True)

@@ -57,6 +57,7 @@ rule archive:
         ensure("results/hubbeam-results.tar.gz", non_empty=True),
     params:
         config=config,
+        workflow_root=workflow.basedir,
     log:
         "logs/report/archive.log",
     script:

@@ -1,7 +1,10 @@
-"""Bundle the study's results into one ``.tar.gz`` with a SHA-256 manifest (rule ``archive``).
+"""Bundle the study's results into one ``.tar.gz`` with a SHA-256 manifest and a Workflow Run
+RO-Crate (rule ``archive``).
 
 The archive holds, under one top directory ``hubbeam-results/``: every file given (netCDF results,
-figures, tables, report), the configuration the workflow ran with (``config/config.used.yaml``)
+figures, tables, report), the workflow that made them (``Snakefile`` and every file under
+``workflow/``), the configuration the workflow ran with (``config/config.used.yaml``),
+``ro-crate-metadata.json`` (``hubbeam.crate``: what each file is, the software versions, the run)
 and ``MANIFEST.sha256``, one ``<sha256>  <path>`` line per file in the format of ``sha256sum``, so
 ``tar xzf hubbeam-results.tar.gz && cd hubbeam-results && sha256sum -c MANIFEST.sha256`` checks
 it. The archive is written under a temporary name beside the target and renamed when complete.
@@ -9,7 +12,6 @@ it. The archive is written under a temporary name beside the target and renamed 
 Run by Snakemake (``snakemake`` global) or imported (``build_archive``, ``verify_archive``).
 """
 
-import hashlib
 import io
 import os
 import tarfile
@@ -18,15 +20,12 @@ from pathlib import Path
 
 import yaml
 
+from hubbeam.crate import MAIN_WORKFLOW, METADATA_NAME, WORKFLOW_DIR, Member, crate_metadata, sha256
 from hubbeam.io import staged
 
 TOP = "hubbeam-results"
 MANIFEST = "MANIFEST.sha256"
 CONFIG_NAME = "config/config.used.yaml"
-
-
-def sha256(data: bytes) -> str:
-    return hashlib.sha256(data).hexdigest()
 
 
 def _member(name: str, data: bytes, mtime: float) -> tuple[tarfile.TarInfo, io.BytesIO]:
@@ -37,23 +36,43 @@ def _member(name: str, data: bytes, mtime: float) -> tuple[tarfile.TarInfo, io.B
     return info, io.BytesIO(data)
 
 
-def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: os.PathLike | str,
-                  root: os.PathLike | str = ".") -> Path:
-    """Write ``output`` (.tar.gz) with ``files`` (paths relative to ``root``), the config and the
-    manifest; atomic (``hubbeam.io.staged``: temporary file + rename). Raises FileNotFoundError naming a missing file."""
-    root, output = Path(root), Path(output)
-    names = sorted({Path(os.path.relpath(Path(root, f), root)).as_posix() for f in files})
-    if CONFIG_NAME in names or MANIFEST in names:
-        raise ValueError(f"{CONFIG_NAME} and {MANIFEST} are written by the archive itself")
+def workflow_files(workflow_root: os.PathLike | str) -> list[str]:
+    """The workflow in ``workflow_root`` (the repository): ``Snakefile`` and every file under
+    ``workflow/``, without hidden files and Python caches; paths relative to ``workflow_root``."""
+    workflow_root = Path(workflow_root)
+    parts = [path.relative_to(workflow_root).as_posix()
+             for path in (workflow_root / WORKFLOW_DIR).rglob("*") if path.is_file()]
+    return [MAIN_WORKFLOW] + sorted(name for name in parts if not any(
+        part.startswith(".") or part == "__pycache__" for part in name.split("/")))
+
+
+def _read(root: Path, names: Iterable[str], what: str) -> list[Member]:
     members = []
     for name in names:
         path = root / name
         if not path.is_file():
-            raise FileNotFoundError(f"archive input {path} does not exist")
-        members.append((name, path.read_bytes(), path.stat().st_mtime))
+            raise FileNotFoundError(f"{what} {path} does not exist")
+        members.append(Member(name, path.read_bytes(), path.stat().st_mtime))
+    return members
+
+
+def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: os.PathLike | str,
+                  workflow_root: os.PathLike | str, root: os.PathLike | str = ".") -> Path:
+    """Write ``output`` (.tar.gz) with ``files`` (paths relative to ``root``), the workflow in
+    ``workflow_root``, the config, the crate and the manifest; atomic (``hubbeam.io.staged``:
+    temporary file + rename). Raises FileNotFoundError naming a missing file."""
+    root, output = Path(root), Path(output)
+    names = sorted({Path(os.path.relpath(Path(root, f), root)).as_posix() for f in files})
+    workflow = workflow_files(workflow_root)
+    reserved = sorted(({CONFIG_NAME, MANIFEST, METADATA_NAME} | set(workflow)) & set(names))
+    if reserved:
+        raise ValueError(f"{reserved} are written by the archive itself; allowed: other result paths")
+    results = _read(root, names, "archive input")
+    newest = max((m.mtime for m in results), default=0.0)
     config_text = yaml.safe_dump(_plain(config), sort_keys=True).encode()
-    newest = max((m for *_, m in members), default=0.0)
-    members.append((CONFIG_NAME, config_text, newest))
+    members = [*results, *_read(Path(workflow_root), workflow, "workflow file"),
+               Member(CONFIG_NAME, config_text, newest)]
+    members.append(Member(METADATA_NAME, crate_metadata(members, CONFIG_NAME).encode(), newest))
     members.sort()
     manifest = "".join(f"{sha256(data)}  {name}\n" for name, data, _ in members).encode()
     with staged(output) as (temporary,):
@@ -92,10 +111,11 @@ def verify_archive(path: os.PathLike | str) -> list[str]:
 
 
 if "snakemake" in globals():
-    written = build_archive(snakemake.input, snakemake.params.config, snakemake.output[0])
+    written = build_archive(snakemake.input, snakemake.params.config, snakemake.output[0],
+                            workflow_root=snakemake.params.workflow_root)
     problems = verify_archive(written)
     with open(snakemake.log[0], "w") as log:
-        print(f"{written}: {len(snakemake.input)} files + config + manifest; "
+        print(f"{written}: {len(snakemake.input)} files + workflow + config + crate + manifest; "
               f"verification: {problems or 'ok'}", file=log)
     if problems:
         raise RuntimeError(f"{written} does not verify: {problems}")

@@ -1,6 +1,7 @@
 """Bundle the study's results into one ``.tar.gz`` with a SHA-256 manifest (rule ``archive``).
 
-The archive holds, under one top directory ``hubbeam-results/``: every file given (netCDF results,
+The archive holds, under one top directory (``hubbeam-results/`` for the paper,
+``<name>-results/`` for a study, rule parameter ``top``): every file given (netCDF results,
 figures, tables, report), the configuration the workflow ran with (``config/config.used.yaml``)
 and ``MANIFEST.sha256``, one ``<sha256>  <path>`` line per file in the format of ``sha256sum``, so
 ``tar xzf hubbeam-results.tar.gz && cd hubbeam-results && sha256sum -c MANIFEST.sha256`` checks
@@ -29,8 +30,8 @@ def sha256(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
 
 
-def _member(name: str, data: bytes, mtime: float) -> tuple[tarfile.TarInfo, io.BytesIO]:
-    info = tarfile.TarInfo(f"{TOP}/{name}")
+def _member(name: str, data: bytes, mtime: float, top: str) -> tuple[tarfile.TarInfo, io.BytesIO]:
+    info = tarfile.TarInfo(f"{top}/{name}")
     info.size, info.mtime, info.mode = len(data), int(mtime), 0o644
     info.uid = info.gid = 0
     info.uname = info.gname = ""
@@ -38,9 +39,9 @@ def _member(name: str, data: bytes, mtime: float) -> tuple[tarfile.TarInfo, io.B
 
 
 def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: os.PathLike | str,
-                  root: os.PathLike | str = ".") -> Path:
+                  root: os.PathLike | str = ".", top: str = TOP) -> Path:
     """Write ``output`` (.tar.gz) with ``files`` (paths relative to ``root``), the config and the
-    manifest; atomic (``hubbeam.io.staged``: temporary file + rename). Raises FileNotFoundError naming a missing file."""
+    manifest, all under the directory ``top``; atomic (``hubbeam.io.staged``: temporary file + rename). Raises FileNotFoundError naming a missing file."""
     root, output = Path(root), Path(output)
     names = sorted({Path(os.path.relpath(Path(root, f), root)).as_posix() for f in files})
     if CONFIG_NAME in names or MANIFEST in names:
@@ -59,7 +60,7 @@ def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: o
     with staged(output) as (temporary,):
         with tarfile.open(temporary, "w:gz", format=tarfile.PAX_FORMAT) as tar:
             for name, data, mtime in [(MANIFEST, manifest, newest), *members]:
-                tar.addfile(*_member(name, data, mtime))
+                tar.addfile(*_member(name, data, mtime, top))
     return output
 
 
@@ -72,11 +73,11 @@ def _plain(value):
     return value
 
 
-def verify_archive(path: os.PathLike | str) -> list[str]:
+def verify_archive(path: os.PathLike | str, top: str = TOP) -> list[str]:
     """Problems found in the archive (empty list: every file matches the manifest and every file
     is listed)."""
     with tarfile.open(path, "r:gz") as tar:
-        contents = {m.name.removeprefix(f"{TOP}/"): tar.extractfile(m).read()
+        contents = {m.name.removeprefix(f"{top}/"): tar.extractfile(m).read()
                     for m in tar.getmembers() if m.isfile()}
     if MANIFEST not in contents:
         return [f"{path}: no {MANIFEST}"]
@@ -92,8 +93,11 @@ def verify_archive(path: os.PathLike | str) -> list[str]:
 
 
 if "snakemake" in globals():
-    written = build_archive(snakemake.input, snakemake.params.config, snakemake.output[0])
-    problems = verify_archive(written)
+    # a study's archive holds its folder results/<name>/ (params root) under <name>-results/
+    root, top = snakemake.params.get("root", "."), snakemake.params.get("top", TOP)
+    written = build_archive([os.path.relpath(f, root) for f in snakemake.input],
+                            snakemake.params.config, snakemake.output[0], root=root, top=top)
+    problems = verify_archive(written, top)
     with open(snakemake.log[0], "w") as log:
         print(f"{written}: {len(snakemake.input)} files + config + manifest; "
               f"verification: {problems or 'ok'}", file=log)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import xarray as xr
 
 from hubbeam.plotting.style import axis_label, mark_time, model_style, new_figure, panel_title
-from hubbeam.study.summary import maneuver_end
+from hubbeam.study.summary import dataset_maneuver, maneuver_end
 
 #: the torque variable of a simulation dataset: ``hub_torque`` where present, else ``torque``
 TORQUE_NAMES = ("hub_torque", "torque")
@@ -41,8 +41,9 @@ def mark_events(ax, ds: xr.Dataset, end: float) -> None:
         mark_time(ax, float(ds.attrs["diverged_at_s"]), "diverged", color="#D55E00")
 
 
-def plot(case: str, ds: xr.Dataset, maneuver: dict):
-    """The four-panel figure of ``case`` (its dataset ``ds`` and resolved ``maneuver``)."""
+def plot(case: str, ds: xr.Dataset):
+    """The four-panel figure of simulation ``case`` from its dataset ``ds``."""
+    maneuver = dataset_maneuver(ds)
     fig, axes = new_figure(4, 1, height=7.0)
     axes = axes[:, 0]
     t = ds["time"].values

@@ -33,6 +33,12 @@ def maneuver_end(maneuver: Mapping) -> float:
     raise ValueError(f"maneuver {dict(maneuver)} has neither tf, a time table nor a reference")
 
 
+def dataset_maneuver(ds: xr.Dataset) -> dict:
+    """The resolved maneuver a simulation dataset records (attribute ``maneuver``, JSON)."""
+    raw = ds.attrs["maneuver"]
+    return json.loads(raw) if isinstance(raw, str) else dict(raw)
+
+
 def convergence_result(attrs: Mapping) -> str:
     """``not checked``, ``converged`` or ``NOT converged`` from a dataset's attributes."""
     if "convergence_check" not in attrs:
@@ -43,7 +49,7 @@ def convergence_result(attrs: Mapping) -> str:
 def case_summary(case: str, ds: xr.Dataset) -> dict:
     """The summary row of ``case``'s simulation dataset ``ds`` (keys :data:`COLUMNS`)."""
     attrs = ds.attrs
-    maneuver = json.loads(attrs["maneuver"]) if isinstance(attrs["maneuver"], str) else dict(attrs["maneuver"])
+    maneuver = dataset_maneuver(ds)
     t = ds["time"].values
     tip = np.abs(ds["tip_transverse"].values)
     finite = np.isfinite(tip)

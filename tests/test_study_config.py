@@ -14,7 +14,13 @@ import pytest
 import yaml
 
 from hubbeam.config import ConfigError, case_settings, validate_config
-from hubbeam.study import MARKER, PAPER_FOLDERS, StudyError, claim_results_dir, results_dir
+from hubbeam.study import (
+    MARKER,
+    PAPER_FOLDERS,
+    StudyError,
+    claim_results_dir,
+    results_dir,
+)
 from hubbeam.tabular import SECTION_COLUMNS, TableError, read_table, resolve_files
 
 REPO = Path(__file__).resolve().parents[1]
@@ -283,7 +289,7 @@ def snakemake_dry_run(workdir: Path, *configfiles: Path) -> subprocess.Completed
     command = [sys.executable, "-m", "snakemake", "--snakefile", str(REPO / "Snakefile"),
                "--directory", str(workdir), "--dry-run", "--cores", "1",
                "--configfile", *map(str, configfiles)]
-    return subprocess.run(command, cwd=workdir, capture_output=True, text=True, timeout=300)
+    return subprocess.run(command, cwd=workdir, capture_output=True, text=True, timeout=300, check=False)
 
 
 def test_a_study_inherits_nothing_from_the_paper_and_plans_only_its_folder(tmp_path, study):

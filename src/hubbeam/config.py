@@ -17,6 +17,7 @@ what is allowed. :func:`case_settings` resolves one case with the defaults of ``
 from __future__ import annotations
 
 import copy
+import itertools
 import json
 import math
 import os
@@ -344,7 +345,7 @@ def _table_problems(where: str, entry: Mapping, abscissa: str, columns: tuple[st
     if not isinstance(first, list) or any(_number(v) is None for v in first):
         return []  # the schema reports it
     problems = [Problem(f"{where}.{abscissa}", f"got {_show(first)}; allowed: strictly increasing "
-                        f"values ({unit})")] if any(b <= a for a, b in zip(first, first[1:])) else []
+                        f"values ({unit})")] if any(b <= a for a, b in itertools.pairwise(first)) else []
     for column in columns:
         values = entry.get(column)
         if isinstance(values, list) and len(values) != len(first):

@@ -21,10 +21,9 @@ markdown = study_markdown(
 )
 write_text(out.markdown, markdown)
 write_text(out.html, study_html(markdown, p.study.get("title", p.study["name"])))
-with staged(out.summary) as (summary,):
-    with open(summary, "w", newline="") as handle:
-        writer = csv.DictWriter(handle, fieldnames=COLUMNS)
-        writer.writeheader()
-        writer.writerows(rows)
+with staged(out.summary) as (summary,), open(summary, "w", newline="") as handle:
+    writer = csv.DictWriter(handle, fieldnames=COLUMNS)
+    writer.writeheader()
+    writer.writerows(rows)
 with open(snakemake.log[0], "w") as log:
     print(f"{len(rows)} cases -> {out.markdown}, {out.html}, {out.summary}", file=log)

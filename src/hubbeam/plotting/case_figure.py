@@ -11,7 +11,13 @@ from __future__ import annotations
 
 import xarray as xr
 
-from hubbeam.plotting.style import axis_label, mark_time, model_style, new_figure, panel_title
+from hubbeam.plotting.style import (
+    axis_label,
+    mark_time,
+    model_style,
+    new_figure,
+    panel_title,
+)
 from hubbeam.study.summary import dataset_maneuver, maneuver_end
 
 #: the torque variable of a simulation dataset: ``hub_torque`` where present, else ``torque``

@@ -12,7 +12,13 @@ from collections.abc import Mapping
 import xarray as xr
 
 from hubbeam.plotting.case_figure import series
-from hubbeam.plotting.style import MODEL_STYLE, SEQUENCE_COLORS, axis_label, new_figure, panel_title
+from hubbeam.plotting.style import (
+    MODEL_STYLE,
+    SEQUENCE_COLORS,
+    axis_label,
+    new_figure,
+    panel_title,
+)
 
 
 def plot(name: str, datasets: Mapping[str, xr.Dataset]):

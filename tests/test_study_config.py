@@ -327,3 +327,17 @@ def test_the_snakefile_reports_a_bad_table_file_before_any_rule(tmp_path, study)
     assert run.returncode != 0
     assert f"cases.table.maneuver.file: file {tmp_path}/studies/speed.csv, line 3: 1 values" in output
     assert "Traceback" not in output and not (tmp_path / "results").exists()
+
+
+# --- the beam a study's rules build ------------------------------------------------------------
+
+def test_beam_from_config_builds_the_uniform_beam_of_table1_and_refuses_sections_clearly(sectioned):
+    from hubbeam.beam import beam_from_config
+    from hubbeam.paper import TABLE1
+    from hubbeam.parameters import BeamParameters
+
+    paper = yaml.safe_load((REPO / "config" / "config.yaml").read_text())
+    assert beam_from_config(paper["beam"]) == BeamParameters.from_config(paper)
+    assert beam_from_config(paper["beam"]) == BeamParameters(**TABLE1)
+    with pytest.raises(NotImplementedError, match="beam.sections"):
+        beam_from_config(sectioned["beam"])

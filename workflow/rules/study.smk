@@ -139,7 +139,9 @@ rule study_report:
     input:
         simulations=simulation_results(),
         figures=list(study_figures("png").values()),
-        code=hubbeam_sources("study"),
+        code=hubbeam_sources(
+            "study", "study/templates/report.md.j2", "study/templates/report.html.j2"
+        ),
     output:
         markdown=f"{RESULTS}/report/report.md",
         html=f"{RESULTS}/report/report.html",

@@ -1,6 +1,6 @@
 """The figure of one simulation of a study: tip deflection, hub speed, hub torque and energy.
 
-Panels: (a) the tip deflection v(L) (Eq. 5); (b) the hub angular velocity theta'; (c) the torque
+Panels: (a) the tip deflection v(L) = f2(L) q2; (b) the hub angular velocity theta'; (c) the torque
 on the hub (applied, or required by a prescribed hub); (d) the change of the total mechanical
 energy T + U since t = 0 and, where the dataset has them, the work of the hub torque and the
 damping dissipation, whose difference it equals (energy balance). The end of the maneuver and a

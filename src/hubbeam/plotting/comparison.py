@@ -1,6 +1,6 @@
 """A comparison figure of a study: several simulations overlaid (``study.comparisons``).
 
-Panels: the tip deflection v(L) (Eq. 5), the hub angular velocity and the hub torque of every
+Panels: the tip deflection v(L) = f2(L) q2, the hub angular velocity and the hub torque of every
 case named in the comparison, one colour per case and the model's dash pattern; a diverged run
 is drawn up to its divergence and says so in the legend.
 """

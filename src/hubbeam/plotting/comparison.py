@@ -2,7 +2,8 @@
 
 Panels: the tip deflection v(L) = f2(L) q2, the hub angular velocity and the hub torque of every
 case named in the comparison, one colour per case and the model's dash pattern; a diverged run
-is drawn up to its divergence and says so in the legend.
+is drawn up to its divergence and says so in the legend, and the axes keep the bounded runs
+readable (``hubbeam.plotting.figures.limit_to_bounded``).
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from collections.abc import Mapping
 import xarray as xr
 
 from hubbeam.plotting.case_figure import series
+from hubbeam.plotting.figures import limit_to_bounded
 from hubbeam.plotting.style import (
     MODEL_STYLE,
     SEQUENCE_COLORS,
@@ -36,6 +38,8 @@ def plot(name: str, datasets: Mapping[str, xr.Dataset]):
             axes[index].plot(ds["time"].values, ds[variable].values, label=label if index == 0 else None,
                              **props)
             axes[index].set_ylabel(ylabel)
+    for ax, (variable, _) in zip(axes, series(next(iter(datasets.values()))).values()):
+        limit_to_bounded(ax, datasets, variable)
     axes[-1].set_xlabel(axis_label("time $t$", "s"))
     panel_title(axes[0], 0, f"comparison {name}")
     axes[0].legend(loc="best", fontsize=7)

@@ -119,6 +119,11 @@ def test_a_comparison_needs_two_cases(study):
     assert_reported(problems_of(study), "study.comparisons.both", "got [\"spin\"]")
 
 
+def test_the_eigen_positions_of_a_study_reach_the_tip(study):
+    study["eigen"]["positions"]["stop"] = 1.5
+    assert_reported(problems_of(study), "eigen.positions.stop", "got 1.5", "beam.length = 2.0")
+
+
 def test_two_config_files_cannot_share_a_results_folder(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     marker = claim_results_dir("results/tiny", "studies/tiny.yaml")

@@ -397,8 +397,8 @@ def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
 
 
 def _study_problems(cfg: Mapping, eigen: Mapping, cases: Mapping) -> list[Problem]:
-    """A study keeps out of the paper's folders and compares its own cases; the paper (no
-    ``study``) needs ``eigen.table2_speed`` for Table 2."""
+    """A study keeps out of the paper's folders, compares its own cases and ends its eigen grid of
+    positions at the tip; the paper (no ``study``) needs ``eigen.table2_speed`` for Table 2."""
     if "study" not in cfg:
         if "table2_speed" in eigen or not eigen:
             return []
@@ -410,6 +410,11 @@ def _study_problems(cfg: Mapping, eigen: Mapping, cases: Mapping) -> list[Proble
         problems.append(Problem("study.name", f"got {study['name']!r}, a folder of the paper's "
                                 f"products in results/; allowed: any other name ({', '.join(PAPER_FOLDERS)} "
                                 "are taken)"))
+    stop, length = _number(_section(eigen, "positions").get("stop")), _positive(_section(cfg, "beam").get("length"))
+    if stop is not None and length is not None and stop < length:
+        problems.append(Problem("eigen.positions.stop", f"got {stop}; allowed: beam.length = {length} "
+                                "for a study (its Campbell diagram marks the critical speed with the "
+                                "tip mass at the tip)"))
     for name, members in _section(study, "comparisons").items():
         for index, case in enumerate(members if isinstance(members, list) else []):
             if isinstance(case, str) and case not in cases:

@@ -2,6 +2,10 @@
 
 `snakemake` builds everything (cores come from profiles/default), `snakemake -n` shows the plan,
 `snakemake results/simulations/<case>.nc` one case. See README.md.
+
+`snakemake --configfile studies/<name>.yaml` runs a study instead (docs/studies.md): a config with
+a `study` section replaces the paper's config/config.yaml entirely (Snakemake would otherwise merge
+the two), and its products go to results/<name>/ only.
 """
 
 import sys
@@ -11,19 +15,31 @@ from snakemake.utils import min_version
 
 from hubbeam.config import CASE_NAME_PATTERN, ConfigError, validate_config
 from hubbeam.plotting.figures import FigureDataError, check_figure_cases
+from hubbeam.study import StudyError, claim_results_dir, is_study, results_dir
+from hubbeam.tabular import resolve_files
 
 min_version("9.0")
 
 
-configfile: "config/config.yaml"
+# The paper is the default study; a config file with a `study` section (given with --configfile)
+# stands alone and inherits nothing from it.
+if not is_study(config):
+
+    configfile: "config/config.yaml"
 
 
-# Schema (workflow/schemas/config.schema.yaml) and physical checks of the merged config, every
-# problem in one message; a bad config stops here, before any rule, without a traceback.
+STUDY = is_study(config)
+# Tables given as `file:` (beam sections, maneuver profiles) are read relative to the last config
+# file and inlined; then the schema (workflow/schemas/config.schema.yaml) and the physical checks,
+# every problem in one message: a bad config stops here, before any rule, without a traceback.
 try:
+    config.update(resolve_files(config, Path(workflow.configfiles[-1]).parent))
     validate_config(config, files=workflow.configfiles)
-    check_figure_cases(config["cases"])
-except (ConfigError, FigureDataError) as error:
+    if STUDY:
+        claim_results_dir(results_dir(config), workflow.configfiles[-1])
+    else:
+        check_figure_cases(config["cases"])
+except (ConfigError, FigureDataError, StudyError) as error:
     sys.exit(str(error))
 
 
@@ -35,10 +51,13 @@ include: "workflow/rules/common.smk"
 
 
 # Every rule file, after common.smk in alphabetical order: what a file uses at parse time must be
-# defined in common.smk or in a file sorted before it.
+# defined in common.smk or in a file sorted before it. A study has the generic rules (matrices,
+# simulations) and its own (study.smk); the paper has every other file.
+GENERIC_RULE_FILES = ("matrices.smk", "simulate.smk")
 RULE_FILES = sorted(Path(workflow.basedir, "workflow", "rules").glob("*.smk"))
 for rule_file in RULE_FILES:
-    if rule_file.name != "common.smk":
+    wanted = rule_file.name in GENERIC_RULE_FILES or (rule_file.name == "study.smk") == STUDY
+    if rule_file.name != "common.smk" and wanted:
 
         include: rule_file
 
@@ -47,4 +66,4 @@ rule all:
     default_target: True
     localrule: True
     input:
-        final_targets(),
+        study_targets() if STUDY else final_targets(),

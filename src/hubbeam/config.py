@@ -5,7 +5,10 @@ Validation has two layers, reported together in one :class:`ConfigError`:
 1. the JSON schema ``workflow/schemas/config.schema.yaml`` (shape, types, ranges, allowed names);
 2. checks a schema cannot express: the tip mass lies on the beam (``0 <= l <= L``), every case
    spans at least one output step, grids increase, numbers are finite, case names stay distinct
-   on case-insensitive file systems, keys are text, and no YAML file repeats a key.
+   on case-insensitive file systems, keys are text, and no YAML file repeats a key; a beam is
+   either uniform or given by stations (``beam.sections``, from x = 0 to x = L), tables of
+   stations and times increase, a maneuver or damping has only the keys of its kind, and a study
+   (``study`` section) neither takes a folder of the paper's products nor compares unknown cases.
 
 Every problem names the key path (``cases.fig05_tlam.maneuver.wf``), the offending value and
 what is allowed. :func:`case_settings` resolves one case with the defaults of ``numerics``.
@@ -14,6 +17,7 @@ what is allowed. :func:`case_settings` resolves one case with the defaults of ``
 from __future__ import annotations
 
 import copy
+import itertools
 import json
 import math
 import os
@@ -23,6 +27,8 @@ from typing import Any, NamedTuple
 
 import jsonschema
 import yaml
+
+from hubbeam.study import PAPER_FOLDERS
 
 SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
 
@@ -133,10 +139,10 @@ def case_settings(cfg: Mapping, name: str) -> dict:
         raise ConfigError([Problem(f"cases.{name}", f"unknown case; defined: {', '.join(sorted(cases))}")])
     case = cases[name]
     tip_mass = case.get("tip_mass", {})
-    return {
+    settings = {
         "name": name,
         "model": case["model"],
-        "maneuver": {key: value if key == "kind" else float(value) for key, value in case["maneuver"].items()},
+        "maneuver": _floats(case["maneuver"]),
         "t_end": float(case["t_end"]),
         "modes": int(case.get("modes", cfg["numerics"]["modes"])),
         "tip_mass": {
@@ -144,6 +150,21 @@ def case_settings(cfg: Mapping, name: str) -> dict:
             "position": float(tip_mass.get("position", cfg["beam"]["length"])),
         },
     }
+    if "damping" in case:
+        settings["damping"] = _floats(case["damping"])
+    return settings
+
+
+def _floats(entry: Mapping) -> dict:
+    """A plain copy of a maneuver or damping entry with every number (also in lists and nested
+    entries such as a pd reference) as float; the ``kind`` texts stay."""
+    def plain(value):
+        if isinstance(value, Mapping):
+            return {key: plain(item) for key, item in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [plain(item) for item in value]
+        return value if isinstance(value, str) else float(value)
+    return plain(entry)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -285,14 +306,121 @@ def _physical_problems(cfg: Any) -> list[Problem]:
         if position is not None and length is not None and position > length:
             problems.append(Problem(f"cases.{name}.tip_mass.position",
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+        problems += _case_entry_problems(f"cases.{name}", case)
+    problems += _beam_problems(beam, length)
+    problems += _study_problems(cfg, eigen, cases)
     problems += _sweep_problems(_section(cfg, "sweeps"), length)
     problems += _benchmark_problems(_section(cfg, "benchmark"), length)
     problems += _validation_problems(_section(cfg, "validation"), length, output_step)
     return problems
 
 
-#: maneuver parameters of each kind (a sweep gives each either fixed or swept)
-_MANEUVER_PARAMETERS = {"prescribed": ("wf", "tf"), "torque": ("tau_max", "tf")}
+#: maneuver parameters of each kind (a sweep gives each of the first two kinds either fixed or swept)
+MANEUVER_PARAMETERS = {"prescribed": ("wf", "tf"), "torque": ("tau_max", "tf"),
+                       "speed_table": ("time", "speed"), "torque_table": ("time", "torque"),
+                       "pd": ("kp", "kd", "reference")}
+#: parameters of each kind of a pd maneuver's reference motion
+REFERENCE_PARAMETERS = {"prescribed": ("wf", "tf"), "angle_table": ("time", "angle")}
+#: parameters of each kind of damping
+DAMPING_PARAMETERS = {"modal": ("axial", "transverse"),
+                      "rayleigh": ("mass_coefficient", "stiffness_coefficient")}
+#: beam keys of a uniform beam, replaced by ``sections`` for a non-uniform one
+UNIFORM_BEAM_KEYS = ("density", "area", "youngs_modulus", "second_moment")
+
+
+def _kind_problems(where: str, entry: Mapping, parameters: Mapping[str, tuple]) -> list[Problem]:
+    """Keys of ``entry`` that do not belong to its ``kind`` (the schema checks the required ones)."""
+    allowed = parameters.get(entry.get("kind"))
+    if allowed is None:
+        return []
+    return [Problem(f"{where}.{key}", f"got {_show(value)}; not allowed when kind is "
+                    f"{entry['kind']!r} (allowed keys: {', '.join(['kind', *allowed])})")
+            for key, value in entry.items() if key not in ("kind", *allowed)]
+
+
+def _table_problems(where: str, entry: Mapping, abscissa: str, columns: tuple[str, ...],
+                    unit: str) -> list[Problem]:
+    """A table's abscissa strictly increases and every column has its length."""
+    first = entry.get(abscissa)
+    if not isinstance(first, list) or any(_number(v) is None for v in first):
+        return []  # the schema reports it
+    problems = [Problem(f"{where}.{abscissa}", f"got {_show(first)}; allowed: strictly increasing "
+                        f"values ({unit})")] if any(b <= a for a, b in itertools.pairwise(first)) else []
+    for column in columns:
+        values = entry.get(column)
+        if isinstance(values, list) and len(values) != len(first):
+            problems.append(Problem(f"{where}.{column}", f"got {len(values)} values; allowed: one "
+                                    f"per entry of {where}.{abscissa} ({len(first)})"))
+    return problems
+
+
+def _case_entry_problems(where: str, case: Mapping) -> list[Problem]:
+    """The maneuver, its pd reference and the damping have only their kind's keys; time tables
+    start at t >= 0 and increase."""
+    maneuver, damping = _section(case, "maneuver"), _section(case, "damping")
+    problems = _kind_problems(f"{where}.maneuver", maneuver, MANEUVER_PARAMETERS)
+    problems += _kind_problems(f"{where}.damping", damping, DAMPING_PARAMETERS)
+    reference = _section(maneuver, "reference")
+    problems += _kind_problems(f"{where}.maneuver.reference", reference, REFERENCE_PARAMETERS)
+    for path, entry, kinds in ((f"{where}.maneuver", maneuver, MANEUVER_PARAMETERS),
+                               (f"{where}.maneuver.reference", reference, REFERENCE_PARAMETERS)):
+        columns = kinds.get(entry.get("kind"), ())
+        if "time" not in columns:
+            continue
+        problems += _table_problems(path, entry, "time", columns[1:], "s")
+        start = _number((entry.get("time") or [None])[0]) if isinstance(entry.get("time"), list) else None
+        if start is not None and start < 0:
+            problems.append(Problem(f"{path}.time", f"starts at {start}; allowed: times >= 0 s"))
+    return problems
+
+
+def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
+    """A beam is uniform (all of UNIFORM_BEAM_KEYS) or given by stations from 0 to L, not both."""
+    if "sections" not in beam:
+        return [Problem(f"beam.{key}", f"missing (required for a uniform beam, i.e. without "
+                        f"beam.sections); allowed: {_allowed(['beam', key])}")
+                for key in UNIFORM_BEAM_KEYS if key not in beam]
+    problems = [Problem(f"beam.{key}", f"got {_show(beam[key])}; not allowed together with "
+                        "beam.sections (allowed: either the uniform keys or sections)")
+                for key in UNIFORM_BEAM_KEYS if key in beam]
+    sections = _section(beam, "sections")
+    problems += _table_problems("beam.sections", sections, "x", ("rhoA", "EI", "EA"), "m")
+    x = sections.get("x")
+    if isinstance(x, list) and x and all(_number(v) is not None for v in x):
+        if x[0] != 0:
+            problems.append(Problem("beam.sections.x", f"starts at {x[0]}; allowed: the first "
+                                    "station at the root, x = 0"))
+        if length is not None and abs(x[-1] - length) > 1e-9 * length:
+            problems.append(Problem("beam.sections.x", f"ends at {x[-1]}; allowed: the last "
+                                    f"station at the tip, x = beam.length = {length}"))
+    return problems
+
+
+def _study_problems(cfg: Mapping, eigen: Mapping, cases: Mapping) -> list[Problem]:
+    """A study keeps out of the paper's folders, compares its own cases and ends its eigen grid of
+    positions at the tip; the paper (no ``study``) needs ``eigen.table2_speed`` for Table 2."""
+    if "study" not in cfg:
+        if "table2_speed" in eigen or not eigen:
+            return []
+        return [Problem("eigen.table2_speed", "missing (required for the paper's Table 2, i.e. "
+                        f"without a study section); allowed: {_allowed(['eigen', 'table2_speed'])}")]
+    study = _section(cfg, "study")
+    problems = []
+    if study.get("name") in PAPER_FOLDERS:
+        problems.append(Problem("study.name", f"got {study['name']!r}, a folder of the paper's "
+                                f"products in results/; allowed: any other name ({', '.join(PAPER_FOLDERS)} "
+                                "are taken)"))
+    stop, length = _number(_section(eigen, "positions").get("stop")), _positive(_section(cfg, "beam").get("length"))
+    if stop is not None and length is not None and stop < length:
+        problems.append(Problem("eigen.positions.stop", f"got {stop}; allowed: beam.length = {length} "
+                                "for a study (its Campbell diagram marks the critical speed with the "
+                                "tip mass at the tip)"))
+    for name, members in _section(study, "comparisons").items():
+        for index, case in enumerate(members if isinstance(members, list) else []):
+            if isinstance(case, str) and case not in cases:
+                problems.append(Problem(f"study.comparisons.{name}[{index}]", f"got {case!r}; allowed: "
+                                        f"a name of cases ({', '.join(sorted(map(str, cases)))})"))
+    return problems
 
 
 def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
@@ -316,7 +444,7 @@ def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
                 problems.append(Problem(f"{where}.grid.tip_position.stop", f"got {stop}; allowed: a "
                                         f"position on the beam, <= beam.length = {length}"))
         maneuver = _section(spec, "maneuver")
-        needed = _MANEUVER_PARAMETERS.get(maneuver.get("kind"))
+        needed = MANEUVER_PARAMETERS.get(maneuver.get("kind"))
         if needed is not None:
             for key in ("wf", "tf", "tau_max"):
                 fixed, swept = key in maneuver, key in grid

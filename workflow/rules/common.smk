@@ -11,8 +11,13 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 
 from hubbeam.config import case_names, case_settings
+from hubbeam.study import logs_dir, results_dir
 
 PACKAGE_DIR = Path(workflow.basedir, "src", "hubbeam")
+#: where the generic rules (matrices, simulations) write: results/ and logs/ for the paper,
+#: results/<name>/ and logs/<name>/ for a study
+RESULTS = results_dir(config)
+LOGS = logs_dir(config)
 
 
 def cases():
@@ -50,7 +55,7 @@ def hubbeam_sources(*parts):
 
 def simulation_results():
     """One netCDF file per configured case."""
-    return expand("results/simulations/{case}.nc", case=cases())
+    return expand(f"{RESULTS}/simulations/{{case}}.nc", case=cases())
 
 
 def final_targets():
@@ -149,7 +154,7 @@ def simulation_matrices(wildcards):
     from hubbeam.parameters import TipMass
 
     tip = TipMass(**case_config(wildcards.case)["tip_mass"])
-    return f"results/matrices/{configuration_name(tip)}.nc"
+    return f"{RESULTS}/matrices/{configuration_name(tip)}.nc"
 
 
 def simulation_numerics():
@@ -186,7 +191,7 @@ def matrices_configuration(wildcards):
     configurations = matrices_configurations()
     if wildcards.config_name not in configurations:
         raise WorkflowError(
-            f"results/matrices/{wildcards.config_name}.nc: unknown configuration "
+            f"{RESULTS}/matrices/{wildcards.config_name}.nc: unknown configuration "
             f"{wildcards.config_name!r}; allowed: {', '.join(sorted(configurations))}"
         )
     return configurations[wildcards.config_name]
@@ -194,7 +199,7 @@ def matrices_configuration(wildcards):
 
 def matrices_results():
     """One netCDF file of system matrices per tip-mass configuration."""
-    return expand("results/matrices/{config_name}.nc", config_name=sorted(matrices_configurations()))
+    return expand(f"{RESULTS}/matrices/{{config_name}}.nc", config_name=sorted(matrices_configurations()))
 
 
 # --- eigen-analysis (rules in eigen.smk) ----------------------------------------------------------

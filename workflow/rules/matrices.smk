@@ -1,6 +1,7 @@
 """System matrices (Eqs. 13-20, Appendix) of every tip-mass configuration of the simulation cases.
 
-One file per configuration, `results/matrices/<name>.nc`, named by
+One file per configuration, `<RESULTS>/matrices/<name>.nc` (RESULTS in common.smk: results/ for
+the paper, results/<name>/ for a study), named by
 `hubbeam.matrices.configuration_name` (`mt0`, `mt0p1_l8`, ...), with as many modes as the most
 demanding case that uses it (the matrices of fewer modes are its leading blocks). The helpers
 (`matrices_configurations`, `matrices_configuration`, `matrices_results`) are in common.smk.
@@ -8,9 +9,11 @@ demanding case that uses it (the matrices of fewer modes are its leading blocks)
 
 rule matrices:
     input:
-        code=hubbeam_sources("modes.py", "quadrature.py", "matrices.py", "parameters.py"),
+        code=hubbeam_sources(
+            "modes.py", "quadrature.py", "matrices.py", "beam.py", "parameters.py"
+        ),
     output:
-        ensure("results/matrices/{config_name}.nc", non_empty=True),
+        ensure(f"{RESULTS}/matrices/{{config_name}}.nc", non_empty=True),
     params:
         beam=config["beam"],
         configuration=matrices_configuration,
@@ -18,6 +21,6 @@ rule matrices:
     wildcard_constraints:
         config_name=r"mt[0-9a-z_]+",
     log:
-        "logs/matrices/{config_name}.log",
+        f"{LOGS}/matrices/{{config_name}}.log",
     script:
         "../scripts/assemble_matrices.py"

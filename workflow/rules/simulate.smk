@@ -1,6 +1,7 @@
-"""Time simulation of every configured case: `results/simulations/<case>.nc` (Radau IIA kernel).
+"""Time simulation of every configured case: `<RESULTS>/simulations/<case>.nc` (Radau IIA kernel),
+where RESULTS (common.smk) is results/ for the paper and results/<name>/ for a study.
 
-The system matrices come from `results/matrices/<configuration>.nc` (their leading `modes` blocks);
+The system matrices come from `<RESULTS>/matrices/<configuration>.nc` (their leading `modes` blocks);
 the beam parameters, the resolved case, the integrator settings and the optional convergence check
 (`numerics.convergence_check`, None when absent) come through `params:`, so that editing a case
 reruns exactly that case (helpers `simulation_matrices` and `simulation_numerics` in common.smk). The package sources a simulation runs are inputs, so that editing a kernel reruns
@@ -9,7 +10,8 @@ before the (parallel) simulations load it.
 """
 
 SIMULATION_CODE = hubbeam_sources(
-    "__init__.py", "core", "simulate.py", "matrices.py", "parameters.py", "provenance.py", "io.py"
+    "__init__.py", "core", "simulate.py", "matrices.py", "beam.py", "parameters.py", "provenance.py",
+    "io.py",
 )
 
 
@@ -30,13 +32,13 @@ rule simulate:
         kernel="logs/simulations/kernel.done",
         code=SIMULATION_CODE,
     output:
-        ensure("results/simulations/{case}.nc", non_empty=True),
+        ensure(f"{RESULTS}/simulations/{{case}}.nc", non_empty=True),
     params:
         beam=config["beam"],
         case=case_params,
         numerics=simulation_numerics(),
         convergence_check=config["numerics"].get("convergence_check"),
     log:
-        "logs/simulations/{case}.log",
+        f"{LOGS}/simulations/{{case}}.log",
     script:
         "../scripts/simulate_case.py"

@@ -1,7 +1,8 @@
 """Bundle the study's results into one ``.tar.gz`` with a SHA-256 manifest and a Workflow Run
 RO-Crate (rule ``archive``).
 
-The archive holds, under one top directory ``hubbeam-results/``: every file given (netCDF results,
+The archive holds, under one top directory (``hubbeam-results/`` for the paper,
+``<name>-results/`` for a study, rule parameter ``top``): every file given (netCDF results,
 figures, tables, report), the workflow that made them (``Snakefile`` and every file under
 ``workflow/``), the configuration the workflow ran with (``config/config.used.yaml``),
 ``ro-crate-metadata.json`` (``hubbeam.crate``: what each file is, the software versions, the run)
@@ -28,8 +29,8 @@ MANIFEST = "MANIFEST.sha256"
 CONFIG_NAME = "config/config.used.yaml"
 
 
-def _member(name: str, data: bytes, mtime: float) -> tuple[tarfile.TarInfo, io.BytesIO]:
-    info = tarfile.TarInfo(f"{TOP}/{name}")
+def _member(name: str, data: bytes, mtime: float, top: str) -> tuple[tarfile.TarInfo, io.BytesIO]:
+    info = tarfile.TarInfo(f"{top}/{name}")
     info.size, info.mtime, info.mode = len(data), int(mtime), 0o644
     info.uid = info.gid = 0
     info.uname = info.gname = ""
@@ -57,9 +58,10 @@ def _read(root: Path, names: Iterable[str], what: str) -> list[Member]:
 
 
 def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: os.PathLike | str,
-                  workflow_root: os.PathLike | str, root: os.PathLike | str = ".") -> Path:
+                  workflow_root: os.PathLike | str, root: os.PathLike | str = ".",
+                  top: str = TOP) -> Path:
     """Write ``output`` (.tar.gz) with ``files`` (paths relative to ``root``), the workflow in
-    ``workflow_root``, the config, the crate and the manifest; atomic (``hubbeam.io.staged``:
+    ``workflow_root``, the config, the crate and the manifest, all under the directory ``top``; atomic (``hubbeam.io.staged``:
     temporary file + rename). Raises FileNotFoundError naming a missing file."""
     root, output = Path(root), Path(output)
     names = sorted({Path(os.path.relpath(Path(root, f), root)).as_posix() for f in files})
@@ -78,7 +80,7 @@ def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: o
     with staged(output) as (temporary,):
         with tarfile.open(temporary, "w:gz", format=tarfile.PAX_FORMAT) as tar:
             for name, data, mtime in [(MANIFEST, manifest, newest), *members]:
-                tar.addfile(*_member(name, data, mtime))
+                tar.addfile(*_member(name, data, mtime, top))
     return output
 
 
@@ -91,11 +93,11 @@ def _plain(value):
     return value
 
 
-def verify_archive(path: os.PathLike | str) -> list[str]:
+def verify_archive(path: os.PathLike | str, top: str = TOP) -> list[str]:
     """Problems found in the archive (empty list: every file matches the manifest and every file
     is listed)."""
     with tarfile.open(path, "r:gz") as tar:
-        contents = {m.name.removeprefix(f"{TOP}/"): tar.extractfile(m).read()
+        contents = {m.name.removeprefix(f"{top}/"): tar.extractfile(m).read()
                     for m in tar.getmembers() if m.isfile()}
     if MANIFEST not in contents:
         return [f"{path}: no {MANIFEST}"]
@@ -111,9 +113,12 @@ def verify_archive(path: os.PathLike | str) -> list[str]:
 
 
 if "snakemake" in globals():
-    written = build_archive(snakemake.input, snakemake.params.config, snakemake.output[0],
-                            workflow_root=snakemake.params.workflow_root)
-    problems = verify_archive(written)
+    # a study's archive holds its folder results/<name>/ (params root) under <name>-results/
+    root, top = snakemake.params.get("root", "."), snakemake.params.get("top", TOP)
+    written = build_archive([os.path.relpath(f, root) for f in snakemake.input],
+                            snakemake.params.config, snakemake.output[0],
+                            workflow_root=snakemake.params.workflow_root, root=root, top=top)
+    problems = verify_archive(written, top)
     with open(snakemake.log[0], "w") as log:
         print(f"{written}: {len(snakemake.input)} files + workflow + config + crate + manifest; "
               f"verification: {problems or 'ok'}", file=log)

@@ -1,12 +1,13 @@
 """Snakemake shim: assemble and write the system matrices of one tip-mass configuration."""
 
+from hubbeam.beam import beam_from_config
 from hubbeam.io import write_netcdf
 from hubbeam.matrices import assemble, to_dataset
-from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.parameters import TipMass
 from hubbeam.provenance import global_attributes
 
 p = snakemake.params
-params = BeamParameters.from_config({"beam": p.beam})
+params = beam_from_config(p.beam)
 tip = TipMass(mass=p.configuration["mass"], position=p.configuration["position"])
 sm = assemble(params, tip, p.configuration["modes"], p.n_quad)
 ds = to_dataset(sm, params, tip, n_quad_requested=p.n_quad)

@@ -2,9 +2,9 @@
 
 import logging
 
+from hubbeam.beam import beam_from_config
 from hubbeam.io import open_result, write_netcdf
 from hubbeam.matrices import from_dataset
-from hubbeam.parameters import BeamParameters
 from hubbeam.simulate import simulate
 
 logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
@@ -13,6 +13,6 @@ p = snakemake.params
 n_modes = p.case["modes"]
 stored = open_result(snakemake.input.matrices)
 matrices = from_dataset(stored.isel(mode=slice(0, n_modes), mode_j=slice(0, n_modes)))
-ds = simulate(p.case, BeamParameters.from_config({"beam": p.beam}), p.numerics, matrices,
+ds = simulate(p.case, beam_from_config(p.beam), p.numerics, matrices,
               convergence_check=p.get("convergence_check"))
 write_netcdf(ds, snakemake.output[0])

@@ -1,0 +1,46 @@
+"""A comparison figure of a study: several simulations overlaid (``study.comparisons``).
+
+Panels: the tip deflection v(L) = f2(L) q2, the hub angular velocity and the hub torque of every
+case named in the comparison, one colour per case and the model's dash pattern; a diverged run
+is drawn up to its divergence and says so in the legend, and the axes keep the bounded runs
+readable (``hubbeam.plotting.figures.limit_to_bounded``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import xarray as xr
+
+from hubbeam.plotting.case_figure import series
+from hubbeam.plotting.figures import limit_to_bounded
+from hubbeam.plotting.style import (
+    MODEL_STYLE,
+    SEQUENCE_COLORS,
+    axis_label,
+    new_figure,
+    panel_title,
+)
+
+
+def plot(name: str, datasets: Mapping[str, xr.Dataset]):
+    """Overlay the simulations ``{case: dataset}`` of comparison ``name``."""
+    fig, axes = new_figure(3, 1, height=6.0)
+    axes = axes[:, 0]
+    for k, (case, ds) in enumerate(datasets.items()):
+        model = str(ds.attrs["model"])
+        label = f"{case} ({model}, n = {int(ds.attrs['n_modes'])})"
+        if int(ds.attrs["diverged"]) == 1:
+            label += f", diverged at {float(ds.attrs['diverged_at_s']):.3g} s"
+        props = {"color": SEQUENCE_COLORS[k % len(SEQUENCE_COLORS)],
+                 "linestyle": MODEL_STYLE.get(model, {}).get("linestyle", "-")}
+        for index, (variable, ylabel) in enumerate(series(ds).values()):
+            axes[index].plot(ds["time"].values, ds[variable].values, label=label if index == 0 else None,
+                             **props)
+            axes[index].set_ylabel(ylabel)
+    for ax, (variable, _) in zip(axes, series(next(iter(datasets.values()))).values()):
+        limit_to_bounded(ax, datasets, variable)
+    axes[-1].set_xlabel(axis_label("time $t$", "s"))
+    panel_title(axes[0], 0, f"comparison {name}")
+    axes[0].legend(loc="best", fontsize=7)
+    return fig

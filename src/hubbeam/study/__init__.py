@@ -1,0 +1,59 @@
+"""Studies: any hub-beam experiment in a results folder of its own.
+
+A study is one config file with a top-level ``study`` section (``name``, optional ``title``,
+``description``, ``comparisons``); ``snakemake --configfile studies/<name>.yaml`` runs it and
+writes only under ``results/<name>/``. A config without ``study`` is the paper (Bai et al. 2009),
+whose products stay directly under ``results/``. Two config files that claim the same folder are
+rejected: the first run writes the marker ``results/<name>/.study`` with the path of the config
+file that owns the folder.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from pathlib import Path
+
+#: folders of the paper's products directly under results/, which a study name must not take
+PAPER_FOLDERS = ("benchmarks", "eigen", "figures", "matrices", "report", "simulations", "sweeps",
+                 "tables", "validation")
+#: the file in a study's folder that records the config file owning it
+MARKER = ".study"
+
+
+class StudyError(ValueError):
+    """A study cannot run as configured (the message names the folder and the config files)."""
+
+
+def is_study(cfg: Mapping) -> bool:
+    """True for a study config, False for the paper's."""
+    return "study" in cfg
+
+
+def results_dir(cfg: Mapping) -> str:
+    """Where the config's products go: ``results`` for the paper, ``results/<name>`` for a study."""
+    return f"results/{cfg['study']['name']}" if is_study(cfg) else "results"
+
+
+def logs_dir(cfg: Mapping) -> str:
+    """Where the config's rule logs go: ``logs`` for the paper, ``logs/<name>`` for a study."""
+    return f"logs/{cfg['study']['name']}" if is_study(cfg) else "logs"
+
+
+def claim_results_dir(folder: os.PathLike | str, config_file: os.PathLike | str) -> Path:
+    """Record ``config_file`` as the owner of ``folder`` (its ``.study`` marker), or raise
+    :class:`StudyError` when another config file owns it already. Paths are compared as given
+    relative to the working directory, so a moved checkout keeps its claims."""
+    marker = Path(folder, MARKER)
+    owner = Path(os.path.relpath(config_file)).as_posix()
+    if marker.is_file():
+        recorded = marker.read_text(encoding="utf-8").strip()
+        if recorded != owner:
+            raise StudyError(
+                f"study.name: the folder {folder} belongs to the study of {recorded} (recorded in "
+                f"{marker}), not to {owner}; allowed: a study name no other config file uses "
+                f"(rename the study, or delete {folder} to give it to {owner})")
+        return marker
+    marker.parent.mkdir(parents=True, exist_ok=True)
+    marker.write_text(owner + "\n", encoding="utf-8")
+    return marker

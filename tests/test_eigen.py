@@ -230,3 +230,29 @@ def test_printed_table2_supports_the_transverse_subsystem_reading():
     natural = 2 * np.pi * np.array(paper.TABLE2["natural"])
     tlam = np.sqrt(natural**2 - paper.TABLE2_SPEED**2) / (2 * np.pi)
     np.testing.assert_array_equal(np.round(tlam, 4), paper.TABLE2["TLAM"])
+
+
+def test_table2_k22_maps_critical_speeds_and_validation_share_one_stiffness(monkeypatch):
+    """Eq. (31) has one home (hubbeam.linearised.centrifugal_matrix): changing it there changes
+    Table 2, the K22 map, the critical speed and the published-table validation alike."""
+    from hubbeam import linearised
+    from hubbeam.validation import rotating_eigen
+
+    sm = assemble(PARAMS, None, 3)
+    dimensionless = assemble(rotating_eigen.dimensionless_parameters(70.0, 0.0), None, 3)
+
+    def results():
+        return (table2(PARAMS, 1.0, 3)[["TLAM", "FOAM"]].to_numpy(),
+                k22_sweep(PARAMS, [0.0, 0.1], [8.0], [1.0, 2.0], 3)["eigenvalue"].values,
+                critical_speed("TLAM", PARAMS, None, 3, 20.0),
+                rotating_eigen.frequencies(dimensionless, 2.0, "flapwise"),
+                rotating_eigen.frequencies(dimensionless, 2.0, "chordwise"),
+                transverse_frequencies(sm, "FOAM", 1.0))
+
+    before = results()
+    original = linearised.centrifugal_matrix
+    monkeypatch.setattr(linearised, "centrifugal_matrix",
+                        lambda M2, D, model: 1.01 * original(M2, D, model))
+    after = results()
+    for old, new in zip(before, after):
+        assert not np.allclose(old, new, rtol=1e-6, atol=0.0, equal_nan=True)

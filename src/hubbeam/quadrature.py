@@ -13,7 +13,6 @@ import numpy as np
 from hubbeam.limits import MAX_QUADRATURE_POINTS, MIN_QUADRATURE_POINTS
 
 
-
 @lru_cache(maxsize=32)
 def _reference_rule(n_points):
     nodes, weights = np.polynomial.legendre.leggauss(n_points)

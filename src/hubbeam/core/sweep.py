@@ -35,7 +35,7 @@ import numpy as np
 from hubbeam.core.eom import free_dofs
 from hubbeam.core.integrate import integrate_free
 from hubbeam.core.jit import JIT_OPTIONS, inline_kernel, kernel
-from hubbeam.core.radau import SUCCESS, STAT_NAMES
+from hubbeam.core.radau import STAT_NAMES, SUCCESS
 from hubbeam.core.system_matrices import SystemMatrices
 
 #: columns of the float result array of :func:`sweep_tip_extrema`

@@ -6,7 +6,8 @@ At a constant angular velocity ``Omega`` the transverse equations of TLAM and FO
     TLAM: K22 = K2 - Omega^2 M2,         FOAM: K22 = K2 - Omega^2 M2 + Omega^2 D,      (31)
 
 where ``M2`` and ``D`` include the tip-mass terms ``m_t f2(l)^T f2(l)`` and ``m_t (rA + l) S(l)``
-(Section 4.4, Appendix A5, A8). We read the paper's Table 2 as the frequencies of this transverse
+(Section 4.4, Appendix A5, A8); the formula and the eigensolvers are those of
+:mod:`hubbeam.linearised`, shared with the published-table validation. We read the paper's Table 2 as the frequencies of this transverse
 subsystem alone, the Coriolis coupling ``2 Omega R`` to the axial coordinates and the hub left out
 (the paper does not say). Under this reading the TLAM row without tip mass is exactly
 ``sqrt(omega_i^2 - Omega^2)``, and the printed TLAM row follows from the printed natural row by
@@ -16,7 +17,8 @@ generalised eigenvalues of ``(K22, M2)``; eigenvalues of ``K22`` itself (Fig. 9)
 normalisation, here unit modal mass of the bare beam (note 7), and are in s^-2.
 
 Critical speed: ``K22`` loses positive definiteness at the smallest ``Omega`` for which
-``K2 v = Omega^2 B v`` with ``B = M2`` (TLAM) or ``B = M2 - D`` (FOAM), i.e. at ``Omega_c =
+``K2 v = Omega^2 B v`` with ``B = M2`` (TLAM) or ``B = M2 - D`` (FOAM)
+(:func:`hubbeam.linearised.centrifugal_matrix`), i.e. at ``Omega_c =
 mu_max^(-1/2)`` with ``mu_max`` the largest eigenvalue of ``B v = mu K2 v`` (``K2`` is positive
 definite), when ``mu_max > 0``. This is exact (no root search). For FOAM, ``M2 - D`` is negative
 definite whenever ``rA > 0``: with ``w = f2 q2``, ``w(0) = 0`` and Cauchy-Schwarz,

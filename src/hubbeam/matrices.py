@@ -1,8 +1,8 @@
 """System matrices of the hub-beam with a tip mass (Eqs. 13-20 and the Appendix).
 
 With the point tip mass ``m_t`` at ``x = l`` every mass integral ``int_0^L (.) rho A dx`` gains the
-term ``m_t (.)(l)`` (REPRODUCTION_NOTES, Section 3.2, note 4); for ``l = L`` this reproduces the
-Appendix, Eqs. (A1)-(A10), with ``(r_A + L)`` and ``S(L)``:
+term ``m_t (.)(l)``; for ``l = L`` this reproduces the Appendix, Eqs. (A1)-(A10), with
+``(r_A + L)`` and ``S(L)``:
 
     J_b = int rho A (rA + x)^2 dx           + m_t (rA + l)^2                  (13), (A1)
     K_1 = int EA f1'^T f1' dx,  K_2 = int EI f2''^T f2'' dx                    (14), (15)

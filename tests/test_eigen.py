@@ -11,6 +11,7 @@ from hubbeam.eigen import (
     critical_speed,
     critical_speed_by_root_search,
     critical_speed_sweep,
+    gyroscopic_eigenvalues,
     gyroscopic_frequencies,
     k22_sweep,
     natural_frequencies,
@@ -256,3 +257,23 @@ def test_table2_k22_maps_critical_speeds_and_validation_share_one_stiffness(monk
     after = results()
     for old, new in zip(before, after):
         assert not np.allclose(old, new, rtol=1e-6, atol=0.0, equal_nan=True)
+
+
+def test_gyroscopic_eigenvalues_accurate_for_slow_modes_near_the_critical_speed():
+    """Slow TLAM mode just below its critical speed, beside axial frequencies ~1e4 times larger:
+    each eigenvalue satisfies det(lambda^2 M + lambda G + K) = 0 to Newton-refinement accuracy
+    (the refinement uses the smallest singular triplet of the quadratic, not our solver)."""
+    from hubbeam import linearised
+
+    sm = assemble(PARAMS, TipMass(0.0, PARAMS.L), 5)
+    speed = 0.97 * critical_speed("TLAM", PARAMS, None, 5, 20.0)
+    M, G, K = linearised.constant_speed_matrices(sm, "TLAM", speed, axial=True)
+    lam = gyroscopic_eigenvalues(sm, "TLAM", speed)
+    slow = lam[np.argmin(np.where(lam.imag > 0.0, lam.imag, np.inf))]
+    refined = slow
+    for _ in range(4):
+        Q = refined**2 * M + refined * G + K
+        U, _, Vh = np.linalg.svd(Q)
+        x, y = Vh[-1].conj(), U[:, -1]
+        refined -= (y.conj() @ Q @ x) / (y.conj() @ (2.0 * refined * M + G) @ x)
+    assert abs(slow - refined) <= 1e-11 * abs(refined)

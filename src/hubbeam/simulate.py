@@ -31,7 +31,8 @@ from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
-from hubbeam.limits import MAX_MODES, MIN_MODES, MIN_RTOL
+from hubbeam.limits import (MAX_MODES, MAX_QUADRATURE_POINTS, MIN_MODES, MIN_QUADRATURE_POINTS,
+                            MIN_RTOL)
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.parameters import CONFIG_KEYS, BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
@@ -161,9 +162,10 @@ def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
     if matrices is None:
         tip = TipMass(**case["tip_mass"]) if case.get("tip_mass") else None
         quadrature = numerics.get("quadrature_points")
-        if not isinstance(quadrature, (int, np.integer)) or quadrature < 1:
-            raise SimulationError(f"numerics.quadrature_points = {quadrature!r}; "
-                                  "allowed: an integer >= 1")
+        if (not isinstance(quadrature, (int, np.integer)) or isinstance(quadrature, bool)
+                or not MIN_QUADRATURE_POINTS <= quadrature <= MAX_QUADRATURE_POINTS):
+            raise SimulationError(f"numerics.quadrature_points = {quadrature!r}; allowed: an "
+                                  f"integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
         matrices = assemble(params, tip, n, int(quadrature))
     if np.shape(matrices.K1) != (n, n):
         raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.modes = {n}, but the "

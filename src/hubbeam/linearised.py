@@ -99,11 +99,11 @@ def quadratic_eigenvalues(M, G, K):
     + Kr y = 0``, ``Gr = C^-1 G C^-T``, ``Kr = C^-1 K C^-T``, whose companion matrix ``[[0, I],
     [-Kr, -Gr]]`` has the eigenvalues ``lambda`` (LAPACK ``geev``, which balances the matrix).
     ``G`` and ``K`` may be stacks of shape ``s + (N, N)`` (one ``M``); the result has shape
-    ``s + (2N,)``. Measured against Newton-refined eigenvalues of the beam: about 1e-14 relative
-    for every frequency; the QZ algorithm on the linearised pencil ``([[0, I], [-K, -G]], [[I,
-    0], [0, M]])`` (no balancing) was up to 4e-10 off on the first chordwise frequency of the published
-    tables and 1e-9 on slow modes near TLAM's critical speed, the stiff axial coordinates making
-    ``|K|`` 1e7 to 1e8 times ``|M|``.
+    ``s + (2N,)``. Against Newton-refined eigenvalues of the beam (the first chordwise frequency
+    of the published tables, slow modes near TLAM's critical speed) this is accurate to about
+    1e-14 relative; the QZ algorithm on the unbalanced pencil ``([[0, I], [-K, -G]], [[I, 0],
+    [0, M]])`` was off by up to 4e-10 and 1e-9 there, the stiff axial coordinates making ``|K|``
+    1e7 to 1e8 times ``|M|``.
     """
     n = M.shape[-1]
     G, K = np.broadcast_arrays(G, K)

@@ -108,7 +108,11 @@ BAD_VALUES = [
     ("beam.length", "eight", ["got 'eight' (text)", "a number > 0"]),
     ("beam.length", math.inf, ["got inf", "a finite number"]),
     ("numerics.atol", math.nan, ["got nan", "a finite number"]),
-    ("numerics.rtol", "1e-9", ["got '1e-9' (text)", "write 2.7667e+3 or 1.0e-9", "a number > 0 and < 1"]),
+    ("numerics.rtol", "1e-9", ["got '1e-9' (text)", "write 2.7667e+3 or 1.0e-9",
+                               "a number >= 2.220446049250313e-14 and < 1", "100 machine epsilons"]),
+    ("numerics.rtol", 1e-15, ["got 1e-15", "a number >= 2.220446049250313e-14"]),
+    ("sweeps.numerics.rtol", 0.0, ["got 0.0", "a number >= 2.220446049250313e-14"]),
+    ("benchmark.reference_rtol", 1e-15, ["got 1e-15", "a number >= 2.220446049250313e-14"]),
     ("numerics.rtol", 1.0, ["got 1.0", "< 1"]),
     ("numerics.modes", 0, ["got 0", "an integer >= 1 and <= 20"]),
     ("numerics.modes", 21, ["got 21", "an integer >= 1 and <= 20"]),
@@ -405,3 +409,20 @@ def test_a_config_without_the_cases_of_a_figure_stops_with_one_clear_message(tmp
     assert "no case for fig03: the config needs at least one case named fig03_*" in output
     assert "no case for table3: the config needs at least one case named tab3_*" in output
     assert "Traceback" not in output and 'File "' not in output
+
+
+def test_schema_takes_its_limits_from_the_limits_module():
+    """The schema file states no bound of hubbeam.limits; the loaded schema has exactly those."""
+    from hubbeam import config, limits, simulate
+    from hubbeam.core import radau
+
+    raw = yaml.safe_load(config.SCHEMA_PATH.read_text(encoding="utf-8"))
+    for keys, bounds in config.SCHEMA_LIMITS.items():
+        raw_node, node = raw, config.SCHEMA
+        for key in keys:
+            raw_node, node = raw_node[key], node[key]
+        stated = {"minimum", "maximum", "exclusiveMinimum"} & set(raw_node)
+        assert not stated, f"{'.'.join(keys)} restates {stated} in the schema file"
+        assert {key: node[key] for key in bounds} == bounds
+    assert config.SCHEMA["$defs"]["modes"]["maximum"] == limits.MAX_MODES == simulate.MAX_MODES
+    assert limits.MIN_RTOL == 100 * radau.UROUND == simulate.MIN_RTOL

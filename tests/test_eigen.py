@@ -11,6 +11,7 @@ from hubbeam.eigen import (
     critical_speed,
     critical_speed_by_root_search,
     critical_speed_sweep,
+    gyroscopic_eigenvalues,
     gyroscopic_frequencies,
     k22_sweep,
     natural_frequencies,
@@ -230,3 +231,49 @@ def test_printed_table2_supports_the_transverse_subsystem_reading():
     natural = 2 * np.pi * np.array(paper.TABLE2["natural"])
     tlam = np.sqrt(natural**2 - paper.TABLE2_SPEED**2) / (2 * np.pi)
     np.testing.assert_array_equal(np.round(tlam, 4), paper.TABLE2["TLAM"])
+
+
+def test_table2_k22_maps_critical_speeds_and_validation_share_one_stiffness(monkeypatch):
+    """Eq. (31) has one home (hubbeam.linearised.centrifugal_matrix): changing it there changes
+    Table 2, the K22 map, the critical speed and the published-table validation alike."""
+    from hubbeam import linearised
+    from hubbeam.validation import rotating_eigen
+
+    sm = assemble(PARAMS, None, 3)
+    dimensionless = assemble(rotating_eigen.dimensionless_parameters(70.0, 0.0), None, 3)
+
+    def results():
+        return (table2(PARAMS, 1.0, 3)[["TLAM", "FOAM"]].to_numpy(),
+                k22_sweep(PARAMS, [0.0, 0.1], [8.0], [1.0, 2.0], 3)["eigenvalue"].values,
+                critical_speed("TLAM", PARAMS, None, 3, 20.0),
+                rotating_eigen.frequencies(dimensionless, 2.0, "flapwise"),
+                rotating_eigen.frequencies(dimensionless, 2.0, "chordwise"),
+                transverse_frequencies(sm, "FOAM", 1.0))
+
+    before = results()
+    original = linearised.centrifugal_matrix
+    monkeypatch.setattr(linearised, "centrifugal_matrix",
+                        lambda M2, D, model: 1.01 * original(M2, D, model))
+    after = results()
+    for old, new in zip(before, after):
+        assert not np.allclose(old, new, rtol=1e-6, atol=0.0, equal_nan=True)
+
+
+def test_gyroscopic_eigenvalues_accurate_for_slow_modes_near_the_critical_speed():
+    """Slow TLAM mode just below its critical speed, beside axial frequencies ~1e4 times larger:
+    each eigenvalue satisfies det(lambda^2 M + lambda G + K) = 0 to Newton-refinement accuracy
+    (the refinement uses the smallest singular triplet of the quadratic, not our solver)."""
+    from hubbeam import linearised
+
+    sm = assemble(PARAMS, TipMass(0.0, PARAMS.L), 5)
+    speed = 0.97 * critical_speed("TLAM", PARAMS, None, 5, 20.0)
+    M, G, K = linearised.constant_speed_matrices(sm, "TLAM", speed, axial=True)
+    lam = gyroscopic_eigenvalues(sm, "TLAM", speed)
+    slow = lam[np.argmin(np.where(lam.imag > 0.0, lam.imag, np.inf))]
+    refined = slow
+    for _ in range(4):
+        Q = refined**2 * M + refined * G + K
+        U, _, Vh = np.linalg.svd(Q)
+        x, y = Vh[-1].conj(), U[:, -1]
+        refined -= (y.conj() @ Q @ x) / (y.conj() @ (2.0 * refined * M + G) @ x)
+    assert abs(slow - refined) <= 1e-11 * abs(refined)

@@ -88,7 +88,7 @@ BAD_SECTIONS = (
      ("numerics.modes", "got 21; allowed: an integer >= 1 and <= 20"),
      ("numerics.output_step", "got 0.0; allowed: a number > 0"),
      ("numerics.rtol", "got '1e-9' (text)"),
-     ("numerics.rtol", "allowed: a number > 0 and < 1"),
+     ("numerics.rtol", "allowed: a number >= 2.220446049250313e-14 and < 1"),
      ("numerics.convergence_check.tolerance_factor", "got 1.5; allowed: a number > 0 and < 1"),
      ("numerics.convergence_check.extra_modes", "got 0; allowed: an integer >= 1"),
      ("numerics.convergence_check.tighten", "unknown key (value 2); allowed keys here: "

@@ -138,6 +138,7 @@ def test_step_budget_and_step_warning_are_recorded(setup):
     ({"model": "XFOAM"}, "model = 'XFOAM'"),
     ({"maneuver": {"kind": "prescribed", "wf": 2.0}}, "maneuver.tf = None"),
     ({"modes": 0}, "modes = 0"),
+    ({"modes": 21}, r"modes = 21; allowed: an integer in 1\.\.20"),
 ])
 def test_bad_cases_are_rejected_naming_the_key(setup, change, message):
     params, numerics, config = setup
@@ -149,6 +150,11 @@ def test_bad_numerics_are_rejected_naming_the_key(setup):
     params, numerics, config = setup
     with pytest.raises(SimulationError, match="numerics.rtol = -1"):
         simulate(case_settings(config, "fig05_foam_wf2p8"), params, dict(numerics, rtol=-1.0))
+    with pytest.raises(SimulationError, match=r"numerics.rtol = 1e-15; allowed: a number >= 2.22e-14"):
+        simulate(case_settings(config, "fig05_foam_wf2p8"), params, dict(numerics, rtol=1e-15))
+    with pytest.raises(SimulationError, match=r"quadrature_points = 7; allowed: an integer in 8\.\.1000"):
+        simulate(case_settings(config, "fig05_foam_wf2p8"), params,
+                 dict(numerics, quadrature_points=7))
 
 
 def test_workflow_script_writes_the_case_from_the_leading_matrix_blocks(setup, tmp_path):

@@ -6,7 +6,8 @@ At a constant angular velocity ``Omega`` the transverse equations of TLAM and FO
     TLAM: K22 = K2 - Omega^2 M2,         FOAM: K22 = K2 - Omega^2 M2 + Omega^2 D,      (31)
 
 where ``M2`` and ``D`` include the tip-mass terms ``m_t f2(l)^T f2(l)`` and ``m_t (rA + l) S(l)``
-(Section 4.4, Appendix A5, A8). We read the paper's Table 2 as the frequencies of this transverse
+(Section 4.4, Appendix A5, A8); the formula and the eigensolvers are those of
+:mod:`hubbeam.linearised`, shared with the published-table validation. We read the paper's Table 2 as the frequencies of this transverse
 subsystem alone, the Coriolis coupling ``2 Omega R`` to the axial coordinates and the hub left out
 (the paper does not say). Under this reading the TLAM row without tip mass is exactly
 ``sqrt(omega_i^2 - Omega^2)``, and the printed TLAM row follows from the printed natural row by
@@ -16,7 +17,8 @@ generalised eigenvalues of ``(K22, M2)``; eigenvalues of ``K22`` itself (Fig. 9)
 normalisation, here unit modal mass of the bare beam (note 7), and are in s^-2.
 
 Critical speed: ``K22`` loses positive definiteness at the smallest ``Omega`` for which
-``K2 v = Omega^2 B v`` with ``B = M2`` (TLAM) or ``B = M2 - D`` (FOAM), i.e. at ``Omega_c =
+``K2 v = Omega^2 B v`` with ``B = M2`` (TLAM) or ``B = M2 - D`` (FOAM)
+(:func:`hubbeam.linearised.centrifugal_matrix`), i.e. at ``Omega_c =
 mu_max^(-1/2)`` with ``mu_max`` the largest eigenvalue of ``B v = mu K2 v`` (``K2`` is positive
 definite), when ``mu_max > 0``. This is exact (no root search). For FOAM, ``M2 - D`` is negative
 definite whenever ``rA > 0``: with ``w = f2 q2``, ``w(0) = 0`` and Cauchy-Schwarz,
@@ -30,52 +32,35 @@ import pandas as pd
 import scipy.optimize
 import xarray as xr
 
-from hubbeam import paper
+from hubbeam import linearised, paper
 from hubbeam.beam import beam_attributes
 from hubbeam.matrices import MODE_NORMALISATION, assemble, point_mass_terms
 from hubbeam.parameters import BeamParameters, TipMass
 
-#: coefficient of the underlined D terms of Eq. (31) per model
-D_COEFFICIENT = {"TLAM": 0.0, "FOAM": 1.0}
-MODELS = tuple(D_COEFFICIENT)
+#: the models of the eigen-analysis (the variants of Eq. 31 with the axial coupling)
+MODELS = linearised.AXIAL_MODELS
 
 
-def _d_coefficient(model):
-    try:
-        return D_COEFFICIENT[model]
-    except KeyError:
+def _check_model(model):
+    if model not in MODELS:
         raise ValueError(
             f"model = {model!r}: the eigen-analysis is defined for {', '.join(MODELS)}"
-        ) from None
+        )
 
 
 def K22(sm, model, speed):
     """Generalised stiffness ``K22(Omega)`` of Eq. (31) (with tip mass, Section 4.4).
 
-    ``speed`` (rad s-1) may be an array of shape ``s``; the result has shape ``s + (n, n)``.
+    ``speed`` (rad s-1) may be an array of shape ``s``; the result has shape ``s + (n, n)``
+    (:func:`hubbeam.linearised.transverse_stiffness`).
     """
-    c = _d_coefficient(model)
-    omega2 = np.square(np.asarray(speed, dtype=float))[..., None, None]
-    return sm.K2 - omega2 * (sm.M2 - c * sm.D)
-
-
-def _generalised_eigvalsh(A, B):
-    """Ascending eigenvalues of ``A v = lambda B v`` for stacks of symmetric A, SPD B."""
-    C = np.linalg.cholesky(B)
-    Cinv = np.linalg.inv(C)
-    reduced = Cinv @ A @ np.swapaxes(Cinv, -1, -2)
-    return np.linalg.eigvalsh(0.5 * (reduced + np.swapaxes(reduced, -1, -2)))
-
-
-def _frequencies_from_eigenvalues(omega_squared):
-    """Circular frequencies (rad s-1) from ``omega^2``; NaN where ``omega^2 < 0`` (unstable)."""
-    with np.errstate(invalid="ignore"):
-        return np.where(omega_squared >= 0.0, np.sqrt(np.abs(omega_squared)), np.nan)
+    _check_model(model)
+    return linearised.transverse_stiffness(sm.K2, sm.M2, sm.D, model, speed)
 
 
 def natural_frequencies(sm):
     """Circular natural frequencies (rad s-1) of the non-rotating beam: ``(K2, M2)``."""
-    return _frequencies_from_eigenvalues(_generalised_eigvalsh(sm.K2, sm.M2))
+    return linearised.frequencies_from_squares(linearised.symmetric_eigenvalues(sm.K2, sm.M2))
 
 
 def transverse_frequencies(sm, model, speed):
@@ -84,14 +69,13 @@ def transverse_frequencies(sm, model, speed):
     ``speed`` may be an array of shape ``s``; the result has shape ``s + (n,)``, ascending, NaN
     for directions in which ``K22`` is negative (beyond a critical speed).
     """
-    stiffness = K22(sm, model, speed)
-    mass = np.broadcast_to(sm.M2, stiffness.shape)
-    return _frequencies_from_eigenvalues(_generalised_eigvalsh(stiffness, mass))
+    _check_model(model)
+    return linearised.frequencies(sm, model, speed)
 
 
 def _mu_max(K2, B):
     """Largest eigenvalue of ``B v = mu K2 v`` for a stack of symmetric ``B`` (s^2)."""
-    return _generalised_eigvalsh(B, np.broadcast_to(K2, B.shape))[..., -1]
+    return linearised.symmetric_eigenvalues(B, np.broadcast_to(K2, B.shape))[..., -1]
 
 
 def _critical_from_mu(mu_max, search_max):
@@ -115,8 +99,9 @@ def critical_speed(model, params, tip, n_modes, search_max, n_quad=64):
     (always for FOAM, see the module docstring).
     """
     _check_search_max(search_max)
+    _check_model(model)
     sm = assemble(params, tip, n_modes, n_quad)
-    B = sm.M2 - _d_coefficient(model) * sm.D
+    B = linearised.centrifugal_matrix(sm.M2, sm.D, model)
     return float(_critical_from_mu(_mu_max(sm.K2, B), search_max))
 
 
@@ -209,9 +194,9 @@ def k22_sweep(params, masses, positions, speeds, n_modes, n_quad=64):
     the paper's 'dominant' one, whose sign change marks the critical speed).
     """
     bare, M2, D = _mass_position_matrices(params, masses, positions, n_modes, n_quad)
-    omega2 = np.square(np.asarray(speeds, float))[:, None, None]
     eigenvalues = np.stack([
-        np.linalg.eigvalsh(bare.K2 - omega2 * (M2 - D_COEFFICIENT[model] * D)[:, :, None])
+        np.linalg.eigvalsh(linearised.transverse_stiffness(bare.K2, M2[:, :, None], D[:, :, None],
+                                                           model, speeds))
         for model in MODELS
     ])
     units = "s-2"
@@ -240,7 +225,8 @@ def critical_speed_sweep(params, masses, positions, n_modes, search_max, n_quad=
     """
     _check_search_max(search_max)
     bare, M2, D = _mass_position_matrices(params, masses, positions, n_modes, n_quad)
-    mu = np.stack([_mu_max(bare.K2, M2 - D_COEFFICIENT[model] * D) for model in MODELS])
+    mu = np.stack([_mu_max(bare.K2, linearised.centrifugal_matrix(M2, D, model))
+                   for model in MODELS])
     # the continuum frequency equation holds for a uniform beam only: NaN for tabulated sections
     uniform = isinstance(params, BeamParameters)
     continuum = [
@@ -280,23 +266,11 @@ def gyroscopic_eigenvalues(sm, model, speed):
         [M1 0; 0 M2] x'' + 2 Omega [0 -R; R^T 0] x' + [K1 - Omega^2 M1, 0; 0, K22] x = 0,
 
     ``x = (q1, q2)`` (Eqs. 29-31; TLAM without the D term). ``speed`` of shape ``s`` gives an
-    array of shape ``s + (4n,)``, complex, from the first-order (state-space) form. A stable
-    system has purely imaginary pairs ``+-i omega``; a real pair marks divergence.
+    array of shape ``s + (4n,)``, complex (:func:`hubbeam.linearised.quadratic_eigenvalues`). A
+    stable system has purely imaginary pairs ``+-i omega``; a real pair marks divergence.
     """
-    c = _d_coefficient(model)
-    n = sm.M1.shape[0]
-    omega = np.asarray(speed, dtype=float)
-    w = omega[..., None, None]
-    zero = np.zeros(omega.shape + (n, n))
-    stiffness = np.block([[sm.K1 - w**2 * sm.M1, zero],
-                          [zero, sm.K2 - w**2 * (sm.M2 - c * sm.D)]])
-    gyroscopic = 2.0 * w * np.block([[zero, -np.broadcast_to(sm.R, zero.shape)],
-                                     [np.broadcast_to(sm.R.T, zero.shape), zero]])
-    mass_inverse = np.linalg.inv(np.block([[sm.M1, np.zeros((n, n))], [np.zeros((n, n)), sm.M2]]))
-    state = np.block([[np.zeros(omega.shape + (2 * n, 2 * n)),
-                       np.broadcast_to(np.eye(2 * n), omega.shape + (2 * n, 2 * n))],
-                      [-mass_inverse @ stiffness, -mass_inverse @ gyroscopic]])
-    return np.linalg.eigvals(state)
+    _check_model(model)
+    return linearised.eigenvalues(sm, model, speed, axial=True)
 
 
 def gyroscopic_frequencies(sm, model, speed):
@@ -305,8 +279,7 @@ def gyroscopic_frequencies(sm, model, speed):
     One value per conjugate pair (``|Im lambda|`` sorted, every second one); a divergent
     direction (real pair) shows as frequency 0.
     """
-    imaginary = np.sort(np.abs(gyroscopic_eigenvalues(sm, model, speed).imag), axis=-1)
-    return imaginary[..., ::2]
+    return linearised.pair_frequencies(gyroscopic_eigenvalues(sm, model, speed))
 
 
 def campbell(params, masses, speeds, n_modes, n_quad=64):
@@ -320,16 +293,15 @@ def campbell(params, masses, speeds, n_modes, n_quad=64):
     speeds = np.asarray(speeds, dtype=float)
     systems = [assemble(params, TipMass(mass=float(m), position=float(params.L)), n_modes, n_quad)
                for m in masses]
-    omega2 = np.stack([[_generalised_eigvalsh(K22(sm, model, speeds),
-                                              np.broadcast_to(sm.M2, speeds.shape + sm.M2.shape))
-                        for sm in systems] for model in MODELS])
-    eigenvalues = [[gyroscopic_eigenvalues(sm, model, speeds) for sm in systems]
-                   for model in MODELS]
-    coupled = np.sort(np.abs(np.imag(eigenvalues)), axis=-1)[..., ::2]
+    omega2 = np.stack([[linearised.eigenvalues(sm, model, speeds) for sm in systems]
+                       for model in MODELS])
+    eigenvalues = np.array([[gyroscopic_eigenvalues(sm, model, speeds) for sm in systems]
+                            for model in MODELS])
+    coupled = linearised.pair_frequencies(eigenvalues)
     dims = ("model", "tip_mass", "speed")
     return xr.Dataset(
         {
-            "frequency": (dims + ("mode",), _frequencies_from_eigenvalues(omega2) / (2 * np.pi),
+            "frequency": (dims + ("mode",), linearised.frequencies_from_squares(omega2) / (2 * np.pi),
                           {"units": "Hz", "long_name": "vibration frequency of the transverse "
                                                       "subsystem (NaN: unstable)"}),
             "omega_squared": (dims + ("mode",), omega2,

@@ -1,8 +1,8 @@
 """System matrices of the hub-beam with a tip mass (Eqs. 13-20 and the Appendix).
 
 With the point tip mass ``m_t`` at ``x = l`` every mass integral ``int_0^L (.) rho A dx`` gains the
-term ``m_t (.)(l)``; for ``l = L`` this reproduces the
-Appendix, Eqs. (A1)-(A10), with ``(r_A + L)`` and ``S(L)``:
+term ``m_t (.)(l)``; for ``l = L`` this reproduces the Appendix, Eqs. (A1)-(A10), with
+``(r_A + L)`` and ``S(L)``:
 
     J_b = int rho A (rA + x)^2 dx           + m_t (rA + l)^2                  (13), (A1)
     K_1 = int EA f1'^T f1' dx,  K_2 = int EI f2''^T f2'' dx                    (14), (15)
@@ -24,41 +24,13 @@ its own Gauss rule on ``[0, x]``.
 """
 
 import math
-from typing import NamedTuple
 
 import numpy as np
 
 from hubbeam.beam import beam_attributes
+from hubbeam.core.system_matrices import SystemMatrices
 from hubbeam.modes import axial_modes, transverse_modes
 from hubbeam.quadrature import beam_rule, effective_points, gauss_legendre, point_cloud
-
-
-class SystemMatrices(NamedTuple):
-    """Matrices of Eqs. (13)-(20) with the tip-mass terms, plus the point cloud (numba-friendly).
-
-    ``n`` modes, ``nq`` Gauss nodes, point cloud of ``nq + 1`` points whose last one is the tip
-    mass (weight ``m_t``, zero when there is none). See ``docs/architecture.md``.
-    """
-
-    Jh: float  # hub inertia, kg m2
-    Jb: float  # (13) + m_t (rA + l)^2, kg m2
-    K1: np.ndarray  # (n, n) (14), s-2
-    K2: np.ndarray  # (n, n) (15), s-2
-    M1: np.ndarray  # (n, n) (16) incl. tip mass, 1
-    M2: np.ndarray  # (n, n) (16) incl. tip mass, 1
-    V1: np.ndarray  # (n,) (17) incl. tip mass, kg1/2 m
-    V2: np.ndarray  # (n,) (17) incl. tip mass, kg1/2 m
-    D: np.ndarray  # (n, n) (18) incl. m_t (rA + l) S(l), 1
-    R: np.ndarray  # (n, n) (19) incl. m_t f1(l)^T f2(l), 1
-    rA: float  # hub radius, m
-    x: np.ndarray  # (nq + 1,) point-cloud abscissae, m
-    w: np.ndarray  # (nq + 1,) point-cloud masses, kg
-    F1: np.ndarray  # (nq + 1, n) f1 at the points, kg-1/2
-    F2: np.ndarray  # (nq + 1, n) f2 at the points, kg-1/2
-    S: np.ndarray  # (nq + 1, n, n) S(x) at the points, kg-1 m-1
-    f1L: np.ndarray  # (n,) f1(L), kg-1/2
-    f2L: np.ndarray  # (n,) f2(L), kg-1/2
-    SL: np.ndarray  # (n, n) S(L), kg-1 m-1
 
 
 def _check_tip(params, mass, position):

@@ -23,17 +23,18 @@ exponential can overflow.
 
 import numpy as np
 
+from hubbeam.limits import MAX_MODES, MIN_MODES
+
 #: Derivatives of cos and sin of order k (mod 4) as (sign, function) pairs.
 _COS_DERIVATIVES = ((1.0, np.cos), (-1.0, np.sin), (-1.0, np.cos), (1.0, np.sin))
 _SIN_DERIVATIVES = ((1.0, np.sin), (1.0, np.cos), (-1.0, np.sin), (-1.0, np.cos))
 
-MAX_MODES = 20
 MAX_DERIVATIVE = 3
 
 
 def _check_request(n_modes, derivative):
-    if not isinstance(n_modes, (int, np.integer)) or not 1 <= n_modes <= MAX_MODES:
-        raise ValueError(f"n_modes = {n_modes!r}: expected an integer in 1..{MAX_MODES}")
+    if not isinstance(n_modes, (int, np.integer)) or not MIN_MODES <= n_modes <= MAX_MODES:
+        raise ValueError(f"n_modes = {n_modes!r}: expected an integer in {MIN_MODES}..{MAX_MODES}")
     if not isinstance(derivative, (int, np.integer)) or not 0 <= derivative <= MAX_DERIVATIVE:
         raise ValueError(
             f"derivative = {derivative!r}: expected an integer in 0..{MAX_DERIVATIVE}"

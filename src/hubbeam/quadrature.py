@@ -13,10 +13,8 @@ from functools import lru_cache
 
 import numpy as np
 
-#: Below this many nodes the rule is never used, whatever the caller asks for.
-MIN_POINTS = 8
-#: Above this many nodes numpy's Legendre rule is no longer accurate to double precision.
-MAX_POINTS = 1000
+from hubbeam.limits import MAX_QUADRATURE_POINTS, MIN_QUADRATURE_POINTS
+
 #: Fewest nodes on one segment of a composite rule (short segments between close stations).
 MIN_SEGMENT_POINTS = 4
 
@@ -35,8 +33,8 @@ def gauss_legendre(n_points, a, b):
     ``a`` and ``b`` may be arrays of equal shape ``s``; the result then has shape ``s + (n,)``
     (one rule per interval).
     """
-    if not isinstance(n_points, (int, np.integer)) or not 1 <= n_points <= MAX_POINTS:
-        raise ValueError(f"n_points = {n_points!r}: expected an integer in 1..{MAX_POINTS}")
+    if not isinstance(n_points, (int, np.integer)) or not 1 <= n_points <= MAX_QUADRATURE_POINTS:
+        raise ValueError(f"n_points = {n_points!r}: expected an integer in 1..{MAX_QUADRATURE_POINTS}")
     t, w = _reference_rule(int(n_points))
     a = np.asarray(a, dtype=float)[..., None]
     b = np.asarray(b, dtype=float)[..., None]
@@ -56,10 +54,10 @@ def effective_points(n_quad, n_modes):
     whatever is configured; the configured ``n_quad`` (``numerics.quadrature_points``, 64) is
     used when larger.
     """
-    if not isinstance(n_quad, (int, np.integer)) or not MIN_POINTS <= n_quad <= MAX_POINTS:
+    if not isinstance(n_quad, (int, np.integer)) or not MIN_QUADRATURE_POINTS <= n_quad <= MAX_QUADRATURE_POINTS:
         raise ValueError(
             f"numerics.quadrature_points = {n_quad!r}: expected an integer in "
-            f"{MIN_POINTS}..{MAX_POINTS}"
+            f"{MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}"
         )
     return int(max(n_quad, 30 + 3 * n_modes))
 

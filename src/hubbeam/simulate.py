@@ -32,6 +32,8 @@ from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
+from hubbeam.limits import (MAX_MODES, MAX_QUADRATURE_POINTS, MIN_MODES, MIN_QUADRATURE_POINTS,
+                            MIN_RTOL)
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
@@ -45,10 +47,6 @@ MANEUVERS = {"prescribed": (PRESCRIBED, ("wf", "tf")), "torque": (TORQUE, ("tau_
 NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
 #: keys of the optional convergence check (``numerics.convergence_check``, :func:`convergence`)
 CONVERGENCE_KEYS = ("tolerance_factor", "extra_modes", "threshold_m")
-#: the largest number of assumed modes (the config's limit, 1..20)
-MAX_MODES = 20
-#: the smallest relative tolerance the integrator accepts (100 machine epsilons)
-MIN_RTOL = 100 * radau.UROUND
 
 #: variable -> (dimensions, UDUNITS units, long name)
 VARIABLES = {
@@ -100,8 +98,10 @@ def check_case(case: Mapping) -> None:
         raise SimulationError(f"cases.{name}.t_end = {case.get('t_end')!r}; "
                               "allowed: a number > 0 s")
     modes = case.get("modes")
-    if not isinstance(modes, (int, np.integer)) or isinstance(modes, bool) or not 1 <= modes <= 20:
-        raise SimulationError(f"cases.{name}.modes = {modes!r}; allowed: an integer in 1..20")
+    if (not isinstance(modes, (int, np.integer)) or isinstance(modes, bool)
+            or not MIN_MODES <= modes <= MAX_MODES):
+        raise SimulationError(f"cases.{name}.modes = {modes!r}; "
+                              f"allowed: an integer in {MIN_MODES}..{MAX_MODES}")
 
 
 def check_numerics(numerics: Mapping) -> None:
@@ -163,9 +163,10 @@ def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
     if matrices is None:
         tip = TipMass(**case["tip_mass"]) if case.get("tip_mass") else None
         quadrature = numerics.get("quadrature_points")
-        if not isinstance(quadrature, (int, np.integer)) or quadrature < 1:
-            raise SimulationError(f"numerics.quadrature_points = {quadrature!r}; "
-                                  "allowed: an integer >= 1")
+        if (not isinstance(quadrature, (int, np.integer)) or isinstance(quadrature, bool)
+                or not MIN_QUADRATURE_POINTS <= quadrature <= MAX_QUADRATURE_POINTS):
+            raise SimulationError(f"numerics.quadrature_points = {quadrature!r}; allowed: an "
+                                  f"integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
         matrices = assemble(params, tip, n, int(quadrature))
     if np.shape(matrices.K1) != (n, n):
         raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.modes = {n}, but the "
@@ -318,7 +319,7 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
                              "standard_name": "time"}),
         "mode": ("mode", np.arange(1, n + 1), {"units": "1", "long_name": "mode number"}),
     }
-    diverged = status in (radau.DIVERGED, radau.NON_FINITE, radau.STEP_UNDERFLOW)
+    diverged = status in radau.DIVERGED_STATUSES
     warnings = []
     if integrator.get("n_steps", 0) > numerics["step_warning"]:
         warnings.append(f"{integrator['n_steps']} accepted steps exceed numerics.step_warning = "

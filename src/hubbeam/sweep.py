@@ -53,9 +53,6 @@ OUTPUTS = {
                            "residual vibration amplitude max |v(L)| over [t_f, t_end]"),
 }
 
-#: radau5 statuses that make a run diverged (as in hubbeam.simulate)
-DIVERGED_STATUSES = (radau.DIVERGED, radau.NON_FINITE, radau.STEP_UNDERFLOW)
-
 
 def sweep_names(cfg: Mapping) -> list[str]:
     """Names of the configured sweeps (``sweeps.maps``), sorted; none without ``sweeps``."""
@@ -174,7 +171,7 @@ def run_sweep(sweep: Mapping, params: BeamParameters, threads: int | None = None
     wall = time.perf_counter() - start
     LOG.info("sweep %s: %d simulations in %.2f s on %d threads (%.2f ms each), %d diverged, "
              "%d failed, %d rhs calls", sweep["name"], n_points, wall, threads,
-             1e3 * wall / max(n_points, 1), np.isin(status, DIVERGED_STATUSES).sum(),
+             1e3 * wall / max(n_points, 1), np.isin(status, radau.DIVERGED_STATUSES).sum(),
              (status == radau.TOO_MANY_STEPS).sum(), stats[:, radau.RHS_CALLS].sum())
     return build_dataset(sweep, params, results, status, stats)
 
@@ -187,7 +184,7 @@ def build_dataset(sweep: Mapping, params: BeamParameters, results: np.ndarray,
     dims = ("model",) + tuple(axes)
     shape = (len(sweep["models"]),) + tuple(values.size for values in axes.values())
     status = status.reshape(shape)
-    diverged = np.isin(status, DIVERGED_STATUSES)
+    diverged = np.isin(status, radau.DIVERGED_STATUSES)
     stopped = "NaN where the run stopped early (see diverged and status)"
     data_vars = {
         name: (dims, results[:, OUTPUTS[name][0]].reshape(shape),

@@ -49,13 +49,16 @@ from numba.extending import overload
 
 from hubbeam.core.jit import JIT_OPTIONS, borrowing_kernel, inline_kernel, kernel
 
-# Status codes returned by :func:`radau5`.
-SUCCESS = 0
-DIVERGED = 1
-NON_FINITE = 2
-STEP_UNDERFLOW = 3
-TOO_MANY_STEPS = 4
+# Status codes returned by :func:`radau5`, the one home of a run's status (the names are stored
+# in the datasets as ``integrator_status`` and as the sweeps' flag meanings).
+SUCCESS = 0         # reached the end time
+DIVERGED = 1        # the watched quantity (tip deflection) exceeded its limit
+NON_FINITE = 2      # the state or the right-hand side became NaN or infinite
+STEP_UNDERFLOW = 3  # the step size fell below the resolution of the time
+TOO_MANY_STEPS = 4  # the budget of attempted steps was used up
 STATUS_NAMES = ("success", "diverged", "non_finite", "step_underflow", "too_many_steps")
+#: the statuses that mark a run as diverged (``too_many_steps`` only warns)
+DIVERGED_STATUSES = (DIVERGED, NON_FINITE, STEP_UNDERFLOW)
 
 # Slots of the integer statistics array.
 ACCEPTED = 0

@@ -35,8 +35,8 @@ import numpy as np
 from hubbeam.core.eom import free_dofs
 from hubbeam.core.integrate import integrate_free
 from hubbeam.core.jit import JIT_OPTIONS, inline_kernel, kernel
-from hubbeam.core.radau import SUCCESS, STAT_NAMES
-from hubbeam.matrices import SystemMatrices
+from hubbeam.core.radau import STAT_NAMES, SUCCESS
+from hubbeam.core.system_matrices import SystemMatrices
 
 #: columns of the float result array of :func:`sweep_tip_extrema`
 RESULT_COLUMNS = ("peak", "peak_time", "residual", "t_stop")
@@ -46,7 +46,7 @@ N_STATS = len(STAT_NAMES)
 
 @kernel
 def matrices_at(stack, k):
-    """The :class:`~hubbeam.matrices.SystemMatrices` number ``k`` of a stack of them (every field
+    """The :class:`~hubbeam.core.system_matrices.SystemMatrices` number ``k`` of a stack of them (every field
     with a leading axis, scalars as 1-D arrays); array fields are views."""
     return SystemMatrices(stack.Jh[k], stack.Jb[k], stack.K1[k], stack.K2[k], stack.M1[k],
                           stack.M2[k], stack.V1[k], stack.V2[k], stack.D[k], stack.R[k],

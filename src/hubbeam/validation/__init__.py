@@ -1,4 +1,4 @@
-"""Independent validation of the hub-beam models (issue 8).
+"""Independent validation of the hub-beam models.
 
 * :mod:`hubbeam.validation.published` -- published first frequencies of rotating cantilevers
   (flapwise and chordwise, against the dimensionless speed) and of a cantilever with a tip mass,

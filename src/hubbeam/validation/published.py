@@ -10,8 +10,7 @@ Dimensionless quantities (the sources' own):
 
 Values are kept as the printed text, so that the number of printed decimals (and with it the
 precision the source claims) is not lost; :func:`printed_unit` gives one unit in the last printed
-place. The values were transcribed into the project's reference file
-``/work/shared/reference/rotating_cantilever_tables.md``, from which they are copied here.
+place. The values are transcribed from the tables of the sources below.
 
 Sources
 -------

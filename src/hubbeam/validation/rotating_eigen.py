@@ -17,8 +17,8 @@ The steady stretch does not enter the chordwise stiffness: FOAM's centrifugal st
 ``Omega^2 D`` is the tension of the *undeformed* beam. (A geometrically exact beam linearised
 about its stretched state would differ at relative order ``(gamma / alpha)^2``, the axial strain
 of the steady state; the chordwise benchmark of Hamza-Cherif and Houmat is the small-strain model,
-like FOAM.) This gyroscopic quadratic eigenproblem (QEP) is solved by linearisation to a
-``2N x 2N`` generalised eigenproblem (:func:`quadratic_eigenvalues`).
+like FOAM.) The matrices and the solver of this gyroscopic quadratic eigenproblem (QEP) are those
+of :mod:`hubbeam.linearised`.
 
 Flapwise (out of the plane). With ``w = f2 q3`` perpendicular to the plane of rotation the
 foreshortening is ``wc = -1/2 int_0^x (v'^2 + w'^2) dxi``. The velocity of a beam point gains
@@ -39,15 +39,18 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
-import scipy.linalg
 import scipy.optimize
 import xarray as xr
 
+from hubbeam import linearised
 from hubbeam.matrices import MODE_NORMALISATION, assemble
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.validation import published
 
-DIRECTIONS = ("flapwise", "chordwise", "chordwise_uncoupled")
+#: direction -> (variant of Eq. 31 in :mod:`hubbeam.linearised`, axial coordinates coupled)
+_DIRECTION_SYSTEMS = {"flapwise": ("flapwise", False), "chordwise": ("FOAM", True),
+                      "chordwise_uncoupled": ("FOAM", False)}
+DIRECTIONS = tuple(_DIRECTION_SYSTEMS)
 
 
 def dimensionless_parameters(alpha: float, delta: float) -> BeamParameters:
@@ -65,54 +68,28 @@ def dimensionless_parameters(alpha: float, delta: float) -> BeamParameters:
     return BeamParameters(L=1.0, rho=alpha**-2, A=alpha**2, E=1.0, I=1.0, Jh=1.0, rA=delta)
 
 
-def constant_speed_matrices(sm, speed: float, direction: str):
-    """``(M, G, K)`` of the free vibrations at hub speed ``speed`` (module docstring).
-
-    ``direction`` is ``"flapwise"``, ``"chordwise"`` (q1 and q2 with the Coriolis coupling) or
-    ``"chordwise_uncoupled"`` (q2 alone, ``R`` removed). Tip-mass terms come with ``sm``.
-    """
-    w2 = float(speed) ** 2
-    if direction == "flapwise":
-        return sm.M2, np.zeros_like(sm.M2), sm.K2 + w2 * sm.D
-    k22 = sm.K2 - w2 * sm.M2 + w2 * sm.D  # Eq. (31)
-    if direction == "chordwise_uncoupled":
-        return sm.M2, np.zeros_like(sm.M2), k22
-    if direction == "chordwise":
-        n = sm.M1.shape[0]
-        zero = np.zeros((n, n))
-        M = np.block([[sm.M1, zero], [zero, sm.M2]])
-        G = 2.0 * float(speed) * np.block([[zero, -sm.R], [sm.R.T, zero]])  # Eq. (29)
-        K = np.block([[sm.K1 - w2 * sm.M1, zero], [zero, k22]])  # Eqs. (30), (31)
-        return M, G, K
-    raise ValueError(f"direction = {direction!r}: expected one of {', '.join(DIRECTIONS)}")
-
-
-def quadratic_eigenvalues(M, G, K) -> np.ndarray:
-    """Eigenvalues ``lambda`` of ``(lambda^2 M + lambda G + K) x = 0`` (``2N`` complex values).
-
-    Linearised with ``z = (x, lambda x)``: ``[[0, I], [-K, -G]] z = lambda [[I, 0], [0, M]] z``,
-    solved by the QZ algorithm (``scipy.linalg.eig``) without inverting ``M``.
-    """
-    n = M.shape[0]
-    eye, zero = np.eye(n), np.zeros((n, n))
-    A = np.block([[zero, eye], [-K, -G]])
-    B = np.block([[eye, zero], [zero, M]])
-    return scipy.linalg.eig(A, B, right=False)
+def _system(direction: str):
+    try:
+        return _DIRECTION_SYSTEMS[direction]
+    except KeyError:
+        raise ValueError(f"direction = {direction!r}: expected one of {', '.join(DIRECTIONS)}") from None
 
 
 def frequencies(sm, speed: float, direction: str) -> np.ndarray:
     """Circular frequencies (ascending) of the free vibrations at constant ``speed``.
 
+    ``direction`` is ``"flapwise"`` (``K2 + Omega^2 D``), ``"chordwise"`` (q1 and q2 with the
+    Coriolis coupling, FOAM's Eqs. 29-31) or ``"chordwise_uncoupled"`` (q2 alone, ``R``
+    removed); the matrices are :func:`hubbeam.linearised.constant_speed_matrices`, tip-mass
+    terms included when ``sm`` has them.
+
     Without gyroscopic terms this is the symmetric problem ``K x = omega^2 M x``; a negative
     ``omega^2`` (beyond a critical speed) gives NaN. With them, one frequency ``|Im lambda|`` per
-    conjugate pair of :func:`quadratic_eigenvalues`; a divergent pair (real ``lambda``) gives 0.
+    conjugate pair of :func:`hubbeam.linearised.quadratic_eigenvalues`; a divergent pair (real
+    ``lambda``) gives 0.
     """
-    M, G, K = constant_speed_matrices(sm, speed, direction)
-    if not np.any(G):
-        omega2 = scipy.linalg.eigh(K, M, eigvals_only=True)
-        with np.errstate(invalid="ignore"):
-            return np.where(omega2 >= 0.0, np.sqrt(np.abs(omega2)), np.nan)
-    return np.sort(np.abs(quadratic_eigenvalues(M, G, K).imag))[::2]
+    model, axial = _system(direction)
+    return linearised.frequencies(sm, model, float(speed), axial)
 
 
 def first_frequency(gamma: float, alpha: float, delta: float, direction: str, n_modes: int,

@@ -1,0 +1,22 @@
+"""Limits of the numerical inputs, each defined once.
+
+The startup checks (:mod:`hubbeam.config`, which fills them into the JSON schema when it loads
+it, see ``config.SCHEMA_LIMITS``), the Python API (:mod:`hubbeam.simulate`) and the modules that
+build the matrices (:mod:`hubbeam.modes`, :mod:`hubbeam.quadrature`) all read them here. The
+run status codes live with the integrator that returns them (:mod:`hubbeam.core.radau`), as the
+jitted core imports nothing of the rest of the package. Importing this module is cheap (no numba).
+"""
+
+import numpy as np
+
+#: the fewest and the most assumed modes per coordinate set (Eqs. 7-8); above 20 the clamped-free
+#: modes' exponent-safe evaluation has not been checked
+MIN_MODES = 1
+MAX_MODES = 20
+#: the smallest relative tolerance of the Radau IIA integrator: 100 machine epsilons
+#: (``hubbeam.core.radau.UROUND``); its Newton test divides by ``rtol``
+MIN_RTOL = 100 * float(np.finfo(np.float64).eps)
+#: Gauss-Legendre nodes on [0, L]: below this many the rule is never used, whatever is asked for
+MIN_QUADRATURE_POINTS = 8
+#: above this many nodes numpy's Legendre rule is no longer accurate to double precision
+MAX_QUADRATURE_POINTS = 1000

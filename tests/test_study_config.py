@@ -336,13 +336,15 @@ def test_the_snakefile_reports_a_bad_table_file_before_any_rule(tmp_path, study)
 
 # --- the beam a study's rules build ------------------------------------------------------------
 
-def test_beam_from_config_builds_the_uniform_beam_of_table1_and_refuses_sections_clearly(sectioned):
-    from hubbeam.beam import beam_from_config
+def test_beam_from_config_builds_the_uniform_beam_of_table1_and_a_sectioned_study_beam(sectioned):
+    from hubbeam.beam import BeamSections, beam_from_config
     from hubbeam.paper import TABLE1
     from hubbeam.parameters import BeamParameters
 
     paper = yaml.safe_load((REPO / "config" / "config.yaml").read_text())
     assert beam_from_config(paper["beam"]) == BeamParameters.from_config(paper)
     assert beam_from_config(paper["beam"]) == BeamParameters(**TABLE1)
-    with pytest.raises(NotImplementedError, match="beam.sections"):
-        beam_from_config(sectioned["beam"])
+    beam = beam_from_config(sectioned["beam"])
+    assert isinstance(beam, BeamSections)
+    assert beam.L == sectioned["beam"]["length"]
+    assert list(beam.x) == sectioned["beam"]["sections"]["x"]

@@ -10,7 +10,7 @@ from pathlib import Path
 from snakemake.utils import min_version
 
 from hubbeam.config import CASE_NAME_PATTERN, ConfigError, validate_config
-from hubbeam.plotting.figures import FigureDataError, check_figure_cases
+from hubbeam.products import PAPER_PRODUCTS, ProductError, check_product_cases
 
 min_version("9.0")
 
@@ -22,8 +22,8 @@ configfile: "config/config.yaml"
 # problem in one message; a bad config stops here, before any rule, without a traceback.
 try:
     validate_config(config, files=workflow.configfiles)
-    check_figure_cases(config["cases"])
-except (ConfigError, FigureDataError) as error:
+    check_product_cases(PAPER_PRODUCTS, config["cases"])
+except (ConfigError, ProductError) as error:
     sys.exit(str(error))
 
 

@@ -35,7 +35,8 @@ rule reproduction_report:
         **published_validation_inputs(),
         code=hubbeam_sources("report.py", "claims.py", "document.py", "products.py", "templates/reproduction.md.j2",
                              "io.py", "plotting/figures.py", "validation/report.py",
-                             "validation/published.py", "validation/rotating_eigen.py"),
+                             "templates/validation_published.md.j2", "validation/published.py",
+                             "validation/rotating_eigen.py"),
     output:
         markdown=ensure("results/report/reproduction.md", non_empty=True),
         html=report(

@@ -33,9 +33,9 @@ rule reproduction_report:
         datasets=simulation_results(),
         # the published-table validation (none when the config has no `validation` section)
         **published_validation_inputs(),
-        code=hubbeam_sources("report.py", "claims.py", "document.py", "products.py", "templates/reproduction.md.j2",
-                             "io.py", "plotting/figures.py", "validation/report.py",
-                             "templates/validation_published.md.j2", "validation/published.py",
+        code=hubbeam_sources("report.py", "claims.py", "document.py", "products.py", "io.py",
+                             "templates/reproduction.md.j2", "templates/validation_published.md.j2",
+                             "plotting/figures.py", "validation/report.py", "validation/published.py",
                              "validation/rotating_eigen.py"),
     output:
         markdown=ensure("results/report/reproduction.md", non_empty=True),

@@ -12,8 +12,9 @@
 Every number of the text (counts, ratios, the evidence for how a table's last digit was
 obtained, the key findings of docs/validation.md) is computed here from those files; none is
 typed in; the prose is in the templates ``validation_published.md.j2`` and
-``validation_exudyn.md.j2``. A missing file raises :class:`hubbeam.io.ResultFileError` naming it and the command
-that builds it; a file without a needed column raises :class:`ValidationInputError`.
+``validation_exudyn.md.j2``. A missing file raises :class:`hubbeam.io.ResultFileError` naming it
+and the command that builds it; a file without a needed column raises
+:class:`ValidationInputError`.
 """
 
 from __future__ import annotations

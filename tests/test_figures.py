@@ -319,3 +319,20 @@ def test_fig07_draws_q_theta_and_its_ratio_to_the_torque_amplitude(datasets):
                     if json.loads(d.attrs["maneuver"]).get("tau_max") == tau}
         assert _is_series_of_a_run(line, same_tau, model, modes,
                                    lambda ds: 100.0 / tau * ds["Q_theta"].values), label
+
+
+# --- layering ------------------------------------------------------------------------------------
+
+def test_plotting_and_the_registry_do_not_import_the_report_or_the_claims():
+    import ast
+    from pathlib import Path
+
+    import hubbeam
+
+    package = Path(hubbeam.__file__).parent
+    forbidden = ("hubbeam.report", "hubbeam.claims", "hubbeam.document")
+    for path in [*sorted((package / "plotting").glob("*.py")), package / "products.py", package / "measures.py"]:
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = ([alias.name for alias in node.names] if isinstance(node, ast.Import)
+                     else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
+            assert not [n for n in names if n.startswith(forbidden)], (path.name, names)

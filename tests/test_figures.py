@@ -86,9 +86,9 @@ def test_the_paper_products_cover_its_figures_and_tables():
 
 
 def test_a_study_declares_a_product_from_a_mapping():
-    product = product_from_entry("spinups", {"kind": "simulation figure", "function": "hubbeam.plotting.fig05:plot",
-                                             "title": "Spin-ups", "ours": "Our runs.", "in_paper": False,
-                                             "cases": ["a", "b"]})
+    product = product_from_entry("spinups", {
+        "kind": "simulation figure", "function": "hubbeam.plotting.fig05:plot", "title": "Spin-ups",
+        "ours": "Our runs.", "in_paper": False, "cases": ["a", "b"]})
     assert product.cases == ("a", "b") and product.category == "Beyond the paper"
     with pytest.raises(ProductError, match="spinups: unknown key.*colour.*allowed: cases"):
         product_from_entry("spinups", {"colour": "red"})

@@ -103,7 +103,8 @@ class Results:
         """The run of product ``key`` matching ``criteria`` (the one with most modes if several)."""
         matches = select(self.group(key), **criteria)
         if not matches:
-            raise ClaimInputError(f"no {key} case with {criteria}; cases: {', '.join(self.products[key].cases)}")
+            raise ClaimInputError(f"no {key} case with {criteria}; "
+                                  f"cases: {', '.join(self.products[key].cases)}")
         return max(matches.items(), key=lambda item: n_modes(*item))
 
     def table2(self) -> list[dict]:

@@ -14,7 +14,7 @@ from pathlib import Path
 from snakemake.utils import min_version
 
 from hubbeam.config import CASE_NAME_PATTERN, ConfigError, validate_config
-from hubbeam.plotting.figures import FigureDataError, check_figure_cases
+from hubbeam.products import PAPER_PRODUCTS, ProductError, check_product_cases
 from hubbeam.study import StudyError, claim_results_dir, is_study, results_dir
 from hubbeam.tabular import resolve_files
 
@@ -38,8 +38,8 @@ try:
     if STUDY:
         claim_results_dir(results_dir(config), workflow.configfiles[-1])
     else:
-        check_figure_cases(config["cases"])
-except (ConfigError, FigureDataError, StudyError) as error:
+        check_product_cases(PAPER_PRODUCTS, config["cases"])
+except (ConfigError, ProductError, StudyError) as error:
     sys.exit(str(error))
 
 

@@ -406,8 +406,9 @@ def test_a_config_without_the_cases_of_a_figure_stops_with_one_clear_message(tmp
     run = snakemake(repo_root, workdir, "--dry-run", "--configfile", str(config))
     output = run.stdout + run.stderr
     assert run.returncode != 0
-    assert "no case for fig03: the config needs at least one case named fig03_*" in output
-    assert "no case for table3: the config needs at least one case named tab3_*" in output
+    assert "the config `cases` does not define" in output
+    assert "  - fig03: fig03_cfoam_n1\n" in output
+    assert "  - table3: tab3_foam_tau100, tab3_foam_tau200, tab3_foam_tau400, tab3_foam_tau50\n" in output
     assert "Traceback" not in output and 'File "' not in output
 
 

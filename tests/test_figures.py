@@ -1,4 +1,4 @@
-"""Figures: case grouping, every figure renders from contract datasets, reproducible bytes,
+"""Figures: the registry's cases, every figure renders from contract datasets, reproducible bytes,
 loud failures on missing data, divergence handling, labels with units."""
 
 from __future__ import annotations
@@ -13,8 +13,10 @@ import pytest
 from PIL import Image
 
 from hubbeam.io import ResultFileError, open_result
-from hubbeam.plotting import SIMULATION_FIGURES, cases_for, plotter, render
-from hubbeam.plotting.figures import FIGURE_CASE_PREFIXES, FigureDataError
+from hubbeam.plotting import draw
+from hubbeam.plotting.figures import FigureDataError
+from hubbeam.products import (EIGEN_FIGURE, PAPER_PRODUCTS, SIMULATION_FIGURE, Product, ProductError,
+                              check_product_cases, of_kind, product_from_entry)
 from hubbeam.plotting.style import styled, units_tex
 from synthetic_results import (paper_cases, run_script, simulation_dataset, write_eigen,
                                write_simulations)
@@ -30,8 +32,19 @@ def datasets(sims):
     return {case: open_result(path) for case, path in sims.items()}
 
 
+SIMULATION_FIGURES = sorted(of_kind(PAPER_PRODUCTS, SIMULATION_FIGURE))
+
+
 def group(datasets, key):
-    return {case: datasets[case] for case in cases_for(key, datasets)}
+    return {case: datasets[case] for case in PAPER_PRODUCTS[key].cases}
+
+
+def plotter(key):
+    return PAPER_PRODUCTS[key].resolve()
+
+
+def render(key, runs, pdf_path):
+    return draw(plotter(key), pdf_path, runs)
 
 
 def sha(path):
@@ -40,28 +53,54 @@ def sha(path):
 
 # --- which case goes where -----------------------------------------------------------------------
 
-def test_cases_are_grouped_by_name_prefix():
-    names = list(paper_cases())
-    assert cases_for("fig05", names) == ["fig05_foam_wf2p8", "fig05_foam_wf3p5", "fig05_tlam_wf2p8",
-                                         "fig05_tlam_wf3p5"]
-    assert cases_for("table3", names) == sorted(n for n in names if n.startswith("tab3_"))
+def test_every_case_a_product_names_is_configured():
+    check_product_cases(PAPER_PRODUCTS, paper_cases())
+    assert PAPER_PRODUCTS["fig05"].cases == ("fig05_foam_wf2p8", "fig05_foam_wf3p5", "fig05_tlam_wf2p8",
+                                             "fig05_tlam_wf3p5")
     # Fig. 8 compares with the FOAM torque runs of Table 3
-    assert set(cases_for("table3", names)) < set(cases_for("fig08", names))
-    for key in FIGURE_CASE_PREFIXES:
-        assert cases_for(key, names), key
+    assert set(PAPER_PRODUCTS["table3"].cases) < set(PAPER_PRODUCTS["fig08"].cases)
 
 
-def test_a_new_case_joins_a_figure_by_its_name():
+def test_missing_cases_are_listed_in_one_message():
+    names = [name for name in paper_cases() if name not in ("fig04_foam", "tab3_foam_tau50")]
+    with pytest.raises(ProductError) as error:
+        check_product_cases(PAPER_PRODUCTS, names)
+    message = str(error.value)
+    assert "fig04: fig04_foam" in message and "table3: tab3_foam_tau50" in message
+    assert "fig08: tab3_foam_tau50" in message and "fig05" not in message
+
+
+def test_a_case_joins_a_figure_only_when_a_product_names_it():
     names = list(paper_cases()) + ["fig05_cfoam_wf2p8"]
-    assert "fig05_cfoam_wf2p8" in cases_for("fig05", names)
-    assert "fig05_cfoam_wf2p8" not in cases_for("fig06", names)
+    check_product_cases(PAPER_PRODUCTS, names)
+    assert all("fig05_cfoam_wf2p8" not in p.cases for p in PAPER_PRODUCTS.values())
 
 
-def test_unknown_figure_and_empty_group_are_clear_errors():
-    with pytest.raises(KeyError, match="fig99.*allowed"):
-        cases_for("fig99", paper_cases())
-    with pytest.raises(FigureDataError, match="fig05_"):
-        cases_for("fig05", ["fig04_foam"])
+def test_the_paper_products_cover_its_figures_and_tables():
+    paper = [key for key, p in PAPER_PRODUCTS.items() if p.in_paper]
+    assert paper == [f"fig{i:02d}" for i in range(3, 11)] + ["table1", "table2", "table3"]
+    assert set(of_kind(PAPER_PRODUCTS, EIGEN_FIGURE)) == {"fig09", "campbell", "critical_map"}
+    for product in PAPER_PRODUCTS.values():
+        assert callable(product.resolve()), product.key
+        assert (product.paper and product.ours) or product.kind == "table", product.key
+
+
+def test_a_study_declares_a_product_from_a_mapping():
+    product = product_from_entry("spinups", {
+        "kind": "simulation figure", "function": "hubbeam.plotting.fig05:plot", "title": "Spin-ups",
+        "ours": "Our runs.", "in_paper": False, "cases": ["a", "b"]})
+    assert product.cases == ("a", "b") and product.category == "Beyond the paper"
+    with pytest.raises(ProductError, match="spinups: unknown key.*colour.*allowed: cases"):
+        product_from_entry("spinups", {"colour": "red"})
+    with pytest.raises(ProductError, match="kind 'movie' is not allowed; allowed: simulation figure"):
+        Product("x", "movie", "m:f", "X", "x")
+
+
+def test_snakemake_captions_escape_restructuredtext_markup():
+    caption = PAPER_PRODUCTS["fig03"].caption()
+    assert caption.startswith("**Fig. 3: high-order terms of CFOAM.** *Paper:* The terms")
+    assert "fig03\\_cfoam\\_n1" in caption and "M\\_thth" in caption
+    assert "\\|Q\\_theta\\|" in PAPER_PRODUCTS["table3"].caption()
 
 
 # --- rendering -----------------------------------------------------------------------------------
@@ -147,17 +186,17 @@ def test_units_are_typeset(units, tex):
 # --- the Snakemake scripts -----------------------------------------------------------------------
 
 def test_figure_script_writes_pdf_and_png(sims, tmp_path):
-    cases = cases_for("fig04", sims)
+    cases = list(PAPER_PRODUCTS["fig04"].cases)
     out = tmp_path / "fig04.pdf"
     run_script("figure_simulation.py", input={"datasets": [str(sims[c]) for c in cases]},
                output={"pdf": str(out), "png": str(out.with_suffix(".png"))},
-               params={"figure": "fig04", "cases": cases})
+               params={"function": PAPER_PRODUCTS["fig04"].function, "cases": cases})
     assert out.is_file() and out.with_suffix(".png").is_file()
 
 
 @pytest.mark.parametrize("damage", ["missing", "corrupt", "truncated"])
 def test_figure_script_fails_loudly_naming_a_bad_dataset(damage, sims, tmp_path):
-    cases = cases_for("fig04", sims)
+    cases = list(PAPER_PRODUCTS["fig04"].cases)
     files = [str(sims[c]) for c in cases]
     bad = tmp_path / "fig04_foam.nc"
     if damage == "corrupt":
@@ -168,21 +207,21 @@ def test_figure_script_fails_loudly_naming_a_bad_dataset(damage, sims, tmp_path)
     out = tmp_path / "fig04.pdf"
     with pytest.raises(ResultFileError, match=str(bad)):
         run_script("figure_simulation.py", input={"datasets": files}, output={"pdf": str(out)},
-                   params={"figure": "fig04", "cases": cases})
+                   params={"function": PAPER_PRODUCTS["fig04"].function, "cases": cases})
     assert not out.exists()
 
 
-@pytest.mark.parametrize("key, module, inputs", [
-    ("fig09", "fig09", {"k22": "k22", "critical": "critical_speeds"}),
-    ("campbell", "campbell", {"campbell": "campbell", "critical": "critical_speeds"}),
-    ("critical_map", "critical_map", {"critical": "critical_speeds"}),
+@pytest.mark.parametrize("key, inputs", [
+    ("fig09", {"k22": "k22", "critical": "critical_speeds"}),
+    ("campbell", {"campbell": "campbell", "critical": "critical_speeds"}),
+    ("critical_map", {"critical": "critical_speeds"}),
 ])
-def test_eigen_figure_script_passes_named_inputs(key, module, inputs, tmp_path_factory, tmp_path):
+def test_eigen_figure_script_passes_named_inputs(key, inputs, tmp_path_factory, tmp_path):
     eigen = write_eigen(tmp_path_factory.mktemp("eigen"), n_modes=3, n_quad=16)
     out = tmp_path / f"{key}.pdf"
     run_script("figure_eigen.py",
                input={name: str(eigen[stem]) for name, stem in inputs.items()} | {"style": "x", "code": []},
-               output={"pdf": str(out)}, params={"module": module})
+               output={"pdf": str(out)}, params={"function": PAPER_PRODUCTS[key].function})
     assert out.is_file() and out.with_suffix(".png").is_file()
 
 
@@ -280,3 +319,20 @@ def test_fig07_draws_q_theta_and_its_ratio_to_the_torque_amplitude(datasets):
                     if json.loads(d.attrs["maneuver"]).get("tau_max") == tau}
         assert _is_series_of_a_run(line, same_tau, model, modes,
                                    lambda ds: 100.0 / tau * ds["Q_theta"].values), label
+
+
+# --- layering ------------------------------------------------------------------------------------
+
+def test_plotting_and_the_registry_do_not_import_the_report_or_the_claims():
+    import ast
+    from pathlib import Path
+
+    import hubbeam
+
+    package = Path(hubbeam.__file__).parent
+    forbidden = ("hubbeam.report", "hubbeam.claims", "hubbeam.document")
+    for path in [*sorted((package / "plotting").glob("*.py")), package / "products.py", package / "measures.py"]:
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = ([alias.name for alias in node.names] if isinstance(node, ast.Import)
+                     else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
+            assert not [n for n in names if n.startswith(forbidden)], (path.name, names)

@@ -40,7 +40,7 @@ from hubbeam.config import case_settings
 from hubbeam.io import ResultFileError, open_result, staged, write_netcdf
 from hubbeam.matrices import assemble, to_dataset
 from hubbeam.parameters import BeamParameters, TipMass
-from hubbeam.plotting import plotter
+from hubbeam.products import PAPER_PRODUCTS
 from hubbeam.plotting.style import styled
 from hubbeam.simulate import (SimulationError, compile_kernels, simulate, simulation_inputs)
 from synthetic_results import CONFIG_FILE, REPO, run_script, write_eigen, write_simulations
@@ -295,10 +295,10 @@ def script_runs(synthetic, out: Path, config: dict):
          {k: t[f"table3.{k}"] for k in ("csv", "md", "tex")}, {"cases": tab3}),
         ("figure_simulation.py", {"datasets": [str(sims[c]) for c in fig04]},
          {"pdf": str(out / "figures" / "fig04.pdf"), "png": str(out / "figures" / "fig04.png")},
-         {"figure": "fig04", "cases": fig04}),
+         {"function": PAPER_PRODUCTS["fig04"].function, "cases": fig04}),
         ("figure_eigen.py", {"critical": str(eigen["critical_speeds"]), "style": "x", "code": []},
          {"pdf": str(out / "figures" / "critical_map.pdf"), "png": str(out / "figures" / "critical_map.png")},
-         {"module": "critical_map"}),
+         {"function": PAPER_PRODUCTS["critical_map"].function}),
         ("report_claims.py", {"datasets": [str(sims[c]) for c in cases], "table2": str(eigen["table2"]),
                               "critical_speeds": str(eigen["critical_speeds_csv"])},
          {"claims": str(out / "report" / "claims.csv")}, {"cases": cases}),
@@ -347,7 +347,7 @@ def test_a_truncated_input_is_named_by_the_script_reading_it(script, synthetic, 
     arguments = {
         "table_3.py": ({"datasets": [str(bad)]}, {"csv": str(out / "table3.csv")}, {"cases": ["tab3_foam_tau100"]}),
         "figure_eigen.py": ({"critical": str(truncate(eigen["critical_speeds"], tmp_path / "critical.nc"))},
-                            {"pdf": str(out / "critical_map.pdf")}, {"module": "critical_map"}),
+                            {"pdf": str(out / "critical_map.pdf")}, {"function": PAPER_PRODUCTS["critical_map"].function}),
         "report_claims.py": ({"datasets": datasets, "table2": str(eigen["table2"]),
                               "critical_speeds": str(eigen["critical_speeds_csv"])},
                              {"claims": str(out / "claims.csv")}, {"cases": cases}),
@@ -466,7 +466,7 @@ def test_a_killed_workflow_leaves_no_partial_result_and_resumes(tmp_path):
         assert math.isfinite(ds.attrs["convergence_modes_diff_m"])
     # ... and Fig. 5 (built from it by the workflow above) draws it up to the divergence, marked
     with styled():
-        fig = plotter("fig05")({case: ds for case, ds in datasets.items() if case.startswith("fig05_")})
+        fig = PAPER_PRODUCTS["fig05"].resolve()({case: ds for case, ds in datasets.items() if case.startswith("fig05_")})
     texts = [text.get_text() for text in fig.findobj(matplotlib.text.Text)]
     assert f"TLAM diverged at t = {tlam.attrs['diverged_at_s']:.2f} s" in texts
 

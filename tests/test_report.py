@@ -12,10 +12,11 @@ import pytest
 
 from hubbeam import paper
 from hubbeam.io import open_result
-from hubbeam.plotting import cases_for
-from hubbeam.report import (CLAIM_COLUMNS, ClaimInputError, Results, claims, evaluate,
-                            fit_sinusoid, markdown_to_html, printed_tolerance, read_claims,
-                            reproduction_markdown, wrap_phase, write_claims)
+from hubbeam.claims import (CLAIM_COLUMNS, ClaimInputError, Results, claims, evaluate, printed_tolerance,
+                            read_claims, write_claims)
+from hubbeam.document import markdown_to_html
+from hubbeam.products import PAPER_PRODUCTS
+from hubbeam.report import reproduction_markdown
 from hubbeam.io import ResultFileError
 from hubbeam.tables import Column, Table, table1, table2, table3, to_latex, to_markdown, write_table
 from hubbeam.validation.report import ValidationInputError, exudyn_markdown, published_section
@@ -55,27 +56,7 @@ def by_id(rows):
     return {row["id"]: row for row in rows}
 
 
-# --- measures ------------------------------------------------------------------------------------
-
-def test_sinusoid_fit_recovers_amplitude_frequency_and_phase_off_the_spectral_grid():
-    t = np.arange(10.0, 30.0, 0.01)
-    y = 0.02 + 0.3 * np.cos(2.377 * (t - 10.0) - 2.9) + 0.01 * np.cos(17.0 * t)
-    fit = fit_sinusoid(t, y, 10.0)
-    assert fit.omega == pytest.approx(2.377, rel=1e-4)
-    assert fit.amplitude == pytest.approx(0.3, rel=1e-3)
-    assert wrap_phase(fit.phase + 2.9) == pytest.approx(0.0, abs=2e-3)
-
-
-def test_sinusoid_fit_needs_a_uniform_grid():
-    with pytest.raises(ValueError, match="uniform"):
-        fit_sinusoid([0, 1, 3, 4, 5, 6, 7, 8, 9], np.zeros(9), 0.0)
-
-
-@pytest.mark.parametrize("angle, wrapped", [(0.5, 0.5), (2 * math.pi + 0.5, 0.5), (-math.pi, math.pi),
-                                            (3 * math.pi / 2, -math.pi / 2)])
-def test_wrap_phase(angle, wrapped):
-    assert wrap_phase(angle) == pytest.approx(wrapped)
-
+# --- tolerances ------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("printed, tolerance", [("2.60", 0.005 / 2.6), ("1.91", 0.005 / 1.91),
                                                 ("100", 0.5), ("1500", 50 / 1500), ("0.45", 0.005 / 0.45),
@@ -153,7 +134,7 @@ def test_a_claim_without_its_run_fails_naming_what_is_missing(results_dir):
     partial = {case: path for case, path in sims.items() if not case.startswith("fig08_sfoam_tau200")}
     results = Results(partial, eigen["table2"], eigen["critical_speeds_csv"])
     wanted = [c for c in claims() if c.id == "sfoam_phase_lead_tau200"]
-    with pytest.raises(ClaimInputError, match="fig08.*SFOAM.*200"):
+    with pytest.raises(ClaimInputError, match="fig08 need the run.*fig08_sfoam_tau200, fig08_sfoam_tau200_n1"):
         evaluate(results, wanted)
 
 
@@ -170,7 +151,7 @@ def test_table1_comes_from_the_config(study_config):
 
 def test_table3_is_the_largest_q_theta_of_each_foam_torque_run(results_dir):
     _, sims, _ = results_dir
-    runs = {c: open_result(sims[c]) for c in cases_for("fig08", sims)}  # includes SFOAM runs
+    runs = {c: open_result(sims[c]) for c in PAPER_PRODUCTS["fig08"].cases}  # includes SFOAM runs
     table = table3(runs)
     assert [row["tau_max"] for row in table.rows] == sorted(paper.TABLE3)
     for row in table.rows:
@@ -215,9 +196,9 @@ def test_report_scripts_write_claims_markdown_and_html(results_dir, tmp_path):
     figures = []
     for key in ("fig04", "fig08"):
         pdf = tmp_path / "figures" / f"{key}.pdf"
-        group = cases_for(key, sims)
+        group = list(PAPER_PRODUCTS[key].cases)
         run_script("figure_simulation.py", input={"datasets": [str(sims[c]) for c in group]},
-                   output={"pdf": str(pdf)}, params={"figure": key, "cases": group})
+                   output={"pdf": str(pdf)}, params={"function": PAPER_PRODUCTS[key].function, "cases": group})
         figures.append(str(pdf.with_suffix(".png")))
     table_md = tmp_path / "tables" / "table2.md"
     write_table(table2(eigen["table2"], 1.0), table_md.with_suffix(".csv"), csv=False)
@@ -238,14 +219,15 @@ def test_report_scripts_write_claims_markdown_and_html(results_dir, tmp_path):
     assert "<table>" in page and "<ol>" in page
 
 
-def test_markdown_converter_subset(tmp_path):
+def test_markdown_to_html_renders_the_markup_the_reports_use(tmp_path):
     md = ("# Title *x*\n\nSome **bold** `a|b` text\ncontinued.\n\n- one\n- two\n\n1. first\n2. second\n\n"
-          "| a | b |\n|---|---:|\n| 1 \\| 2 | <3> |\n")
+          "| a | b |\n|---|---:|\n| 1 \\| 2 | 3 |\n")
     page = markdown_to_html(md, tmp_path)
     assert "<h1>Title <em>x</em></h1>" in page
-    assert "<p>Some <strong>bold</strong> <code>a|b</code> text continued.</p>" in page
-    assert "<ul><li>one</li><li>two</li></ul>" in page and "<ol><li>first</li><li>second</li></ol>" in page
-    assert "<td>1 | 2</td><td class=r>&lt;3&gt;</td>" in page
+    assert "<p>Some <strong>bold</strong> <code>a|b</code> text\ncontinued.</p>" in page
+    assert "<li>one</li>" in page and "<ol>\n<li>first</li>" in page
+    assert '<td>1 | 2</td>\n<td style="text-align:right">3</td>' in page
+    assert page.startswith("<!DOCTYPE html>") and "<style>" in page
     with pytest.raises(FileNotFoundError, match="missing.png"):
         markdown_to_html("![x](missing.png)\n", tmp_path)
 

@@ -21,6 +21,7 @@ import numpy as np
 import xarray as xr
 
 from hubbeam import paper
+from hubbeam.measures import peak
 from hubbeam.plotting.figures import maneuver_value, model
 
 
@@ -228,7 +229,7 @@ def max_abs_q_theta(case: str, ds: xr.Dataset) -> float:
     """Largest |Q_theta| (N m) over the run (NaN samples after a divergence ignored)."""
     if "Q_theta" not in ds.data_vars:
         raise KeyError(f"dataset of case {case!r} has no variable 'Q_theta' (needed for Table 3)")
-    return float(np.nanmax(np.abs(ds["Q_theta"].values)))
+    return peak(ds["Q_theta"].values)
 
 
 def table3_rows(datasets: Mapping[str, xr.Dataset]) -> list[dict]:

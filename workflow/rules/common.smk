@@ -73,51 +73,45 @@ def final_targets():
 
 # --- figures, tables, claims and report (rules in figures.smk and report.smk) -------------------
 
-from hubbeam.plotting import SIMULATION_FIGURES
-from hubbeam.plotting.figures import cases_for
+from hubbeam.products import (EIGEN_FIGURE, PAPER_PRODUCTS, SIMULATION_FIGURE, TABLE, of_kind,
+                              product_cases)
 
 FIGURE_STYLE = os.path.relpath(PACKAGE_DIR / "plotting" / "hubbeam.mplstyle")
-CRITICAL_SPEEDS_NC = "results/eigen/critical_speeds.nc"
-#: figures of the eigen-analysis: key -> (plotting module, {plot() keyword: result file})
-EIGEN_FIGURES = {
-    "fig09": ("fig09", {"k22": "results/eigen/k22.nc", "critical": CRITICAL_SPEEDS_NC}),
-    "campbell": ("campbell", {"campbell": "results/eigen/campbell.nc", "critical": CRITICAL_SPEEDS_NC}),
-    "critical_map": ("critical_map", {"critical": CRITICAL_SPEEDS_NC}),
-}
-PAPER_FIGURES = ("fig03", "fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10")
-#: figure and table groups whose runs the claims read
-CLAIM_GROUPS = ("fig03", "fig04", "fig05", "fig06", "fig08", "fig10", "table3")
+#: the caption file of every product in `snakemake --report`: it prints `params.caption`
+PRODUCT_CAPTION = "../report/product.rst"
 
 
-def figure_cases(key):
-    """Case names drawn on figure (or table) `key`: the configured cases named with its prefix
-    (`hubbeam.plotting.figures.FIGURE_CASE_PREFIXES`)."""
-    return cases_for(key, cases())
+def product(key):
+    """The product `key` of the registry (`hubbeam.products.PAPER_PRODUCTS`)."""
+    return PAPER_PRODUCTS[key]
 
 
-def figure_datasets(key):
-    return expand("results/simulations/{case}.nc", case=figure_cases(key))
+def product_datasets(key):
+    """The result files of the cases product `key` reads."""
+    return expand("results/simulations/{case}.nc", case=product(key).cases)
 
 
-def figure_code(module, *extra):
-    """The package sources a figure's drawing depends on (inputs, so that edits rerun it)."""
-    base = ("plotting/__init__.py", "plotting/figures.py", "plotting/style.py", "io.py")
-    return hubbeam_sources(*base, f"plotting/{module}.py", *extra)
-
-
-def figure_category(key):
-    return "Figures of the paper" if key in PAPER_FIGURES else "Beyond the paper"
+def figure_code(module_file, *extra):
+    """The package sources a figure's drawing depends on (inputs, so that edits rerun it):
+    `module_file` (e.g. "plotting/fig05.py", `Product.module_file`), `extra` and the shared ones."""
+    base = ("plotting/__init__.py", "plotting/figures.py", "plotting/style.py", "io.py", "products.py")
+    return hubbeam_sources(*base, module_file, *extra)
 
 
 def figure_targets():
-    """PDF and PNG of every figure."""
-    keys = sorted(SIMULATION_FIGURES) + sorted(EIGEN_FIGURES)
+    """PDF and PNG of every figure of the registry."""
+    keys = sorted(of_kind(PAPER_PRODUCTS, SIMULATION_FIGURE, EIGEN_FIGURE))
     return expand("results/figures/{key}.{ext}", key=keys, ext=("pdf", "png"))
 
 
+def table_keys():
+    """Keys of the tables of the registry (`table1`, ...)."""
+    return sorted(of_kind(PAPER_PRODUCTS, TABLE))
+
+
 def table_targets():
-    """csv, Markdown and LaTeX of Tables 1-3 (table2.csv itself comes from the eigen rule)."""
-    return expand("results/tables/table{i}.{ext}", i=(1, 2, 3), ext=("csv", "md", "tex"))
+    """csv, Markdown and LaTeX of every table (table2.csv itself comes from the eigen rule)."""
+    return expand("results/tables/{key}.{ext}", key=table_keys(), ext=("csv", "md", "tex"))
 
 
 def used_tip_masses():
@@ -125,7 +119,8 @@ def used_tip_masses():
 
 
 def claim_cases():
-    return sorted({case for key in CLAIM_GROUPS for case in figure_cases(key)})
+    """The runs the claims read: every case of the paper's products."""
+    return product_cases(PAPER_PRODUCTS)
 
 
 def report_targets():

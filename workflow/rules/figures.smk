@@ -1,53 +1,55 @@
 """Figures (Figs. 3-10 and beyond) and Tables 1-3, drawn from the result files only.
 
-A simulation figure takes the cases whose names start with its prefixes
-(`hubbeam.plotting.figures.FIGURE_CASE_PREFIXES`): naming a case `fig05_...` in the config puts it
-on Fig. 5. One rule per figure (defined in a loop) so that each figure has its own caption.
+Every figure and table is a product of the registry `hubbeam.products.PAPER_PRODUCTS`, which names
+the cases or result files it reads, the function that draws it and its caption. One rule per
+figure (defined in a loop) so that each figure has its own caption in `snakemake --report`.
 """
 
-for _key, _module in SIMULATION_FIGURES.items():
+for _key, _product in of_kind(PAPER_PRODUCTS, SIMULATION_FIGURE).items():
 
     rule:
         name:
             f"figure_{_key}"
         input:
-            datasets=figure_datasets(_key),
+            datasets=product_datasets(_key),
             style=FIGURE_STYLE,
-            code=figure_code(_module, *(["report.py", "tables.py"] if _key == "convergence" else [])),
+            code=figure_code(_product.module_file, "measures.py"),
         output:
             pdf=ensure(f"results/figures/{_key}.pdf", non_empty=True),
             png=report(
                 ensure(f"results/figures/{_key}.png", non_empty=True),
-                caption=f"../report/{_key}.rst",
-                category=figure_category(_key),
+                caption=PRODUCT_CAPTION,
+                category=_product.category,
             ),
         params:
-            figure=_key,
-            cases=figure_cases(_key),
+            function=_product.function,
+            cases=list(_product.cases),
+            caption=_product.caption(),
         log:
             f"logs/figures/{_key}.log",
         script:
             "../scripts/figure_simulation.py"
 
 
-for _key, (_module, _inputs) in EIGEN_FIGURES.items():
+for _key, _product in of_kind(PAPER_PRODUCTS, EIGEN_FIGURE).items():
 
     rule:
         name:
             f"figure_{_key}"
         input:
-            **_inputs,
+            **_product.files,
             style=FIGURE_STYLE,
-            code=figure_code(_module, "plotting/fig09.py", "paper.py"),
+            code=figure_code(_product.module_file, "plotting/fig09.py", "paper.py"),
         output:
             pdf=ensure(f"results/figures/{_key}.pdf", non_empty=True),
             png=report(
                 ensure(f"results/figures/{_key}.png", non_empty=True),
-                caption=f"../report/{_key}.rst",
-                category=figure_category(_key),
+                caption=PRODUCT_CAPTION,
+                category=_product.category,
             ),
         params:
-            module=_module,
+            function=_product.function,
+            caption=_product.caption(),
         log:
             f"logs/figures/{_key}.log",
         script:
@@ -58,12 +60,13 @@ rule table1:
     input:
         code=hubbeam_sources("tables.py", "paper.py"),
     output:
-        csv=report("results/tables/table1.csv", caption="../report/table.rst", category="Tables"),
+        csv=report("results/tables/table1.csv", caption=PRODUCT_CAPTION, category="Tables"),
         md="results/tables/table1.md",
         tex="results/tables/table1.tex",
     params:
         beam=config["beam"],
         tip_masses=used_tip_masses(),
+        caption=product("table1").caption(),
     log:
         "logs/tables/table1.log",
     script:
@@ -72,13 +75,14 @@ rule table1:
 
 rule table2_render:
     input:
-        csv="results/tables/table2.csv",
+        **product("table2").files,
         code=hubbeam_sources("tables.py"),
     output:
-        md=report("results/tables/table2.md", caption="../report/table.rst", category="Tables"),
+        md=report("results/tables/table2.md", caption=PRODUCT_CAPTION, category="Tables"),
         tex="results/tables/table2.tex",
     params:
         speed=config["eigen"]["table2_speed"],
+        caption=product("table2").caption(),
     log:
         "logs/tables/table2.log",
     script:
@@ -87,14 +91,15 @@ rule table2_render:
 
 rule table3:
     input:
-        datasets=figure_datasets("table3"),
-        code=hubbeam_sources("tables.py", "paper.py", "io.py", "plotting/figures.py"),
+        datasets=product_datasets("table3"),
+        code=hubbeam_sources("tables.py", "paper.py", "io.py", "measures.py", "plotting/figures.py"),
     output:
-        csv=report("results/tables/table3.csv", caption="../report/table.rst", category="Tables"),
+        csv=report("results/tables/table3.csv", caption=PRODUCT_CAPTION, category="Tables"),
         md="results/tables/table3.md",
         tex="results/tables/table3.tex",
     params:
-        cases=figure_cases("table3"),
+        cases=list(product("table3").cases),
+        caption=product("table3").caption(),
     log:
         "logs/tables/table3.log",
     script:

@@ -9,7 +9,8 @@ rule claims:
         datasets=expand("results/simulations/{case}.nc", case=claim_cases()),
         table2="results/tables/table2.csv",
         critical_speeds="results/tables/critical_speeds.csv",
-        code=hubbeam_sources("report.py", "tables.py", "paper.py", "io.py", "plotting/figures.py"),
+        code=hubbeam_sources("claims.py", "measures.py", "products.py", "tables.py", "paper.py", "io.py",
+                             "plotting/figures.py"),
     output:
         report(
             ensure("results/report/claims.csv", non_empty=True),
@@ -28,12 +29,14 @@ rule reproduction_report:
     input:
         claims="results/report/claims.csv",
         figures=[path for path in figure_targets() if path.endswith(".png")],
-        tables=expand("results/tables/table{i}.md", i=(1, 2, 3)),
+        tables=expand("results/tables/{key}.md", key=table_keys()),
         datasets=simulation_results(),
         # the published-table validation (none when the config has no `validation` section)
         **published_validation_inputs(),
-        code=hubbeam_sources("report.py", "io.py", "plotting/figures.py", "validation/report.py",
-                             "validation/published.py", "validation/rotating_eigen.py"),
+        code=hubbeam_sources("report.py", "claims.py", "document.py", "products.py", "io.py",
+                             "templates/reproduction.md.j2", "templates/validation_published.md.j2",
+                             "plotting/figures.py", "validation/report.py", "validation/published.py",
+                             "validation/rotating_eigen.py"),
     output:
         markdown=ensure("results/report/reproduction.md", non_empty=True),
         html=report(

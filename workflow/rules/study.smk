@@ -128,7 +128,7 @@ rule study_eigen_figure:
         pdf=f"{RESULTS}/figures/{{eigen_figure}}.pdf",
         png=f"{RESULTS}/figures/{{eigen_figure}}.png",
     params:
-        module=lambda wildcards: STUDY_EIGEN_FIGURES[wildcards.eigen_figure][0],
+        function=lambda wildcards: f"hubbeam.plotting.{STUDY_EIGEN_FIGURES[wildcards.eigen_figure][0]}:plot",
     log:
         f"{LOGS}/figures/{{eigen_figure}}.log",
     script:

@@ -48,7 +48,7 @@ rule figure_sweep:
     input:
         sweep="results/sweeps/{sweep}.nc",
         style=FIGURE_STYLE,
-        code=figure_code("sweep_maps"),
+        code=figure_code("plotting/sweep_maps.py"),
     output:
         pdf=ensure("results/figures/sweep_{sweep}.pdf", non_empty=True),
         png=report(

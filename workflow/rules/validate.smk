@@ -164,7 +164,8 @@ rule validation_report:
         figure=f"{VALIDATION_DIR}/exudyn_comparison.png",
         mode_study=f"{VALIDATION_DIR}/exudyn_mode_study.csv",
         convergence=f"{VALIDATION_DIR}/exudyn_convergence.csv",
-        code=hubbeam_sources("validation/report.py", "report.py", "io.py"),
+        code=hubbeam_sources("validation/report.py", "document.py", "templates/validation_exudyn.md.j2",
+                             "io.py"),
     output:
         markdown=ensure("results/report/validation_exudyn.md", non_empty=True),
         html=report(

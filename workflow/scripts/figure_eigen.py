@@ -1,20 +1,19 @@
 """Snakemake shim: draw an eigen-analysis figure (Fig. 9, Campbell, critical-speed map).
 
-The named inputs other than ``style`` and ``code`` are opened as datasets and passed to
-``hubbeam.plotting.<params.module>.plot`` as keyword arguments of the same names.
+The named inputs other than ``style`` and ``code`` are opened as datasets and passed to the
+product's function (``params.function``) as keyword arguments of the same names.
 """
 
-import importlib
 from pathlib import Path
 
 from hubbeam.io import open_result, staged
 from hubbeam.plotting import draw
+from hubbeam.products import resolve
 
 files = {name: path for name, path in snakemake.input.items() if name not in ("style", "code")}
-plot = importlib.import_module(f"hubbeam.plotting.{snakemake.params.module}").plot
 datasets = {name: open_result(path) for name, path in files.items()}
 written = [Path(snakemake.output.pdf), Path(snakemake.output.pdf).with_suffix(".png")]
 with staged(*written) as (pdf, _png):  # save_figure writes the PNG beside the PDF
-    draw(plot, pdf, **datasets)
+    draw(resolve(snakemake.params.function), pdf, **datasets)
 with open(snakemake.log[0], "w") as log:
-    print(f"{snakemake.params.module}.plot({files}) -> {', '.join(map(str, written))}", file=log)
+    print(f"{snakemake.params.function}({files}) -> {', '.join(map(str, written))}", file=log)

@@ -1,13 +1,14 @@
-"""Snakemake shim: draw one simulation figure (Figs. 3-8, 10, convergence) from its case files."""
+"""Snakemake shim: draw one simulation figure from its case files (the product's function)."""
 
 from pathlib import Path
 
 from hubbeam.io import staged
 from hubbeam.plotting import render_files
+from hubbeam.products import resolve
 
 p = snakemake.params
 written = [Path(snakemake.output.pdf), Path(snakemake.output.pdf).with_suffix(".png")]
 with staged(*written) as (pdf, _png):  # save_figure writes the PNG beside the PDF
-    render_files(p.figure, dict(zip(p.cases, snakemake.input.datasets)), pdf)
+    render_files(resolve(p.function), dict(zip(p.cases, snakemake.input.datasets)), pdf)
 with open(snakemake.log[0], "w") as log:
-    print(f"{p.figure}: cases {', '.join(p.cases)} -> {', '.join(map(str, written))}", file=log)
+    print(f"{p.function}: cases {', '.join(p.cases)} -> {', '.join(map(str, written))}", file=log)

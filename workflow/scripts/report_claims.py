@@ -3,7 +3,7 @@
 from collections import Counter
 
 from hubbeam.io import staged
-from hubbeam.report import Results, evaluate, write_claims
+from hubbeam.claims import Results, evaluate, write_claims
 
 results = Results(dict(zip(snakemake.params.cases, snakemake.input.datasets)),
                   table2_csv=snakemake.input.table2,

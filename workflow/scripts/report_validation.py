@@ -3,7 +3,7 @@
 from pathlib import Path
 
 from hubbeam.io import write_text
-from hubbeam.report import markdown_to_html
+from hubbeam.document import markdown_to_html
 from hubbeam.validation.report import exudyn_markdown
 
 out = Path(snakemake.output.markdown)

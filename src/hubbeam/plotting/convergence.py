@@ -2,7 +2,7 @@
 
 (a) tip deflection v(L) for every mode count given; (b) its difference from the run with the most
 modes; (c) peak and residual amplitude of v(L) and (d) the dominant residual frequency (least-squares
-sinusoid of ``hubbeam.report.fit_sinusoid`` after t_f) against the number of modes.
+sinusoid of ``hubbeam.measures.fit_sinusoid`` after t_f) against the number of modes.
 """
 
 from __future__ import annotations
@@ -12,10 +12,10 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
+from hubbeam.measures import after, fit_sinusoid, peak, residual_amplitude
 from hubbeam.plotting.figures import (curve_label, mark_maneuver_end, maneuver_value, n_modes,
                                       plot_series, require_datasets)
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
-from hubbeam.report import peak, residual_amplitude, residual_fit
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):
@@ -47,14 +47,15 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     counts = np.array([n_modes(c, d) for c, d in ordered])
     ax = axes[1, 0]
     ax.plot(counts, [peak(d["tip_transverse"].values) for _, d in ordered], "o-", label="peak $|v(L)|$")
-    ax.plot(counts, [residual_amplitude(c, d) for c, d in ordered], "s--",
+    ax.plot(counts, [residual_amplitude(d["time"].values, d["tip_transverse"].values,
+                                        maneuver_value(c, d, "tf")) for c, d in ordered], "s--",
             label="residual amplitude ($t > t_f$)")
     panel_title(ax, 2, "Tip deflection against mode count")
     ax.set_yscale("log")
     ax.set_ylabel(axis_label("$|v(L)|$", "m"))
     ax.legend(loc="best")
     ax = axes[1, 1]
-    frequencies = [residual_fit(c, d).omega / (2 * np.pi) for c, d in ordered]
+    frequencies = [residual_frequency(c, d) for c, d in ordered]
     ax.plot(counts, frequencies, "o-", label=f"{ref.attrs['model']}, dominant residual frequency")
     panel_title(ax, 3, "Residual vibration frequency")
     ax.set_ylabel(axis_label("$f$", "Hz"))
@@ -63,3 +64,9 @@ def plot(datasets: Mapping[str, xr.Dataset]):
         ax.set_xlabel("Number of modes $n$")
         ax.set_xticks(counts)
     return fig
+
+
+def residual_frequency(case: str, ds: xr.Dataset) -> float:
+    """Dominant frequency (Hz) of the residual tip deflection (fitted sinusoid after t_f)."""
+    tf = maneuver_value(case, ds, "tf")
+    return fit_sinusoid(*after(ds["time"].values, ds["tip_transverse"].values, tf), tf).omega / (2 * np.pi)

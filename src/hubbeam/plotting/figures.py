@@ -1,8 +1,4 @@
-"""Which simulation cases feed which figure, and the dataset helpers shared by the figure modules.
-
-A case belongs to a figure when its name starts with one of the figure's prefixes
-(:data:`FIGURE_CASE_PREFIXES`): naming a new case ``fig05_cfoam_wf2p8`` in the config is enough to
-put it on Fig. 5. The Snakemake rules and the report read the grouping from :func:`cases_for`.
+"""The dataset helpers shared by the figure modules (which cases feed a figure: hubbeam.products).
 
 The figure functions receive ``{case name: xarray.Dataset}`` following the simulation dataset
 contract of ``docs/architecture.md`` and never touch files.
@@ -12,58 +8,16 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
 
 from hubbeam.plotting.style import mark_time, model_style
 
-#: figure (or table) key -> case-name prefixes whose datasets it draws.
-FIGURE_CASE_PREFIXES: dict[str, tuple[str, ...]] = {
-    "fig03": ("fig03_",),
-    "fig04": ("fig04_",),
-    "fig05": ("fig05_",),
-    "fig06": ("fig06_",),
-    "fig07": ("fig07_", "tab3_"),
-    "fig08": ("fig08_", "tab3_"),
-    "fig10": ("fig10_",),
-    "convergence": ("fig06_",),
-    "table3": ("tab3_",),
-}
-
 
 class FigureDataError(ValueError):
     """A dataset handed to a figure lacks what the figure needs (names case and item)."""
-
-
-def cases_for(key: str, case_names: Iterable[str]) -> list[str]:
-    """The sorted case names that feed figure/table ``key`` (by name prefix).
-
-    Raises ``KeyError`` for an unknown key and ``FigureDataError`` when no case matches.
-    """
-    if key not in FIGURE_CASE_PREFIXES:
-        raise KeyError(f"unknown figure key {key!r}; allowed: {sorted(FIGURE_CASE_PREFIXES)}")
-    prefixes = FIGURE_CASE_PREFIXES[key]
-    selected = sorted(name for name in case_names if name.startswith(prefixes))
-    if not selected:
-        raise FigureDataError(
-            f"no case for {key}: the config needs at least one case named {' or '.join(p + '*' for p in prefixes)}")
-    return selected
-
-
-def check_figure_cases(case_names: Iterable[str]) -> None:
-    """Raise one ``FigureDataError`` listing every figure or table that no configured case feeds."""
-    names = list(case_names)
-    problems = []
-    for key in FIGURE_CASE_PREFIXES:
-        try:
-            cases_for(key, names)
-        except FigureDataError as error:
-            problems.append(f"  - {error}")
-    if problems:
-        raise FigureDataError("invalid hubbeam configuration: the figures and tables of the paper "
-                              "need their cases (config `cases`):\n" + "\n".join(problems))
 
 
 # --- dataset metadata ---------------------------------------------------------------------------

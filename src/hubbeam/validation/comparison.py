@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from hubbeam import measures
 from hubbeam.simulate import simulate
 
 #: reference label in tables and figures
@@ -68,18 +69,15 @@ def simulate_models(name: str, validation_case: Mapping, models: Sequence[str], 
 
 
 def tip_metrics(time: np.ndarray, deflection: np.ndarray, tf: float) -> dict:
-    """Peak ``max |v|`` (and its time) and residual amplitude ``max |v|`` for ``t > tf``.
+    """Peak ``max |v|`` (and its time) and residual amplitude ``max |v|`` for ``t > tf``
+    (:mod:`hubbeam.measures`).
 
     NaN samples (after a divergence) are ignored; a residual over no finite sample is NaN.
     """
-    magnitude = np.abs(np.asarray(deflection, dtype=float))
-    finite = np.isfinite(magnitude)
-    peak_index = int(np.nanargmax(np.where(finite, magnitude, -np.inf)))
-    after = (np.asarray(time) > tf) & finite
     return {
-        "peak": float(magnitude[peak_index]),
-        "peak_time": float(time[peak_index]),
-        "residual": float(magnitude[after].max()) if after.any() else float("nan"),
+        "peak": measures.peak(deflection),
+        "peak_time": measures.peak_time(time, deflection),
+        "residual": measures.residual_amplitude(time, deflection, tf),
     }
 
 
@@ -116,14 +114,14 @@ def comparison_table(datasets: Mapping[str, xr.Dataset]) -> pd.DataFrame:
         for model in ds["model"].values:
             run = ds.sel(model=model)
             ours = tip_metrics(time, run["tip_transverse"].values, tf)
-            difference = np.abs(run["difference"].values)
+            difference = measures.peak(run["difference"].values)
             rows.append({
                 "case": name, "model": str(model),
                 "wf": float(config["maneuver"]["wf"]), "tf": tf,
                 "tip_mass_kg": float(tip["mass"]),
                 "n_modes": int(ds.attrs["n_modes"]),
-                "max_abs_difference_m": float(np.nanmax(difference)),
-                "max_abs_difference_rel_peak": float(np.nanmax(difference) / reference["peak"]),
+                "max_abs_difference_m": difference,
+                "max_abs_difference_rel_peak": difference / reference["peak"],
                 "peak_m": ours["peak"], "peak_reference_m": reference["peak"],
                 "peak_time_s": ours["peak_time"], "peak_time_reference_s": reference["peak_time"],
                 "residual_m": ours["residual"], "residual_reference_m": reference["residual"],

@@ -11,8 +11,10 @@
 
 Every number of the text (counts, ratios, the evidence for how a table's last digit was
 obtained, the key findings of docs/validation.md) is computed here from those files; none is
-typed in. A missing file raises :class:`hubbeam.io.ResultFileError` naming it and the command
-that builds it; a file without a needed column raises :class:`ValidationInputError`.
+typed in; the prose is in the templates ``validation_published.md.j2`` and
+``validation_exudyn.md.j2``. A missing file raises :class:`hubbeam.io.ResultFileError` naming it
+and the command that builds it; a file without a needed column raises
+:class:`ValidationInputError`.
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ import numpy as np
 import pandas as pd
 
 from hubbeam import __version__
+from hubbeam.document import render
 from hubbeam.io import ResultFileError, open_result
 from hubbeam.validation import published
 from hubbeam.validation.rotating_eigen import allowed_interval
@@ -50,21 +53,6 @@ CONVERGENCE_COLUMNS = ("study", "value", "elements", "time_step_s", "newton_tole
 #: how each validation file is built (for the error naming a missing one)
 BUILD_PUBLISHED = "`snakemake {path}` (rule validate_published, part of `snakemake`)"
 BUILD_EXUDYN = "`snakemake validate` (needs the Exudyn extra: `pip install -e .[validation]`)"
-
-#: sources of the Exudyn reference (docs/validation.md)
-EXUDYN_SOURCES = (
-    "J. Gerstmayr: Exudyn - a C++-based Python package for flexible multibody systems. Multibody "
-    "System Dynamics 60 (2024) 533-561.",
-    "J. Gerstmayr, H. Irschik: On the correct representation of bending and axial deformation in "
-    "the absolute nodal coordinate formulation with an elastic line approach. Journal of Sound and "
-    "Vibration 318 (2008) 461-487.",
-    "J. Chung, G. M. Hulbert: A time integration algorithm for structural dynamics with improved "
-    "numerical dissipation: the generalized-alpha method. Journal of Applied Mechanics 60 (1993) "
-    "371-375.",
-    "M. Arnold, O. Brüls: Convergence of the generalized-alpha scheme for constrained mechanical "
-    "systems. Multibody System Dynamics 18 (2007) 185-202.",
-)
-
 
 class ValidationInputError(ValueError):
     """A validation result file lacks what the report needs (names the file and the column)."""
@@ -229,92 +217,41 @@ def published_section(comparison_csv, tip_mass_csv, curves_nc, figure, report_di
     summary = (f"Independent validation: **{agree} of {total}** published rotating-cantilever first "
                f"frequencies and **{tip_agree} of {tip_total}** first roots of the tip-mass frequency "
                "equation are reproduced (section Validation).")
-    out = [
-        "## Validation",
-        "",
-        "### Published rotating-cantilever frequencies",
-        "",
-        "The constant-speed linearisation of FOAM (Eqs. 29-31 at a fixed hub speed, with the "
-        "Coriolis coupling of the axial and transverse coordinates) is compared with first "
-        "frequencies of uniform rotating cantilevers published independently of the paper, by "
-        f"{', '.join(published.short_name(s) for s in sources)}, and with the first roots of the "
-        "frequency equation of a non-rotating cantilever with a tip mass. The sources' dimensionless "
-        "form is used: speed ratio gamma = Omega sqrt(rho A L^4 / (E I)), frequency omega_bar = "
-        "omega sqrt(rho A L^4 / (E I)), slenderness alpha = sqrt(A L^2 / I), hub radius ratio "
-        "delta = r_A / L, tip-mass ratio mu = m_t / (rho A L); flapwise is out of the plane of "
-        "rotation, chordwise in it. Derivation and evidence: `docs/validation.md`.",
-        "",
-        f"**Result.** {agree} of {total} published rotating first frequencies and {tip_agree} of "
-        f"{tip_total} tip-mass roots agree. An entry agrees when ours ({n_ours} assumed modes) minus "
-        "the printed value lies in the interval of exact values the printed digits stand for (last "
-        "digit rounded: within half a unit u of the last printed place; truncated: from 0 to one "
-        f"unit), widened on both sides by our modal-truncation estimate ({estimate}).",
-        "",
-    ]
-    failing = table[~table["agrees"]]
-    if len(failing):
-        out += ["Entries that do not agree: " + "; ".join(
-            f"{published.short_name(row['source'])}, {row['direction']} gamma = {row['gamma']:g}: "
-            f"printed {row['printed']}, ours {row[ours]:.6f}" for _, row in failing.iterrows()) + ".", ""]
-    out += ["**How the last printed digit was obtained.** The sources do not say; each reading is "
-            "tested against our converged values:", ""]
-    out += [f"- {bullet}" for bullet in _reading_evidence(table, ours)]
-    out += ["", "The truncated reading is not a wider tolerance: it is a one-sided test "
-            "(0 <= ours - printed < u) of the same width as the rounded one.", ""]
-    loose = table[~table.apply(_resolved, axis=1)]
-    if len(loose):
-        listed = "; ".join(f"{row['direction']} gamma = {row['gamma']:g}: {_g(row['modal_change'])} "
-                           f"({_percent(row['modal_change'] / row['published'])} of the value), ours "
-                           f"minus printed {_g(row['difference'])}" for _, row in loose.iterrows())
-        out += [f"**Limits.** Where our truncation estimate exceeds half a printed unit, agreement is "
-                f"confirmed only to within that estimate: {listed}.", ""]
+    failing = [f"{published.short_name(row['source'])}, {row['direction']} gamma = {row['gamma']:g}: "
+               f"printed {row['printed']}, ours {row[ours]:.6f}"
+               for _, row in table[~table["agrees"]].iterrows()]
+    loose = [f"{row['direction']} gamma = {row['gamma']:g}: {_g(row['modal_change'])} "
+             f"({_percent(row['modal_change'] / row['published'])} of the value), ours "
+             f"minus printed {_g(row['difference'])}"
+             for _, row in table[~table.apply(_resolved, axis=1)].iterrows()]
     coupled = table[np.isfinite(table["uncoupled"]) & table.apply(_resolved, axis=1)]
     if len(coupled):
         row = coupled.loc[coupled["gamma"].idxmax()]
-        out += [f"**Axial coupling.** Without the Coriolis coupling to the axial coordinates the "
-                f"chordwise first frequency at gamma = {row['gamma']:g} would be "
-                f"{row['uncoupled']:.4f} against the printed {row['printed']}; with it, ours is "
-                f"{row[ours]:.6f} (column 'no axial coupling' below).", ""]
-    out += [
-        "| source | direction | gamma | alpha | printed | reading | ours | ours - printed | agreement interval "
-        "| no axial coupling | verdict |",
-        "|---|---|---:|---:|---:|---|---:|---:|---|---:|---|",
-    ]
+        coupled = {"gamma": f"{row['gamma']:g}", "uncoupled": f"{row['uncoupled']:.4f}",
+                   "printed": row["printed"], "ours": f"{row[ours]:.6f}"}
+    else:
+        coupled = None
+    rows = []
     for _, row in table.iterrows():
         alpha = "-" if math.isnan(float(row["alpha"])) else f"{row['alpha']:g}"
         uncoupled = "-" if math.isnan(row["uncoupled"]) else f"{row['uncoupled']:.4f}"
-        out.append(f"| {published.short_name(row['source'])} | {row['direction']} | {row['gamma']:g} | "
-                   f"{alpha} | {row['printed']} | {row['rounding']} | {row[ours]:.6f} | "
-                   f"{row['difference']:+.1e} | [{row['allowed_low']:+.1e}, {row['allowed_high']:+.1e}] | "
-                   f"{uncoupled} | **{'agrees' if row['agrees'] else 'differs'}** |")
-    out += ["", f"Non-rotating cantilever with a point mass m_t at its tip: first root beta_1 L of "
-            "1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b) = 0 (printed values read as "
-            f"{published.ROUNDING['tip-mass-frequency-equation']}), ours from the assumed-mode "
-            f"model with {n_tip} modes.", "",
-            "| mu | printed | ours | ours - printed | agreement interval | verdict |",
-            "|---:|---:|---:|---:|---|---|"]
-    for _, row in tip.iterrows():
-        out.append(f"| {row['mu']:g} | {row['printed']} | {row[tip_ours]:.6f} | {row['difference']:+.1e} | "
-                   f"[{row['allowed_low']:+.1e}, {row['allowed_high']:+.1e}] | "
-                   f"**{'agrees' if row['agrees'] else 'differs'}** |")
-    out += ["", f"![Validation: first frequencies of the rotating cantilever ({curves.attrs['n_modes']} "
-            f"modes, alpha = {curves.attrs['alpha']:g}) against the published values]"
-            f"({_link(figure, report_dir)})", ""]
-    out += [
-        "### Geometrically exact reference (Exudyn)",
-        "",
-        "The comparison of FOAM, CFOAM and TLAM with a geometrically exact multibody model of the "
-        "same hub-beam (Exudyn, ANCF cable elements) needs the optional dependency "
-        "(`pip install -e .[validation]`) and is not part of this report: run `snakemake validate` "
-        "to build its own report, [validation_exudyn.html](validation_exudyn.html) "
-        "(`results/report/validation_exudyn.md`), beside this one.",
-        "",
-        "### Sources of the published values",
-        "",
-    ]
-    out += [f"- {published.CITATIONS[key]}" for key in published.CITATIONS
-            if key in "+".join(table["source"]) or key == "tip-mass-frequency-equation"]
-    return Section(summary, "\n".join(out) + "\n")
+        rows.append(f"| {published.short_name(row['source'])} | {row['direction']} | {row['gamma']:g} | "
+                    f"{alpha} | {row['printed']} | {row['rounding']} | {row[ours]:.6f} | "
+                    f"{row['difference']:+.1e} | [{row['allowed_low']:+.1e}, {row['allowed_high']:+.1e}] | "
+                    f"{uncoupled} | **{'agrees' if row['agrees'] else 'differs'}** |")
+    tip_rows = [f"| {row['mu']:g} | {row['printed']} | {row[tip_ours]:.6f} | {row['difference']:+.1e} | "
+                f"[{row['allowed_low']:+.1e}, {row['allowed_high']:+.1e}] | "
+                f"**{'agrees' if row['agrees'] else 'differs'}** |" for _, row in tip.iterrows()]
+    markdown = render(
+        "validation_published.md.j2", sources=[published.short_name(s) for s in sources],
+        agree=agree, total=total, tip_agree=tip_agree, tip_total=tip_total, n_ours=n_ours,
+        estimate=estimate, failing=failing, evidence=_reading_evidence(table, ours), loose=loose,
+        coupled=coupled, rows=rows, tip_rounding=published.ROUNDING["tip-mass-frequency-equation"],
+        n_tip=n_tip, tip_rows=tip_rows, curve_modes=curves.attrs["n_modes"],
+        alpha=f"{curves.attrs['alpha']:g}", figure=_link(figure, report_dir),
+        citations=[published.CITATIONS[key] for key in published.CITATIONS
+                   if key in "+".join(table["source"]) or key == "tip-mass-frequency-equation"])
+    return Section(summary, markdown)
 
 
 # --- the Exudyn comparison ------------------------------------------------------------------------
@@ -418,34 +355,7 @@ def exudyn_markdown(comparison_csv, mode_study_csv, convergence_csv, figure, rep
                 f"{production['time_step_s'].iloc[0]:g} s and a Newton increment tolerance of "
                 f"{production['newton_tolerance'].iloc[0]:g}") if len(production) else "see below"
     cases = comparison.drop_duplicates("case")
-    out = [
-        "# Validation against a geometrically exact reference (Exudyn)",
-        "",
-        f"Generated by hubbeam {__version__} from the results of `snakemake validate` only "
-        "(`results/validation/exudyn_comparison.csv`, `exudyn_mode_study.csv`, "
-        "`exudyn_convergence.csv`); the method is described in `docs/validation.md`, the comparison "
-        "with published frequency tables and the paper's claims in "
-        "[the reproduction report](reproduction.html).",
-        "",
-        "The hub-beam of Table 1 is modelled with Exudyn's 2D ANCF cable elements (exact kinematics: "
-        "large rotation, stretch and foreshortening) with the clamp rotated as the spin-up of Eq. 43 "
-        f"prescribes, integrated by the generalised-alpha method ({settings}). The models "
-        f"{', '.join(comparison['model'].unique())} run with "
-        f"{_range(comparison['n_modes'].values, digits=3)} modes. Cases: "
-        + "; ".join(f"{row['case']} ({_case_label(row)}, t_f = {row['tf']:g} s)"
-                    for _, row in cases.iterrows()) + ".",
-        "",
-        "## Key findings",
-        "",
-    ]
-    out += [f"- {bullet}" for bullet in exudyn_findings(comparison, mode_study, convergence)]
-    out += ["", "## Tip deflection against the reference", "",
-            "Largest difference |v_model - v_Exudyn| over the run, relative to the reference's peak; "
-            "peak max |v|; residual amplitude max |v| after the spin-up (t > t_f). A diverged run "
-            "(its time is given) has no measures.", "",
-            "| case | model | max. difference (m) | / reference peak | peak (m) | reference peak (m) | "
-            "residual (m) | reference residual (m) | diverged at (s) |",
-            "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    comparison_rows = []
     for _, row in comparison.iterrows():
         reference = f"{_g(row['peak_reference_m'], 5)} | "
         if row["diverged"]:  # measures of a run that left the frame say nothing
@@ -454,20 +364,18 @@ def exudyn_markdown(comparison_csv, mode_study_csv, convergence_csv, figure, rep
             ours = (f"{_g(row['max_abs_difference_m'])} | {_percent(row['max_abs_difference_rel_peak'])} | "
                     f"{_g(row['peak_m'], 5)} | {reference}{_g(row['residual_m'], 4)} | "
                     f"{_g(row['residual_reference_m'], 4)} | -")
-        out.append(f"| {row['case']} | {row['model']} | {ours} |")
-    out += ["", f"![Tip deflection of the models and the Exudyn reference (left) and their difference "
-            f"(right)]({_link(figure, report_dir)})", "",
-            "## Difference against the number of assumed modes", "",
-            "Largest tip-deflection difference from the reference (m); diverged runs are left out.", ""]
+        comparison_rows.append(f"| {row['case']} | {row['model']} | {ours} |")
     counts = sorted(mode_study["n_modes"].unique())
-    out += ["| case | model | " + " | ".join(f"n = {n}" for n in counts) + " |",
-            "|---|---|" + "---:|" * len(counts)]
+    mode_rows = ["| case | model | " + " | ".join(f"n = {n}" for n in counts) + " |",
+                 "|---|---|" + "---:|" * len(counts)]
     for (case, model), rows in mode_study.groupby(["case", "model"], sort=False):
         values = dict(zip(rows["n_modes"], rows["max_abs_difference_m"]))
-        out.append(f"| {case} | {model} | " + " | ".join(_g(values.get(n, math.nan)) for n in counts) + " |")
-    out += ["", "## Convergence of the reference", "",
-            "Each study varies one setting of the production run; differences are the largest "
-            "tip-deflection differences over the run.", ""]
-    out += _convergence_tables(convergence)
-    out += ["## Sources", ""] + [f"- {source}" for source in EXUDYN_SOURCES]
-    return "\n".join(out) + "\n"
+        mode_rows.append(f"| {case} | {model} | " + " | ".join(_g(values.get(n, math.nan)) for n in counts) + " |")
+    return render(
+        "validation_exudyn.md.j2", version=__version__, settings=settings,
+        models=list(comparison["model"].unique()), modes=_range(comparison["n_modes"].values, digits=3),
+        cases=[f"{row['case']} ({_case_label(row)}, t_f = {row['tf']:g} s)" for _, row in cases.iterrows()],
+        findings=exudyn_findings(comparison, mode_study, convergence), comparison_rows=comparison_rows,
+        figure=_link(figure, report_dir), mode_rows=mode_rows,
+        convergence_rows=_convergence_tables(convergence))
+

@@ -1,0 +1,110 @@
+"""Signal measures of a simulated response, on plain numpy arrays (one place for every product).
+
+The claims of the reproduction report, Table 3, the Exudyn comparison and the figures use these
+definitions; they are documented in the report:
+
+- peak: ``max |x(t)|`` over the run, NaN samples (after a divergence) ignored;
+- residual vibration: the response for ``t > t_f``, after the spin-up of Eq. 43 or the torque
+  pulse of Eq. 44; its amplitude is ``max |x(t)|`` over ``t > t_f``;
+- fitted sinusoid: least-squares fit of ``c + A cos(omega (t - t_0) + phi)``; ``omega`` starts at
+  the peak of the Hann-windowed, zero-padded spectrum and is refined by minimising the fit
+  residual within one spectral bin; ``phi`` is the phase at ``t = t_0``;
+- phase lead of ``a`` over ``b``: ``phi_a - phi_b`` wrapped to (-pi, pi] (positive: ``a`` leads);
+- relative difference of two curves: ``max |x_a - x_b| / max |x_b|`` on a common time grid.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.optimize
+
+
+def peak(values) -> float:
+    """``max |x|`` ignoring NaN (samples after a divergence)."""
+    return float(np.nanmax(np.abs(np.asarray(values, dtype=float))))
+
+
+def peak_time(time, values) -> float:
+    """The first time at which ``|x|`` reaches its peak (non-finite samples ignored)."""
+    magnitude = np.abs(np.asarray(values, dtype=float))
+    index = int(np.argmax(np.where(np.isfinite(magnitude), magnitude, -np.inf)))
+    return float(np.asarray(time)[index])
+
+
+def after(time, values, t0: float) -> tuple[np.ndarray, np.ndarray]:
+    """Times and values for ``t > t0`` (the residual window), finite samples only."""
+    time = np.asarray(time)
+    values = np.asarray(values, dtype=float)
+    keep = (time > t0) & np.isfinite(values)
+    return time[keep], values[keep]
+
+
+def residual_amplitude(time, values, t0: float) -> float:
+    """Residual vibration amplitude ``max |x(t)|`` over ``t > t0``; NaN without a finite sample."""
+    window = after(time, values, t0)[1]
+    return peak(window) if window.size else math.nan
+
+
+def late_share(time, values, t0: float) -> float:
+    """``max |x|`` over ``t > t0`` relative to ``max |x|`` over the whole run."""
+    values = np.asarray(values, dtype=float)
+    return peak(values[np.asarray(time) > t0]) / peak(values)
+
+
+def relative_difference(a, b) -> float:
+    """``max |a - b| / max |b|`` of two curves sampled on the same grid."""
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    return peak(a - b) / peak(b)
+
+
+@dataclass(frozen=True)
+class SinusoidFit:
+    """``offset + amplitude * cos(omega * (t - t0) + phase)``."""
+
+    amplitude: float
+    omega: float
+    phase: float
+    offset: float
+    t0: float
+
+
+def _linear_fit(s, y, omega):
+    basis = np.column_stack([np.ones_like(s), np.cos(omega * s), np.sin(omega * s)])
+    coef, *_ = np.linalg.lstsq(basis, y, rcond=None)
+    return coef, float(np.sum((basis @ coef - y) ** 2))
+
+
+def fit_sinusoid(t, y, t0: float) -> SinusoidFit:
+    """Least-squares sinusoid at the dominant frequency of ``y(t)`` (uniform ``t``), phase at ``t0``."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    dt = np.diff(t)
+    if len(t) < 8 or not np.allclose(dt, dt[0], rtol=1e-6, atol=0):
+        raise ValueError("fit_sinusoid needs at least 8 samples on a uniform time grid")
+    s = t - t0
+    pad = 8 * len(y)
+    spectrum = np.abs(np.fft.rfft((y - y.mean()) * np.hanning(len(y)), pad))
+    frequencies = np.fft.rfftfreq(pad, dt[0])
+    omega0 = 2 * np.pi * frequencies[1 + np.argmax(spectrum[1:])]
+    half_width = 2 * np.pi / (len(y) * dt[0])  # one bin of the unpadded spectrum
+    best = scipy.optimize.minimize_scalar(
+        lambda w: _linear_fit(s, y, w)[1], method="bounded",
+        bounds=(max(omega0 - half_width, 1e-12), omega0 + half_width), options={"xatol": 1e-12})
+    (c, a, b), _ = _linear_fit(s, y, best.x)
+    # a cos + b sin = R cos(w s + phi) with R = hypot(a, b), phi = atan2(-b, a)
+    return SinusoidFit(float(np.hypot(a, b)), float(best.x), float(np.arctan2(-b, a)), float(c), t0)
+
+
+def wrap_phase(angle: float) -> float:
+    """Angle in (-pi, pi]."""
+    wrapped = math.remainder(angle, 2 * math.pi)
+    return math.pi if wrapped == -math.pi else wrapped
+
+
+def phase_lead(a: SinusoidFit, b: SinusoidFit) -> float:
+    """Phase of ``a`` minus phase of ``b``, wrapped to (-pi, pi]; positive when ``a`` leads."""
+    return wrap_phase(a.phase - b.phase)

@@ -1,0 +1,63 @@
+"""Signal measures (hubbeam.measures) on signals whose measures are known in closed form."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hubbeam.measures import (after, fit_sinusoid, late_share, peak, peak_time, phase_lead,
+                              relative_difference, residual_amplitude, wrap_phase)
+
+
+def test_peak_and_its_time_ignore_samples_after_a_divergence():
+    t = np.linspace(0.0, 2.0, 201)
+    x = np.sin(np.pi * t) * np.exp(-t)  # |x| largest at tan(pi t) = pi
+    x[150:] = np.nan
+    t_star = math.atan(math.pi) / math.pi
+    assert peak_time(t, x) == pytest.approx(t_star, abs=0.01)
+    assert peak(x) == pytest.approx(math.sin(math.pi * t_star) * math.exp(-t_star), rel=1e-3)
+
+
+def test_residual_window_and_amplitude_after_t0():
+    t = np.arange(0.0, 10.0, 0.5)
+    x = np.where(t > 4.0, 0.1, 3.0) * np.cos(np.pi * t)  # cos(pi t) = +-1 on this grid
+    window_t, window_x = after(t, x, 4.0)
+    assert window_t[0] == 4.5 and len(window_x) == 11
+    assert residual_amplitude(t, x, 4.0) == pytest.approx(0.1)
+    assert late_share(t, x, 4.0) == pytest.approx(0.1 / 3.0)
+    assert math.isnan(residual_amplitude(t, x, 20.0))
+
+
+def test_relative_difference_is_relative_to_the_second_curve():
+    b = np.array([0.0, 2.0, -4.0, 1.0])
+    assert relative_difference(b + np.array([0.0, 0.1, -0.2, 0.0]), b) == pytest.approx(0.05)
+    assert relative_difference(b, b) == 0.0
+
+
+def test_sinusoid_fit_recovers_amplitude_frequency_and_phase_off_the_spectral_grid():
+    t = np.arange(10.0, 30.0, 0.01)
+    y = 0.02 + 0.3 * np.cos(2.377 * (t - 10.0) - 2.9) + 0.01 * np.cos(17.0 * t)
+    fit = fit_sinusoid(t, y, 10.0)
+    assert fit.omega == pytest.approx(2.377, rel=1e-4)
+    assert fit.amplitude == pytest.approx(0.3, rel=1e-3)
+    assert wrap_phase(fit.phase + 2.9) == pytest.approx(0.0, abs=2e-3)
+
+
+def test_phase_lead_of_two_fitted_sinusoids():
+    t = np.arange(0.0, 20.0, 0.01)
+    a = fit_sinusoid(t, np.cos(2.0 * t + 3.0), 0.0)
+    b = fit_sinusoid(t, np.cos(2.0 * t - 3.0), 0.0)
+    assert phase_lead(a, b) == pytest.approx(6.0 - 2 * math.pi, abs=1e-6)  # wrapped, so b leads
+
+
+def test_sinusoid_fit_needs_a_uniform_grid():
+    with pytest.raises(ValueError, match="uniform"):
+        fit_sinusoid([0, 1, 3, 4, 5, 6, 7, 8, 9], np.zeros(9), 0.0)
+
+
+@pytest.mark.parametrize("angle, wrapped", [(0.5, 0.5), (2 * math.pi + 0.5, 0.5), (-math.pi, math.pi),
+                                            (3 * math.pi / 2, -math.pi / 2)])
+def test_wrap_phase(angle, wrapped):
+    assert wrap_phase(angle) == pytest.approx(wrapped)

@@ -1,7 +1,7 @@
 # hubbeam: the two commands of README.md.
 #   make reproduce   set up .venv (if needed) and run the whole workflow with Snakemake
 #   make test        set up .venv (if needed) and run the test suite
-#   make benchmark   set up .venv (if needed) and time hubbeam against scipy (results/benchmarks)
+#   make benchmark   set up .venv (if needed) and time hubbeam against scipy (benchmarks/, results/benchmarks)
 #   make lock        (maintainers) re-resolve pyproject.toml's dependencies into requirements.lock
 # Setup installs hubbeam (editable, with its `test` extra; `validation` is opt-in, see README) constrained to the
 # exact versions of requirements.lock; it reruns only when pyproject.toml or requirements.lock
@@ -21,7 +21,7 @@ test: $(STAMP)
 	$(VENV_PYTHON) -m pytest -q
 
 benchmark: $(STAMP)
-	$(VENV_PYTHON) -m hubbeam.benchmark
+	$(VENV_PYTHON) -m benchmarks
 
 setup: $(STAMP)
 

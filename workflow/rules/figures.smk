@@ -13,7 +13,7 @@ for _key, _module in SIMULATION_FIGURES.items():
         input:
             datasets=figure_datasets(_key),
             style=FIGURE_STYLE,
-            code=figure_code(_module, *(["report.py", "tables.py"] if _key == "convergence" else [])),
+            code=script_code("figure_simulation.py", f"hubbeam.plotting.{_module}"),
         output:
             pdf=ensure(f"results/figures/{_key}.pdf", non_empty=True),
             png=report(
@@ -38,7 +38,7 @@ for _key, (_module, _inputs) in EIGEN_FIGURES.items():
         input:
             **_inputs,
             style=FIGURE_STYLE,
-            code=figure_code(_module, "plotting/fig09.py", "paper.py"),
+            code=script_code("figure_eigen.py", f"hubbeam.plotting.{_module}"),
         output:
             pdf=ensure(f"results/figures/{_key}.pdf", non_empty=True),
             png=report(
@@ -56,7 +56,7 @@ for _key, (_module, _inputs) in EIGEN_FIGURES.items():
 
 rule table1:
     input:
-        code=hubbeam_sources("tables.py", "paper.py"),
+        code=script_code("table_1.py"),
     output:
         csv=report("results/tables/table1.csv", caption="../report/table.rst", category="Tables"),
         md="results/tables/table1.md",
@@ -73,7 +73,7 @@ rule table1:
 rule table2_render:
     input:
         csv="results/tables/table2.csv",
-        code=hubbeam_sources("tables.py"),
+        code=script_code("table_2.py"),
     output:
         md=report("results/tables/table2.md", caption="../report/table.rst", category="Tables"),
         tex="results/tables/table2.tex",
@@ -88,7 +88,7 @@ rule table2_render:
 rule table3:
     input:
         datasets=figure_datasets("table3"),
-        code=hubbeam_sources("tables.py", "paper.py", "io.py", "plotting/figures.py"),
+        code=script_code("table_3.py"),
     output:
         csv=report("results/tables/table3.csv", caption="../report/table.rst", category="Tables"),
         md="results/tables/table3.md",

@@ -14,8 +14,14 @@ from scipy.integrate import solve_ivp
 from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS, free_dofs
 from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
-from hubbeam.core.integrate import (integrate_free, integration_problem, n_output_columns,
-                                    output_columns, simulate_kernel, tip_watch)
+from hubbeam.core.integrate import (
+    integrate_free,
+    integration_problem,
+    n_output_columns,
+    output_columns,
+    simulate_kernel,
+    tip_watch,
+)
 from hubbeam.parameters import BeamParameters
 from hubbeam.simulate import case_matrices, maneuver_parameters, output_times
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Mapping
+from functools import partial
 
 import numpy as np
 
@@ -15,6 +16,10 @@ from hubbeam import sweep as sweeps
 from hubbeam.config import case_settings
 from hubbeam.parameters import BeamParameters
 from hubbeam.simulate import simulate
+
+
+def _append_simulation(results: list, case: Mapping, params: BeamParameters, numerics: Mapping) -> None:
+    results.append(simulate(case, params, numerics))
 
 
 def scaling_rows(cfg: Mapping, params: BeamParameters, settings: Mapping, repeats: int,
@@ -27,13 +32,10 @@ def scaling_rows(cfg: Mapping, params: BeamParameters, settings: Mapping, repeat
     rows = []
     for modes, t_end in grid:
         case = {**base, "modes": int(modes), "t_end": float(t_end)}
-        result = {}
-
-        def call():
-            result["ds"] = simulate(case, params, cfg["numerics"])
-
-        wall, count = median_time(call, repeats, budget)
-        attrs = result["ds"].attrs
+        results = []
+        wall, count = median_time(partial(_append_simulation, results, case, params, cfg["numerics"]),
+                                  repeats, budget)
+        attrs = results[-1].attrs
         rows.append({"case": scaling["case"], "model": case["model"], "modes": modes,
                      "t_end_s": t_end, "wall_s": wall, "repeats": count,
                      "n_steps": attrs["n_steps"], "rhs_calls": attrs["n_rhs"],
@@ -53,8 +55,7 @@ def eigen_rows(cfg: Mapping, params: BeamParameters, repeats: int, budget: float
     for label, (masses, positions, speeds) in grids.items():
         n_modes, n_quad = cfg["numerics"]["modes"], cfg["numerics"]["quadrature_points"]
         wall, count = median_time(
-            lambda: eigen.k22_sweep(params, masses, positions, speeds, n_modes, n_quad),
-            repeats, budget)
+            partial(eigen.k22_sweep, params, masses, positions, speeds, n_modes, n_quad), repeats, budget)
         analyses = len(eigen.MODELS) * masses.size * positions.size * speeds.size
         rows.append({"grid": label, "models": len(eigen.MODELS), "tip_masses": masses.size,
                      "positions": positions.size, "speeds": speeds.size, "modes": n_modes,

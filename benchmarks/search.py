@@ -7,11 +7,22 @@ import json
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
-from benchmarks.cases import (HUBBEAM, HUBBEAM_FULL, BenchmarkCase, Method, Run, RunTooLong,
-                              max_error, run_hubbeam, run_method, run_scipy)
+from benchmarks.cases import (
+    HUBBEAM,
+    HUBBEAM_FULL,
+    BenchmarkCase,
+    Method,
+    Run,
+    RunTooLong,
+    max_error,
+    run_hubbeam,
+    run_method,
+    run_scipy,
+)
 from benchmarks.timing import warm_timing
 
 #: the independent check of a reference may take this many run caps
@@ -102,7 +113,7 @@ def benchmark_case(bench: BenchmarkCase, methods: Sequence[Method], settings: Ma
         rtol, error, wall = search.tried[-1] if search.tried else (math.nan, math.inf, math.nan)
         count = 1
         if search.rtol is not None:
-            wall, count = warm_timing(lambda: run_method(bench, method, rtol, ratio * rtol).wall,
+            wall, count = warm_timing(partial(_wall, bench, method, rtol, ratio * rtol),
                                       search.run.wall, repeats, budget)
         rows.append({
             "case": bench.name, "model": bench.case["model"], "method": method.label,
@@ -115,6 +126,10 @@ def benchmark_case(bench: BenchmarkCase, methods: Sequence[Method], settings: Ma
         log(f"[{bench.name}] {method.label}: {rows[-1]['settings']}, wall {wall:.4g} s (x{count}), "
             f"err {error:.2e} m {search.note}")
     return rows, info, reference
+
+
+def _wall(bench: BenchmarkCase, method: Method, rtol: float, atol: float) -> float:
+    return run_method(bench, method, rtol, atol).wall
 
 
 def case_methods(settings: Mapping, name: str) -> list[Method]:

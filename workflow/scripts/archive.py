@@ -40,7 +40,8 @@ def _member(name: str, data: bytes, mtime: float) -> tuple[tarfile.TarInfo, io.B
 def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: os.PathLike | str,
                   root: os.PathLike | str = ".") -> Path:
     """Write ``output`` (.tar.gz) with ``files`` (paths relative to ``root``), the config and the
-    manifest; atomic (``hubbeam.io.staged``: temporary file + rename). Raises FileNotFoundError naming a missing file."""
+    manifest; atomic (``hubbeam.io.staged``: temporary file + rename). Raises FileNotFoundError
+    naming a missing file."""
     root, output = Path(root), Path(output)
     names = sorted({Path(os.path.relpath(Path(root, f), root)).as_posix() for f in files})
     if CONFIG_NAME in names or MANIFEST in names:

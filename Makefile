@@ -1,6 +1,7 @@
 # hubbeam: the two commands of README.md.
 #   make reproduce   set up .venv (if needed) and run the whole workflow with Snakemake
-#   make test        set up .venv (if needed) and run the test suite
+#   make test        set up .venv (if needed) and run the test suite (with the import contracts and ruff)
+#   make test-fast   the same without the tests that run Snakemake or kill processes (-m "not workflow")
 #   make benchmark   set up .venv (if needed) and time hubbeam against scipy (benchmarks/, results/benchmarks)
 #   make lock        (maintainers) re-resolve pyproject.toml's dependencies into requirements.lock
 # Setup installs hubbeam (editable, with its `test` extra; `validation` is opt-in, see README) constrained to the
@@ -12,13 +13,16 @@ VENV := .venv
 VENV_PYTHON := $(VENV)/bin/python
 STAMP := $(VENV)/.hubbeam-installed
 
-.PHONY: reproduce test benchmark setup lock
+.PHONY: reproduce test test-fast benchmark setup lock
 
 reproduce: $(STAMP)
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/snakemake
 
 test: $(STAMP)
 	$(VENV_PYTHON) -m pytest -q
+
+test-fast: $(STAMP)
+	$(VENV_PYTHON) -m pytest -q -m "not workflow"
 
 benchmark: $(STAMP)
 	$(VENV_PYTHON) -m benchmarks

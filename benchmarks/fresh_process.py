@@ -46,8 +46,9 @@ def compile_kernel(kernel: str, config_files: list[str], case: dict) -> dict:
     """Seconds of the first call of ``kernel`` (one of :data:`KERNELS`): its compilation."""
     import numpy as np
 
-    from benchmarks.cases import first_order_jacobian, first_order_rhs, prepare_case, run_hubbeam
+    from benchmarks.cases import prepare_case, run_hubbeam
     from hubbeam.config import case_settings, load_config
+    from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
     from hubbeam.parameters import BeamParameters
 
     cfg = load_config(config_files)

@@ -56,13 +56,14 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from benchmarks.cases import HUBBEAM, HUBBEAM_FULL, first_order_jacobian, prepare_case, run_hubbeam
+from benchmarks.cases import HUBBEAM, HUBBEAM_FULL, prepare_case, run_hubbeam
 from benchmarks.compilation import compilation_rows
 from benchmarks.extras import eigen_rows, scaling_rows, sweep_rows
 from benchmarks.machine import load_average, machine_info
 from benchmarks.search import benchmark_case, case_methods, python_rhs_row
 from benchmarks.settings import BENCHMARK_CONFIG, STUDY_CONFIG, load_settings
 from hubbeam.config import case_settings
+from hubbeam.core.first_order import first_order_jacobian
 from hubbeam.parameters import BeamParameters
 
 

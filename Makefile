@@ -1,7 +1,8 @@
 # hubbeam: the two commands of README.md.
 #   make reproduce   set up .venv (if needed) and run the whole workflow with Snakemake
 #   make test        set up .venv (if needed) and run the test suite (with the import contracts and ruff)
-#   make test-fast   the same without the tests that run Snakemake or kill processes (-m "not workflow")
+#   make test-fast   the same without the tests that run Snakemake or kill processes, or are slow
+#                    (-m "not workflow and not slow", see tests/conftest.py)
 #   make benchmark   set up .venv (if needed) and time hubbeam against scipy (benchmarks/, results/benchmarks)
 #   make lock        (maintainers) re-resolve pyproject.toml's dependencies into requirements.lock
 # Setup installs hubbeam (editable, with its `test` extra; `validation` is opt-in, see README) constrained to the
@@ -22,7 +23,7 @@ test: $(STAMP)
 	$(VENV_PYTHON) -m pytest -q
 
 test-fast: $(STAMP)
-	$(VENV_PYTHON) -m pytest -q -m "not workflow"
+	$(VENV_PYTHON) -m pytest -q -m "not workflow and not slow"
 
 benchmark: $(STAMP)
 	$(VENV_PYTHON) -m benchmarks

@@ -1,10 +1,11 @@
 """Fixtures shared by the test suite, and its markers.
 
-``workflow`` marks the tests that run Snakemake or interrupt and kill runs (minutes); the fast loop
-``pytest -m "not workflow"`` (``make test-fast``) leaves them out, ``make test`` runs everything.
-A test is marked here, not in its body, from the names its code uses (:func:`runs_the_workflow`):
-a name containing ``snakemake`` (the command, or a helper that builds its command line) or one of
-:data:`KILL_NAMES`.
+``workflow`` marks the tests that run Snakemake or interrupt and kill runs (minutes); ``slow`` the
+tests of :data:`SLOW_MODULES` (integrations through the plain-Python reference, seconds each). The
+fast loop ``make test-fast`` (``pytest -m "not workflow and not slow"``) leaves both out;
+``make test`` runs everything. A test is marked here, not in its body: ``workflow`` from the names
+its code uses (:func:`runs_the_workflow`): a name containing ``snakemake`` (the command, or a helper
+that builds its command line) or one of :data:`KILL_NAMES`.
 """
 
 from __future__ import annotations
@@ -22,6 +23,8 @@ REPO_ROOT = Path(__file__).resolve().parents[1]
 CONFIG_FILE = REPO_ROOT / "config" / "config.yaml"
 #: names of the calls and signals with which tests interrupt and kill processes
 KILL_NAMES = {"kill", "killpg", "SIGINT", "SIGTERM", "SIGKILL"}
+#: test modules whose every test is slow (but runs no workflow)
+SLOW_MODULES = {"test_reference"}
 
 
 def _names(code: CodeType) -> set[str]:
@@ -46,6 +49,8 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     for item in items:
         if runs_the_workflow(item):
             item.add_marker(pytest.mark.workflow)
+        if item.module.__name__.rpartition(".")[2] in SLOW_MODULES:
+            item.add_marker(pytest.mark.slow)
 
 
 @pytest.fixture(scope="session")

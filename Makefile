@@ -1,7 +1,9 @@
 # hubbeam: the two commands of README.md.
 #   make reproduce   set up .venv (if needed) and run the whole workflow with Snakemake
-#   make test        set up .venv (if needed) and run the test suite
-#   make benchmark   set up .venv (if needed) and time hubbeam against scipy (results/benchmarks)
+#   make test        set up .venv (if needed) and run the test suite (with the import contracts and ruff)
+#   make test-fast   the same without the tests that run Snakemake or kill processes, or are slow
+#                    (-m "not workflow and not slow", see tests/conftest.py)
+#   make benchmark   set up .venv (if needed) and time hubbeam against scipy (benchmarks/, results/benchmarks)
 #   make lock        (maintainers) re-resolve pyproject.toml's dependencies into requirements.lock
 # Setup installs hubbeam (editable, with its `test` extra; `validation` is opt-in, see README) constrained to the
 # exact versions of requirements.lock; it reruns only when pyproject.toml or requirements.lock
@@ -12,7 +14,7 @@ VENV := .venv
 VENV_PYTHON := $(VENV)/bin/python
 STAMP := $(VENV)/.hubbeam-installed
 
-.PHONY: reproduce test benchmark setup lock
+.PHONY: reproduce test test-fast benchmark setup lock
 
 reproduce: $(STAMP)
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/snakemake
@@ -20,8 +22,11 @@ reproduce: $(STAMP)
 test: $(STAMP)
 	$(VENV_PYTHON) -m pytest -q
 
+test-fast: $(STAMP)
+	$(VENV_PYTHON) -m pytest -q -m "not workflow and not slow"
+
 benchmark: $(STAMP)
-	$(VENV_PYTHON) -m hubbeam.benchmark
+	$(VENV_PYTHON) -m benchmarks
 
 setup: $(STAMP)
 

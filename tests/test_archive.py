@@ -17,10 +17,10 @@ import netCDF4
 import pytest
 import xarray as xr
 import yaml
+from synthetic_results import CONFIG_FILE, REPO, SCRIPTS
 
 from hubbeam.crate import sha256
 from hubbeam.io import write_netcdf
-from synthetic_results import CONFIG_FILE, REPO, SCRIPTS
 
 spec = importlib.util.spec_from_file_location("hubbeam_archive_script", SCRIPTS / "archive.py")
 archive = importlib.util.module_from_spec(spec)

@@ -1,12 +1,12 @@
-"""Smoke test of the benchmark machinery (``hubbeam.benchmark``) on a tiny case; no timings.
+"""Smoke test of the benchmark machinery (``benchmarks/``) on a tiny case; no timings.
 
 The tolerance search finds the loosest rung that meets the error target (and none when the
 target is out of reach), errors are measured against the reference on the whole grid, slow
 scipy runs are aborted at their cap, the first-order right-hand side equals the accelerations
-kernel, its plain-Python version computes the same, and the command line writes the CSV files.
+kernel, its plain-Python version computes the same, the command line writes the CSV files and
+the benchmark's settings are checked against the study config.
 """
 
-import copy
 import json
 import math
 
@@ -15,8 +15,13 @@ import pandas as pd
 import pytest
 import yaml
 
-from hubbeam import benchmark as bm
-from hubbeam.config import case_settings
+from benchmarks import cases as bm
+from benchmarks.run import main
+from benchmarks.search import reference_solution, search_tolerance
+from benchmarks.settings import BENCHMARK_CONFIG, load_settings
+from benchmarks.timing import warm_timing
+from hubbeam.config import ConfigError, case_settings
+from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
 from hubbeam.parameters import BeamParameters
 
 TINY = {"model": "FOAM", "maneuver": {"kind": "prescribed", "wf": 0.5, "tf": 1.0}, "t_end": 2.0,
@@ -33,7 +38,7 @@ def tiny(_study_config):
 
 @pytest.fixture(scope="module")
 def reference(tiny):
-    tip, info = bm.reference_solution(tiny, 1e-12, 1e-2, cap=60.0)
+    tip, info = reference_solution(tiny, 1e-12, 1e-2, cap=60.0)
     return tip, info
 
 
@@ -49,7 +54,7 @@ def test_first_order_rhs_is_velocity_and_acceleration(tiny):
 
     rng = np.random.default_rng(3)
     z = rng.normal(scale=1e-2, size=2 * tiny.free.size)
-    dz = bm.first_order_rhs(0.4, z, tiny.problem)
+    dz = first_order_rhs(0.4, z, tiny.problem)
     n = tiny.case["modes"]
     y, v, a = np.zeros(1 + 2 * n), np.zeros(1 + 2 * n), np.zeros(1 + 2 * n)
     y[tiny.free], v[tiny.free] = z[:tiny.free.size], z[tiny.free.size:]
@@ -57,15 +62,15 @@ def test_first_order_rhs_is_velocity_and_acceleration(tiny):
     np.testing.assert_array_equal(dz[:tiny.free.size], z[tiny.free.size:])
     np.testing.assert_allclose(dz[tiny.free.size:], a[tiny.free], rtol=1e-14)
     # the plain-Python version computes the same numbers
-    np.testing.assert_allclose(bm._python_rhs(tiny.problem)(0.4, z, tiny.problem), dz, rtol=1e-12)
+    np.testing.assert_allclose(bm.python_rhs(tiny.problem)(0.4, z, tiny.problem), dz, rtol=1e-12)
     # and the Jacobian's acceleration rows are the derivative of f
-    jac = bm.first_order_jacobian(0.4, z, tiny.problem)
+    jac = first_order_jacobian(0.4, z, tiny.problem)
     step = 1e-6
     for j in range(z.size):
         dzj = np.zeros_like(z)
         dzj[j] = step
-        central = (bm.first_order_rhs(0.4, z + dzj, tiny.problem)
-                   - bm.first_order_rhs(0.4, z - dzj, tiny.problem)) / (2 * step)
+        central = (first_order_rhs(0.4, z + dzj, tiny.problem)
+                   - first_order_rhs(0.4, z - dzj, tiny.problem)) / (2 * step)
         np.testing.assert_allclose(jac[:, j], central, rtol=1e-5, atol=1e-5 * abs(jac).max())
 
 
@@ -74,7 +79,7 @@ def test_first_order_rhs_is_velocity_and_acceleration(tiny):
 def test_tolerance_search_returns_the_loosest_passing_rung(tiny, reference, method):
     tip, _ = reference
     target = 1e-6
-    search = bm.search_tolerance(tiny, method, tip, LADDER, 1e-2, target, cap=60.0)
+    search = search_tolerance(tiny, method, tip, LADDER, 1e-2, target, cap=60.0)
     assert search.rtol is not None and search.error <= target
     assert search.error == bm.max_error(search.run.tip, tip)
     # every looser rung tried first failed the target, the passing one is the last tried
@@ -85,10 +90,10 @@ def test_tolerance_search_returns_the_loosest_passing_rung(tiny, reference, meth
 
 def test_unreachable_target_and_cap_are_reported(tiny, reference):
     tip, _ = reference
-    search = bm.search_tolerance(tiny, bm.Method(bm.HUBBEAM), tip, [1e-2, 1e-3], 1e-2, 1e-15,
+    search = search_tolerance(tiny, bm.Method(bm.HUBBEAM), tip, [1e-2, 1e-3], 1e-2, 1e-15,
                                  cap=None)
     assert search.rtol is None and search.error > 1e-15 and len(search.tried) == 2
-    aborted = bm.search_tolerance(tiny, bm.Method("RK45"), tip, LADDER, 1e-2, 1e-6, cap=1e-9)
+    aborted = search_tolerance(tiny, bm.Method("RK45"), tip, LADDER, 1e-2, 1e-6, cap=1e-9)
     assert aborted.rtol is None and "cap" in aborted.note and math.isinf(aborted.error)
 
 
@@ -97,24 +102,24 @@ def test_max_error_and_warm_timing():
     assert bm.max_error(np.array([0.0, 1.5, -2.0]), reference) == 0.5
     assert math.isinf(bm.max_error(np.array([0.0, np.nan, -2.0]), reference))
     calls = []
-    median, count = bm.warm_timing(lambda: calls.append(1) or 2.0, 1.0, repeats=5, budget=100.0)
+    median, count = warm_timing(lambda: calls.append(1) or 2.0, 1.0, repeats=5, budget=100.0)
     assert count == 5 and len(calls) == 4 and median == 2.0
-    median, count = bm.warm_timing(lambda: 1.0, 30.0, repeats=5, budget=10.0)
+    median, count = warm_timing(lambda: 1.0, 30.0, repeats=5, budget=10.0)
     assert (median, count) == (30.0, 1)
 
 
 def test_command_line_writes_the_tables(_study_config, tmp_path):
-    config = copy.deepcopy(_study_config)
-    config["benchmark"] = {
+    settings = {"benchmark": {
         "cases": {"tiny": TINY}, "output_step": 0.01, "error_target": 1e-6,
         "tolerances": LADDER, "atol_ratio": 1e-2, "reference_rtol": 1e-12,
         "methods": ["RK45", "Radau"], "jacobian_methods": ["Radau"], "scipy_cases": ["tiny"],
         "python_rhs_case": "tiny", "scaling": {"case": "tiny", "modes": [1], "t_end": [2.0]},
-        "sweep_check": {"points": 2, "rtol": 1e-8}}
-    path = tmp_path / "config.yaml"
-    path.write_text(yaml.safe_dump(config))
-    assert bm.main(["--configfile", str(path), "--output", str(tmp_path / "out"), "--repeats", "2",
-                    "--skip-compilation", "--skip-extras"]) == 0
+        "sweep_check": {"points": 2, "rtol": 1e-8}}}
+    study, bench = tmp_path / "config.yaml", tmp_path / "benchmark.yaml"
+    study.write_text(yaml.safe_dump(_study_config))
+    bench.write_text(yaml.safe_dump(settings))
+    assert main(["--configfile", str(study), "--benchmark-config", str(bench), "--output",
+                 str(tmp_path / "out"), "--repeats", "2", "--skip-compilation", "--skip-extras"]) == 0
     table = pd.read_csv(tmp_path / "out" / "integrators.csv")
     assert list(table.columns[:6]) == ["method", "settings", "wall_s", "compile_s", "rhs_calls",
                                        "max_err_m"]
@@ -128,3 +133,21 @@ def test_command_line_writes_the_tables(_study_config, tmp_path):
     assert (passed.rhs_calls > 0).all()
     machine = json.loads((tmp_path / "out" / "machine.json").read_text())
     assert machine["logical_cpus"] >= 1 and machine["numba"]
+
+
+def test_benchmark_settings_are_checked(repo_root, tmp_path):
+    """The shipped settings load; a wrong case reference and a misplaced key are named."""
+    study = repo_root / "config" / "config.yaml"
+    assert load_settings([study], BENCHMARK_CONFIG)["benchmark"]["cases"]
+    settings = yaml.safe_load(BENCHMARK_CONFIG.read_text())
+    settings["benchmark"]["python_rhs_case"] = "nowhere"
+    settings["benchmark"]["output_step"] = -1.0
+    path = tmp_path / "benchmark.yaml"
+    path.write_text(yaml.safe_dump(settings))
+    with pytest.raises(ConfigError, match=r"benchmark\.output_step: got -1\.0.*allowed: a number > 0"):
+        load_settings([study], path)
+    settings["benchmark"]["output_step"] = 0.01
+    path.write_text(yaml.safe_dump(settings))
+    with pytest.raises(ConfigError, match=r"benchmark\.python_rhs_case: got 'nowhere'; allowed: a name of "
+                       r"benchmark\.cases"):
+        load_settings([study], path)

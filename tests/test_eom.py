@@ -16,8 +16,8 @@ import pytest
 
 from hubbeam.core import eom
 from hubbeam.core.integrate import N_SCALAR, fill_outputs, integration_problem, n_output_columns
-from hubbeam.core.radau import problem_rhs
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
+from hubbeam.core.radau import problem_rhs
 from hubbeam.matrices import SystemMatrices
 
 # The synthetic cloud uses the package's own SystemMatrices type: numba's on-disk cache records

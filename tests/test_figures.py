@@ -11,15 +11,22 @@ import matplotlib.text
 import numpy as np
 import pytest
 from PIL import Image
+from synthetic_results import paper_cases, run_script, simulation_dataset, write_eigen, write_simulations
 
 from hubbeam.io import ResultFileError, open_result
 from hubbeam.plotting import draw
 from hubbeam.plotting.figures import FigureDataError
-from hubbeam.products import (EIGEN_FIGURE, PAPER_PRODUCTS, SIMULATION_FIGURE, Product, ProductError,
-                              check_product_cases, of_kind, product_from_entry)
 from hubbeam.plotting.style import styled, units_tex
-from synthetic_results import (paper_cases, run_script, simulation_dataset, write_eigen,
-                               write_simulations)
+from hubbeam.products import (
+    EIGEN_FIGURE,
+    PAPER_PRODUCTS,
+    SIMULATION_FIGURE,
+    Product,
+    ProductError,
+    check_product_cases,
+    of_kind,
+    product_from_entry,
+)
 
 
 @pytest.fixture(scope="module")
@@ -281,7 +288,7 @@ def test_response_panels_draw_the_variable_their_axis_names(key, datasets):
         if name is None:
             continue
         for line, model, modes, label in _model_curves(ax):
-            assert _is_series_of_a_run(line, runs, model, modes, lambda ds: ds[name].values), \
+            assert _is_series_of_a_run(line, runs, model, modes, lambda ds, name=name: ds[name].values), \
                 (key, ax.get_ylabel(), label)
             checked += 1
     assert checked >= 2, key
@@ -318,7 +325,7 @@ def test_fig07_draws_q_theta_and_its_ratio_to_the_torque_amplitude(datasets):
         same_tau = {c: d for c, d in runs.items()
                     if json.loads(d.attrs["maneuver"]).get("tau_max") == tau}
         assert _is_series_of_a_run(line, same_tau, model, modes,
-                                   lambda ds: 100.0 / tau * ds["Q_theta"].values), label
+                                   lambda ds, tau=tau: 100.0 / tau * ds["Q_theta"].values), label
 
 
 # --- layering ------------------------------------------------------------------------------------

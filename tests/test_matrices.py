@@ -5,8 +5,8 @@ import pytest
 from scipy.integrate import cumulative_simpson
 
 from hubbeam.matrices import (
-    SystemMatrices,
     S_matrix,
+    SystemMatrices,
     assemble,
     configuration_name,
     from_dataset,

@@ -7,8 +7,17 @@ import math
 import numpy as np
 import pytest
 
-from hubbeam.measures import (after, fit_sinusoid, late_share, peak, peak_time, phase_lead,
-                              relative_difference, residual_amplitude, wrap_phase)
+from hubbeam.measures import (
+    after,
+    fit_sinusoid,
+    late_share,
+    peak,
+    peak_time,
+    phase_lead,
+    relative_difference,
+    residual_amplitude,
+    wrap_phase,
+)
 
 
 def test_peak_and_its_time_ignore_samples_after_a_divergence():

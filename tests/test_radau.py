@@ -28,7 +28,8 @@ def tan_problem():
 
 
 def run(problem, y0, v0, t_out, rtol=1e-8, atol=1e-10, *, h_init=0.0, fixed_step=False,
-        watch=None, watch_limit=np.inf, max_steps=10**6, t_stops=np.empty(0)):
+        watch=None, watch_limit=np.inf, max_steps=10**6, t_stops=None):
+    t_stops = np.empty(0) if t_stops is None else t_stops
     n = len(y0)
     y_out = np.empty((len(t_out), n))
     v_out = np.empty((len(t_out), n))

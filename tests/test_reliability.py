@@ -35,15 +35,15 @@ import numpy as np
 import pytest
 import xarray as xr
 import yaml
+from synthetic_results import CONFIG_FILE, REPO, run_script, write_eigen, write_simulations
 
 from hubbeam.config import case_settings
 from hubbeam.io import ResultFileError, open_result, staged, write_netcdf
 from hubbeam.matrices import assemble, to_dataset
 from hubbeam.parameters import BeamParameters, TipMass
-from hubbeam.products import PAPER_PRODUCTS
 from hubbeam.plotting.style import styled
-from hubbeam.simulate import (SimulationError, compile_kernels, simulate, simulation_inputs)
-from synthetic_results import CONFIG_FILE, REPO, run_script, write_eigen, write_simulations
+from hubbeam.products import PAPER_PRODUCTS
+from hubbeam.simulate import SimulationError, compile_kernels, simulate, simulation_inputs
 
 SNAKEFILE = REPO / "Snakefile"
 
@@ -163,9 +163,12 @@ def test_bad_convergence_settings_are_rejected_by_simulate(setup):
     params, numerics, config = setup
     case = case_settings(config, "fig05_foam_wf2p8")
     for settings, message in [
-        ({"tolerance_factor": 0.0, "extra_modes": 2, "threshold_m": 1e-4}, "tolerance_factor = 0.0; allowed: a number > 0 and < 1"),
-        ({"tolerance_factor": 0.1, "extra_modes": 2.0, "threshold_m": 1e-4}, "extra_modes = 2.0; allowed: an integer >= 1"),
-        ({"tolerance_factor": 0.1, "extra_modes": 2, "threshold_m": -1.0}, "threshold_m = -1.0; allowed: a number > 0 m"),
+        ({"tolerance_factor": 0.0, "extra_modes": 2, "threshold_m": 1e-4},
+         "tolerance_factor = 0.0; allowed: a number > 0 and < 1"),
+        ({"tolerance_factor": 0.1, "extra_modes": 2.0, "threshold_m": 1e-4},
+         "extra_modes = 2.0; allowed: an integer >= 1"),
+        ({"tolerance_factor": 0.1, "extra_modes": 2, "threshold_m": -1.0},
+         "threshold_m = -1.0; allowed: a number > 0 m"),
         ({"tolerance_factor": 0.1, "extra_modes": 2, "threshold_m": 1e-4, "x": 1}, r"convergence_check.x: unknown key"),
     ]:
         with pytest.raises(SimulationError, match=message):
@@ -347,7 +350,8 @@ def test_a_truncated_input_is_named_by_the_script_reading_it(script, synthetic, 
     arguments = {
         "table_3.py": ({"datasets": [str(bad)]}, {"csv": str(out / "table3.csv")}, {"cases": ["tab3_foam_tau100"]}),
         "figure_eigen.py": ({"critical": str(truncate(eigen["critical_speeds"], tmp_path / "critical.nc"))},
-                            {"pdf": str(out / "critical_map.pdf")}, {"function": PAPER_PRODUCTS["critical_map"].function}),
+                            {"pdf": str(out / "critical_map.pdf")},
+                            {"function": PAPER_PRODUCTS["critical_map"].function}),
         "report_claims.py": ({"datasets": datasets, "table2": str(eigen["table2"]),
                               "critical_speeds": str(eigen["critical_speeds_csv"])},
                              {"claims": str(out / "claims.csv")}, {"cases": cases}),
@@ -466,7 +470,8 @@ def test_a_killed_workflow_leaves_no_partial_result_and_resumes(tmp_path):
         assert math.isfinite(ds.attrs["convergence_modes_diff_m"])
     # ... and Fig. 5 (built from it by the workflow above) draws it up to the divergence, marked
     with styled():
-        fig = PAPER_PRODUCTS["fig05"].resolve()({case: ds for case, ds in datasets.items() if case.startswith("fig05_")})
+        fig05_runs = {case: ds for case, ds in datasets.items() if case.startswith("fig05_")}
+        fig = PAPER_PRODUCTS["fig05"].resolve()(fig05_runs)
     texts = [text.get_text() for text in fig.findobj(matplotlib.text.Text)]
     assert f"TLAM diverged at t = {tlam.attrs['diverged_at_s']:.2f} s" in texts
 

@@ -9,18 +9,25 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from synthetic_results import run_script, write_eigen, write_simulations, write_validation
 
 from hubbeam import paper
-from hubbeam.io import open_result
-from hubbeam.claims import (CLAIM_COLUMNS, ClaimInputError, Results, claims, evaluate, printed_tolerance,
-                            read_claims, write_claims)
+from hubbeam.claims import (
+    CLAIM_COLUMNS,
+    ClaimInputError,
+    Results,
+    claims,
+    evaluate,
+    printed_tolerance,
+    read_claims,
+    write_claims,
+)
 from hubbeam.document import markdown_to_html
+from hubbeam.io import ResultFileError, open_result
 from hubbeam.products import PAPER_PRODUCTS
 from hubbeam.report import reproduction_markdown
-from hubbeam.io import ResultFileError
 from hubbeam.tables import Column, Table, table1, table2, table3, to_latex, to_markdown, write_table
 from hubbeam.validation.report import ValidationInputError, exudyn_markdown, published_section
-from synthetic_results import run_script, write_eigen, write_simulations, write_validation
 
 #: residual vibration after the torque pulse: FOAM (amplitude, omega, phase at t_f) and an SFOAM
 #: that leads it by 0.45 rad with a 24 % smaller amplitude (the paper's statement, as input)
@@ -275,7 +282,8 @@ def test_validation_section_counts_verdicts_and_tests_both_readings_of_the_last_
     assert re.search(r"Entries that do not agree: .*chordwise gamma = 4: printed 3.888, ours 3.900000", md)
     assert re.search(r"\| chordwise \| 4 \| 70 \| 3.888 \| truncated \| 3.900000 \|.*\*\*differs\*\* \|", md)
     # the uncoupled chordwise value comes from rotating_eigen.nc at the row's gamma
-    assert re.search(r"\| chordwise \| 8 \| 70 \| 4.6105 \| truncated \| 4.610587 \|.*\| 4.6572 \| \*\*agrees\*\* \|", md)
+    assert re.search(r"\| chordwise \| 8 \| 70 \| 4.6105 \| truncated \| 4.610587 \|"
+                     r".*\| 4.6572 \| \*\*agrees\*\* \|", md)
     assert "at gamma = 8 would be 4.6572 against the printed 4.6105" in md
     assert "![Validation" in md and "(../rotating_frequencies.png)" in md
     sources = md.split("### Sources of the published values")[1]

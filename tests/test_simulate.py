@@ -21,11 +21,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from synthetic_results import HIGH_ORDER_VARIABLES, SIMULATION_VARIABLES
 
 from hubbeam.config import case_settings
 from hubbeam.parameters import BeamParameters
 from hubbeam.simulate import SimulationError, simulate
-from synthetic_results import SIMULATION_VARIABLES, HIGH_ORDER_VARIABLES
 
 
 @pytest.fixture(scope="module")
@@ -161,11 +161,11 @@ def test_workflow_script_writes_the_case_from_the_leading_matrix_blocks(setup, t
     """simulate_case.py reads the case's matrices file (more modes than the case uses), writes
     the dataset atomically, and gives what simulate() gives with matrices of its own."""
     import xarray as xr
+    from synthetic_results import run_script
 
     from hubbeam.io import open_result, write_netcdf
     from hubbeam.matrices import assemble, to_dataset
     from hubbeam.parameters import TipMass
-    from synthetic_results import run_script
 
     params, numerics, config = setup
     case = case_settings(config, "fig10_tlam_mt0p1") | {"modes": 2, "t_end": 2.0}

@@ -15,7 +15,10 @@ from pathlib import Path
 __version__ = "0.1.0"
 
 
-def source_hash(package_dir: Path = Path(__file__).resolve().parent) -> str:
+PACKAGE_DIR = Path(__file__).resolve().parent
+
+
+def source_hash(package_dir: Path = PACKAGE_DIR) -> str:
     """Short SHA-256 digest of every ``*.py`` file of the package (relative path and bytes)."""
     digest = hashlib.sha256()
     for path in sorted(package_dir.rglob("*.py")):

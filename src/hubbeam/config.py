@@ -21,7 +21,7 @@ import itertools
 import json
 import math
 import os
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -68,38 +68,48 @@ SCHEMA_LIMITS = {
         {"minimum": limits.MIN_QUADRATURE_POINTS, "maximum": limits.MAX_QUADRATURE_POINTS},
     ("properties", "numerics", "properties", "rtol"): _RTOL_BOUND,
     ("properties", "sweeps", "properties", "numerics", "properties", "rtol"): _RTOL_BOUND,
-    ("properties", "benchmark", "properties", "tolerances", "items"): _RTOL_BOUND,
-    ("properties", "benchmark", "properties", "reference_rtol"): _RTOL_BOUND,
-    ("properties", "benchmark", "properties", "sweep_check", "properties", "rtol"): _RTOL_BOUND,
 }
 
 
-def _load_schema() -> dict:
-    if not SCHEMA_PATH.is_file():
+def read_schema(path: os.PathLike | str, bounds: Mapping[tuple, Mapping] | None = None) -> dict:
+    """The JSON schema (YAML) at ``path`` with ``bounds`` ({node keys: bounds}, e.g.
+    :data:`SCHEMA_LIMITS`) filled in; a clear error when the file is missing."""
+    path = Path(path)
+    if not path.is_file():
         raise FileNotFoundError(
-            f"the config schema {SCHEMA_PATH} is missing: hubbeam runs from its source tree "
+            f"the config schema {path} is missing: hubbeam runs from its source tree "
             "(install it with `pip install -e .`)"
         )
-    schema = yaml.safe_load(SCHEMA_PATH.read_text(encoding="utf-8"))
-    for keys, bounds in SCHEMA_LIMITS.items():
+    schema = yaml.safe_load(path.read_text(encoding="utf-8"))
+    for keys, values in (bounds or {}).items():
         node = schema
         for key in keys:
             node = node[key]
-        node.update(bounds)
+        node.update(values)
     return schema
 
 
-SCHEMA = _load_schema()
+SCHEMA = read_schema(SCHEMA_PATH, SCHEMA_LIMITS)
 #: Case names double as wildcards and file names (``results/simulations/<case>.nc``).
 CASE_NAME_PATTERN = SCHEMA["properties"]["cases"]["propertyNames"]["pattern"].strip("^$")
 
 # "integer" means a YAML integer: 5.0 is rejected rather than silently used as an array size.
-_VALIDATOR = jsonschema.validators.extend(
+_VALIDATOR_CLASS = jsonschema.validators.extend(
     jsonschema.Draft202012Validator,
     type_checker=jsonschema.Draft202012Validator.TYPE_CHECKER.redefine(
         "integer", lambda _checker, value: isinstance(value, int) and not isinstance(value, bool)
     ),
-)(SCHEMA)
+)
+
+
+class Section(NamedTuple):
+    """A top-level section checked on top of the study schema (a tool's own settings, such as
+    the benchmark's): its JSON ``schema``, which may refer to the study schema's ``$defs``, and
+    ``check(cfg)``, the problems a schema cannot express (run once the schema accepts ``cfg``)."""
+
+    name: str
+    schema: dict
+    check: Callable[[dict], list[Problem]]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -122,15 +132,17 @@ def merge_configs(*configs: Mapping) -> dict:
     return merged
 
 
-def load_config(paths: os.PathLike | str | Iterable[os.PathLike | str]) -> dict:
-    """Read, merge (later files override earlier ones) and validate one or several config files."""
+def load_config(paths: os.PathLike | str | Iterable[os.PathLike | str],
+                section: Section | None = None) -> dict:
+    """Read, merge (later files override earlier ones) and validate one or several config files;
+    ``section`` adds a required top-level section of its own schema and checks."""
     paths = [paths] if isinstance(paths, (str, os.PathLike)) else list(paths)
     contents, problems = [], []
     for path in paths:
         data, file_problems = _read_file(Path(path))
         contents.append(data)
         problems += file_problems
-    return _validate(merge_configs(*contents), problems, paths)
+    return _validate(merge_configs(*contents), problems, paths, section)
 
 
 def validate_config(cfg: Any, files: Iterable[os.PathLike | str] = ()) -> dict:
@@ -243,16 +255,25 @@ def _update(config: dict, override: Mapping) -> None:
 # validation
 
 
-def _validate(cfg: Any, problems: list[Problem], sources: list) -> dict:
-    found = [problem for error in _VALIDATOR.iter_errors(cfg) for problem in _explain(error)]
+def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None) -> dict:
+    schema = SCHEMA if section is None else _with_section(section)
+    found = [problem for error in _VALIDATOR_CLASS(schema).iter_errors(cfg) for problem in _explain(error, schema)]
     found += _physical_problems(cfg)
+    if section is not None and not found:
+        found += section.check(cfg)
     problems = list(dict.fromkeys(problems + sorted(found, key=lambda problem: problem.path)))
     if problems:
         raise ConfigError(problems, sources)
     return cfg
 
 
-def _explain(error: jsonschema.ValidationError) -> list[Problem]:
+def _with_section(section: Section) -> dict:
+    """The study schema with ``section`` as one more required top-level key."""
+    return {**SCHEMA, "required": [*SCHEMA["required"], section.name],
+            "properties": {**SCHEMA["properties"], section.name: section.schema}}
+
+
+def _explain(error: jsonschema.ValidationError, schema: dict) -> list[Problem]:
     """Turn one schema error into problems that name key, value and what is allowed."""
     parts = list(error.absolute_path)
     kind, instance = error.validator, error.instance
@@ -262,7 +283,7 @@ def _explain(error: jsonschema.ValidationError) -> list[Problem]:
                         f"(pattern {CASE_NAME_PATTERN}), as the name becomes a file name")]
     if kind == "required":
         why = f"required when kind is {instance.get('kind')!r}" if "then" in error.absolute_schema_path else "required"
-        return [Problem(_path(parts + [key]), f"missing ({why}); allowed: {_allowed(parts + [key])}")
+        return [Problem(_path(parts + [key]), f"missing ({why}); allowed: {_allowed(parts + [key], schema)}")
                 for key in error.validator_value if key not in instance]
     if kind == "not":  # a maneuver key that belongs to the other kind
         allowed_keys = ", ".join(["kind", *error.schema["required"]])
@@ -283,7 +304,7 @@ def _explain(error: jsonschema.ValidationError) -> list[Problem]:
         if isinstance(instance, str) and _parses_as_float(instance):
             got += (", as YAML 1.1 reads an exponent form without a decimal point and a signed exponent "
                     "as text (write 2.7667e+3 or 1.0e-9, not 2.7667e3 or 1e-9)")
-    return [Problem(_path(parts), f"{got}; allowed: {_allowed(parts)}")]
+    return [Problem(_path(parts), f"{got}; allowed: {_allowed(parts, schema)}")]
 
 
 def _physical_problems(cfg: Any) -> list[Problem]:
@@ -332,7 +353,6 @@ def _physical_problems(cfg: Any) -> list[Problem]:
     problems += _beam_problems(beam, length)
     problems += _study_problems(cfg, eigen, cases)
     problems += _sweep_problems(_section(cfg, "sweeps"), length)
-    problems += _benchmark_problems(_section(cfg, "benchmark"), length)
     problems += _validation_problems(_section(cfg, "validation"), length, output_step)
     return problems
 
@@ -503,37 +523,6 @@ def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
     return problems
 
 
-def _benchmark_problems(benchmark: Mapping, length: float | None) -> list[Problem]:
-    """The benchmark's case references name benchmark cases, which fit the beam and the grid."""
-    problems = []
-    cases = _section(benchmark, "cases")
-    scipy_cases = benchmark.get("scipy_cases") if isinstance(benchmark.get("scipy_cases"), list) else []
-    references = [("python_rhs_case", benchmark.get("python_rhs_case")),
-                  ("scaling.case", _section(benchmark, "scaling").get("case"))]
-    references += [(f"scipy_cases[{i}]", name) for i, name in enumerate(scipy_cases)]
-    for key, name in references:
-        if isinstance(name, str) and name not in cases:
-            problems.append(Problem(f"benchmark.{key}", f"got {name!r}; allowed: a name of "
-                                    f"benchmark.cases ({', '.join(sorted(cases))})"))
-    python_case = benchmark.get("python_rhs_case")
-    if isinstance(python_case, str) and python_case not in scipy_cases:
-        problems.append(Problem("benchmark.python_rhs_case",
-                                f"got {python_case!r}; allowed: one of benchmark.scipy_cases"))
-    step = _number(benchmark.get("output_step"))
-    for name, case in cases.items():
-        if not isinstance(case, dict):
-            continue
-        t_end = _number(case.get("t_end"))
-        if t_end is not None and step is not None and t_end < step:
-            problems.append(Problem(f"benchmark.cases.{name}.t_end",
-                                    f"got {t_end}; allowed: t_end >= benchmark.output_step = {step}"))
-        position = _number(_section(case, "tip_mass").get("position"))
-        if position is not None and length is not None and position > length:
-            problems.append(Problem(f"benchmark.cases.{name}.tip_mass.position",
-                                    f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
-    return problems
-
-
 def is_multiple(value: float, step: float) -> bool:
     """``value`` is a whole number of ``step`` (to 1e-9 relative): the rule of the startup checks
     and of the Exudyn model (``hubbeam.validation.exudyn_model``), which relies on them."""
@@ -618,9 +607,9 @@ def _non_finite_numbers_and_non_text_keys(node: Any, parts: list) -> list[Proble
 # describing the schema and the values
 
 
-def _schema_at(parts: list) -> dict:
+def _schema_at(parts: list, schema: dict) -> dict:
     """The schema of the value at ``parts`` ($refs resolved, sibling keys kept), {} if none."""
-    node = _resolve(SCHEMA)
+    node = _resolve(schema, schema)
     for part in parts:
         if isinstance(part, int):
             node = node.get("items", {})
@@ -630,22 +619,22 @@ def _schema_at(parts: list) -> dict:
             node = node["additionalProperties"]
         else:
             return {}
-        node = _resolve(node)
+        node = _resolve(node, schema)
     return node
 
 
-def _resolve(node: dict) -> dict:
+def _resolve(node: dict, schema: dict) -> dict:
     if "$ref" not in node:
         return node
-    target = SCHEMA
+    target = schema
     for key in node["$ref"].removeprefix("#/").split("/"):
         target = target[key]
-    return {**_resolve(target), **{key: value for key, value in node.items() if key != "$ref"}}
+    return {**_resolve(target, schema), **{key: value for key, value in node.items() if key != "$ref"}}
 
 
-def _allowed(parts: list) -> str:
+def _allowed(parts: list, schema: dict) -> str:
     """What the schema allows at ``parts``, followed by the key's description."""
-    node = _schema_at(parts)
+    node = _schema_at(parts, schema)
     text = _allowed_values(node)
     return f"{text} -- {node['description'].strip()}" if "description" in node else text
 

@@ -7,9 +7,10 @@ At a constant angular velocity ``Omega`` the transverse equations of TLAM and FO
 
 where ``M2`` and ``D`` include the tip-mass terms ``m_t f2(l)^T f2(l)`` and ``m_t (rA + l) S(l)``
 (Section 4.4, Appendix A5, A8); the formula and the eigensolvers are those of
-:mod:`hubbeam.linearised`, shared with the published-table validation. We read the paper's Table 2 as the frequencies of this transverse
-subsystem alone, the Coriolis coupling ``2 Omega R`` to the axial coordinates and the hub left out
-(the paper does not say). Under this reading the TLAM row without tip mass is exactly
+:mod:`hubbeam.linearised`, shared with the published-table validation. We read the paper's
+Table 2 as the frequencies of this transverse subsystem alone, the Coriolis coupling
+``2 Omega R`` to the axial coordinates and the hub left out (the paper does not say; reproduction
+note 13). Under this reading the TLAM row without tip mass is exactly
 ``sqrt(omega_i^2 - Omega^2)``, and the printed TLAM row follows from the printed natural row by
 that formula to all printed digits. :func:`gyroscopic_eigenvalues` adds the axial coordinates and
 the Coriolis coupling for comparison. Frequencies are the square roots of the

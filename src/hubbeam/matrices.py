@@ -205,7 +205,8 @@ def to_dataset(sm, params, tip, n_quad_requested=None):
     """Self-describing :class:`xarray.Dataset` of ``sm`` (units, long names, mode coordinates).
 
     Global attributes record a ``title``, the configuration name, the tip mass, the beam under
-    its config keys (``hubbeam.beam.beam_attributes``), the number of modes and of Gauss nodes, and the mode normalisation. Provenance
+    its config keys (``hubbeam.beam.beam_attributes``), the number of modes and of Gauss nodes,
+    and the mode normalisation. Provenance
     attributes (``Conventions``, ``history``, ...) are added by the writer.
     """
     import xarray as xr

@@ -75,10 +75,9 @@ class Product:
         return "Figures of the paper" if self.in_paper else "Beyond the paper"
 
     @property
-    def module_file(self) -> str:
-        """Path of the drawing function's module relative to the package, e.g. ``plotting/fig05.py``."""
-        module = self.function.partition(":")[0]
-        return "/".join(module.split(".")[1:]) + ".py"
+    def module(self) -> str:
+        """The drawing function's module, e.g. ``hubbeam.plotting.fig05``."""
+        return self.function.partition(":")[0]
 
     def resolve(self):
         """The function that draws the product (imported now)."""

@@ -54,7 +54,7 @@ def versions(distributions: Iterable[str]) -> dict[str, str]:
 
 def iso_utc(seconds: float) -> str:
     """POSIX time ``seconds`` in ISO 8601, UTC, to the second: ``2009-03-23T00:00:00+00:00``."""
-    return datetime.datetime.fromtimestamp(int(seconds), tz=datetime.timezone.utc).isoformat()
+    return datetime.datetime.fromtimestamp(int(seconds), tz=datetime.UTC).isoformat()
 
 
 def timestamp() -> str:

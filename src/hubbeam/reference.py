@@ -30,8 +30,15 @@ from hubbeam.core.integrate import fill_outputs, n_output_columns
 from hubbeam.core.radau import DIVERGED, NON_FINITE, STEP_UNDERFLOW, SUCCESS
 from hubbeam.matrices import SystemMatrices
 from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import (MODEL_IDS, build_dataset, case_matrices, check_case, check_numerics,
-                              maneuver_parameters, output_times)
+from hubbeam.simulate import (
+    MODEL_IDS,
+    build_dataset,
+    case_matrices,
+    check_case,
+    check_numerics,
+    maneuver_parameters,
+    output_times,
+)
 
 #: scipy methods accepted for the reference (implicit ones cope with the stiff axial modes)
 METHODS = ("Radau", "BDF", "LSODA", "DOP853", "RK45")

@@ -32,8 +32,7 @@ from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
-from hubbeam.limits import (MAX_MODES, MAX_QUADRATURE_POINTS, MIN_MODES, MIN_QUADRATURE_POINTS,
-                            MIN_RTOL)
+from hubbeam.limits import MAX_MODES, MAX_QUADRATURE_POINTS, MIN_MODES, MIN_QUADRATURE_POINTS, MIN_RTOL
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes

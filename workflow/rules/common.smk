@@ -1,8 +1,8 @@
 """Helpers shared by every rule file; the Snakefile includes this file first.
 
 Rules reach the experiment through these helpers: case names for wildcards, the resolved case for
-`params:` (so that editing a case reruns exactly that case), and the package sources a rule runs,
-as inputs (Snakemake watches a script's own mtime, not the modules it imports).
+`params:` (so that editing a case reruns exactly that case), and the package sources a rule's
+script imports, as inputs (Snakemake watches a script's own mtime, not the modules it imports).
 """
 
 import os
@@ -11,9 +11,11 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 
 from hubbeam.config import case_names, case_settings
+from hubbeam.sourcedeps import script_dependencies
 from hubbeam.study import logs_dir, results_dir
 
 PACKAGE_DIR = Path(workflow.basedir, "src", "hubbeam")
+SCRIPTS_DIR = Path(workflow.basedir, "workflow", "scripts")
 #: where the generic rules (matrices, simulations) write: results/ and logs/ for the paper,
 #: results/<name>/ and logs/<name>/ for a study
 RESULTS = results_dir(config)
@@ -35,22 +37,16 @@ def case_params(wildcards):
     return case_config(wildcards.case)
 
 
-def hubbeam_sources(*parts):
-    """The `.py` files of the package a rule runs, as inputs relative to the working directory.
-
-    `parts` are modules or subpackages under src/hubbeam (e.g. "core", "simulate.py"); no part
-    means the whole package.
-    """
-    roots = [PACKAGE_DIR / part for part in parts] or [PACKAGE_DIR]
-    files = set()
-    for root in roots:
-        if root.is_dir():
-            files.update(root.rglob("*.py"))
-        elif root.is_file():
-            files.add(root)
-        else:
-            raise WorkflowError(f"hubbeam_sources: {root} does not exist")
-    return sorted(os.path.relpath(path) for path in files)
+def script_code(script, *modules):
+    """The package sources workflow/scripts/`script` runs, as inputs relative to the working
+    directory: every hubbeam module it imports, transitively, with the package data those modules
+    declare (`hubbeam.sourcedeps`), and the `modules` it imports by a name computed at run time
+    (e.g. "hubbeam.plotting.fig05")."""
+    try:
+        files = script_dependencies(SCRIPTS_DIR / script, PACKAGE_DIR, modules)
+    except (OSError, ImportError, SyntaxError, ValueError) as error:
+        raise WorkflowError(f"script_code({script!r}): {error}") from error
+    return [os.path.relpath(path) for path in files]
 
 
 def simulation_results():
@@ -89,13 +85,6 @@ def product(key):
 def product_datasets(key):
     """The result files of the cases product `key` reads."""
     return expand("results/simulations/{case}.nc", case=product(key).cases)
-
-
-def figure_code(module_file, *extra):
-    """The package sources a figure's drawing depends on (inputs, so that edits rerun it):
-    `module_file` (e.g. "plotting/fig05.py", `Product.module_file`), `extra` and the shared ones."""
-    base = ("plotting/__init__.py", "plotting/figures.py", "plotting/style.py", "io.py", "products.py")
-    return hubbeam_sources(*base, module_file, *extra)
 
 
 def figure_targets():

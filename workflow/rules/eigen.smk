@@ -1,14 +1,9 @@
 """Eigen-analysis at constant hub speed: K22 eigenvalues (Fig. 9), critical speeds (Sections 4.2,
 4.4), Campbell diagram and Table 2. Every physical parameter reaches the scripts via `params:`."""
 
-EIGEN_CODE = hubbeam_sources(
-    "modes.py", "quadrature.py", "matrices.py", "parameters.py", "eigen.py", "paper.py"
-)
-
-
 rule eigen_k22:
     input:
-        code=EIGEN_CODE,
+        code=script_code("eigen_k22.py"),
     output:
         ensure("results/eigen/k22.nc", non_empty=True),
     params:
@@ -26,7 +21,7 @@ rule eigen_k22:
 
 rule eigen_critical_speeds:
     input:
-        code=EIGEN_CODE,
+        code=script_code("eigen_critical_speeds.py"),
     output:
         grid=ensure("results/eigen/critical_speeds.nc", non_empty=True),
         table=ensure("results/tables/critical_speeds.csv", non_empty=True),
@@ -45,7 +40,7 @@ rule eigen_critical_speeds:
 
 rule eigen_campbell:
     input:
-        code=EIGEN_CODE,
+        code=script_code("eigen_campbell.py"),
     output:
         ensure("results/eigen/campbell.nc", non_empty=True),
     params:
@@ -62,7 +57,7 @@ rule eigen_campbell:
 
 rule eigen_table2:
     input:
-        code=EIGEN_CODE,
+        code=script_code("eigen_table2.py"),
     output:
         ensure("results/tables/table2.csv", non_empty=True),
     params:

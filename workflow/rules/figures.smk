@@ -13,7 +13,7 @@ for _key, _product in of_kind(PAPER_PRODUCTS, SIMULATION_FIGURE).items():
         input:
             datasets=product_datasets(_key),
             style=FIGURE_STYLE,
-            code=figure_code(_product.module_file, "measures.py"),
+            code=script_code("figure_simulation.py", _product.module),
         output:
             pdf=ensure(f"results/figures/{_key}.pdf", non_empty=True),
             png=report(
@@ -39,7 +39,7 @@ for _key, _product in of_kind(PAPER_PRODUCTS, EIGEN_FIGURE).items():
         input:
             **_product.files,
             style=FIGURE_STYLE,
-            code=figure_code(_product.module_file, "plotting/fig09.py", "paper.py"),
+            code=script_code("figure_eigen.py", _product.module),
         output:
             pdf=ensure(f"results/figures/{_key}.pdf", non_empty=True),
             png=report(
@@ -58,7 +58,7 @@ for _key, _product in of_kind(PAPER_PRODUCTS, EIGEN_FIGURE).items():
 
 rule table1:
     input:
-        code=hubbeam_sources("tables.py", "paper.py"),
+        code=script_code("table_1.py"),
     output:
         csv=report("results/tables/table1.csv", caption=PRODUCT_CAPTION, category="Tables"),
         md="results/tables/table1.md",
@@ -76,7 +76,7 @@ rule table1:
 rule table2_render:
     input:
         **product("table2").files,
-        code=hubbeam_sources("tables.py"),
+        code=script_code("table_2.py"),
     output:
         md=report("results/tables/table2.md", caption=PRODUCT_CAPTION, category="Tables"),
         tex="results/tables/table2.tex",
@@ -92,7 +92,7 @@ rule table2_render:
 rule table3:
     input:
         datasets=product_datasets("table3"),
-        code=hubbeam_sources("tables.py", "paper.py", "io.py", "measures.py", "plotting/figures.py"),
+        code=script_code("table_3.py"),
     output:
         csv=report("results/tables/table3.csv", caption=PRODUCT_CAPTION, category="Tables"),
         md="results/tables/table3.md",

@@ -9,9 +9,7 @@ demanding case that uses it (the matrices of fewer modes are its leading blocks)
 
 rule matrices:
     input:
-        code=hubbeam_sources(
-            "modes.py", "quadrature.py", "matrices.py", "beam.py", "parameters.py"
-        ),
+        code=script_code("assemble_matrices.py"),
     output:
         ensure(f"{RESULTS}/matrices/{{config_name}}.nc", non_empty=True),
     params:

@@ -9,8 +9,7 @@ rule claims:
         datasets=expand("results/simulations/{case}.nc", case=claim_cases()),
         table2="results/tables/table2.csv",
         critical_speeds="results/tables/critical_speeds.csv",
-        code=hubbeam_sources("claims.py", "measures.py", "products.py", "tables.py", "paper.py", "io.py",
-                             "plotting/figures.py"),
+        code=script_code("report_claims.py"),
     output:
         report(
             ensure("results/report/claims.csv", non_empty=True),
@@ -33,10 +32,7 @@ rule reproduction_report:
         datasets=simulation_results(),
         # the published-table validation (none when the config has no `validation` section)
         **published_validation_inputs(),
-        code=hubbeam_sources("report.py", "claims.py", "document.py", "products.py", "io.py",
-                             "templates/reproduction.md.j2", "templates/validation_published.md.j2",
-                             "plotting/figures.py", "validation/report.py", "validation/published.py",
-                             "validation/rotating_eigen.py"),
+        code=script_code("report_reproduction.py"),
     output:
         markdown=ensure("results/report/reproduction.md", non_empty=True),
         html=report(

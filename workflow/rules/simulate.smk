@@ -9,15 +9,11 @@ every simulation. `simulation_kernel` compiles the jitted kernel once into numba
 before the (parallel) simulations load it.
 """
 
-SIMULATION_CODE = hubbeam_sources(
-    "__init__.py", "core", "simulate.py", "matrices.py", "beam.py", "parameters.py", "provenance.py",
-    "io.py",
-)
 
 
 rule simulation_kernel:
     input:
-        code=SIMULATION_CODE,
+        code=script_code("compile_simulation_kernel.py"),
     output:
         "logs/simulations/kernel.done",
     log:
@@ -30,7 +26,7 @@ rule simulate:
     input:
         matrices=simulation_matrices,
         kernel="logs/simulations/kernel.done",
-        code=SIMULATION_CODE,
+        code=script_code("simulate_case.py"),
     output:
         ensure(f"{RESULTS}/simulations/{{case}}.nc", non_empty=True),
     params:

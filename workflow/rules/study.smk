@@ -6,16 +6,15 @@ HTML, summary.csv) and the archive <name>-results.tar.gz with its SHA-256 manife
 """
 
 STUDY_NAME = config["study"]["name"]
-STUDY_FIGURE_CODE = hubbeam_sources(
-    "plotting/__init__.py", "plotting/style.py", "plotting/case_figure.py",
-    "plotting/comparison.py", "study/summary.py", "io.py",
-)
+#: the drawing modules study_figure.py imports by name
+STUDY_FIGURE_MODULES = ("hubbeam.plotting.case_figure", "hubbeam.plotting.comparison")
 #: eigen figure -> (plotting module, {plot() keyword: eigen result})
 STUDY_EIGEN_FIGURES = {
     "campbell": ("campbell", {"campbell": f"{RESULTS}/eigen/campbell.nc",
                               "critical": f"{RESULTS}/eigen/critical_speeds.nc"}),
     "critical_speeds": ("study_critical", {"critical": f"{RESULTS}/eigen/critical_speeds.nc"}),
 }
+STUDY_EIGEN_MODULES = tuple(f"hubbeam.plotting.{module}" for module, _ in STUDY_EIGEN_FIGURES.values())
 
 
 def study_comparisons():
@@ -68,9 +67,7 @@ wildcard_constraints:
 
 rule study_eigen:
     input:
-        code=hubbeam_sources(
-            "modes.py", "quadrature.py", "matrices.py", "beam.py", "parameters.py", "eigen.py"
-        ),
+        code=script_code("study_eigen.py"),
     output:
         campbell=ensure(f"{RESULTS}/eigen/campbell.nc", non_empty=True),
         critical=ensure(f"{RESULTS}/eigen/critical_speeds.nc", non_empty=True),
@@ -91,7 +88,7 @@ rule study_eigen:
 rule study_case_figure:
     input:
         simulation=f"{RESULTS}/simulations/{{case}}.nc",
-        code=STUDY_FIGURE_CODE,
+        code=script_code("study_figure.py", *STUDY_FIGURE_MODULES),
     output:
         pdf=f"{RESULTS}/figures/case_{{case}}.pdf",
         png=f"{RESULTS}/figures/case_{{case}}.png",
@@ -107,7 +104,7 @@ rule study_case_figure:
 rule study_comparison_figure:
     input:
         unpack(comparison_inputs),
-        code=STUDY_FIGURE_CODE,
+        code=script_code("study_figure.py", *STUDY_FIGURE_MODULES),
     output:
         pdf=f"{RESULTS}/figures/compare_{{comparison}}.pdf",
         png=f"{RESULTS}/figures/compare_{{comparison}}.png",
@@ -123,7 +120,7 @@ rule study_comparison_figure:
 rule study_eigen_figure:
     input:
         unpack(lambda wildcards: STUDY_EIGEN_FIGURES[wildcards.eigen_figure][1]),
-        code=STUDY_FIGURE_CODE + hubbeam_sources("plotting/campbell.py", "plotting/study_critical.py"),
+        code=script_code("figure_eigen.py", *STUDY_EIGEN_MODULES),
     output:
         pdf=f"{RESULTS}/figures/{{eigen_figure}}.pdf",
         png=f"{RESULTS}/figures/{{eigen_figure}}.png",
@@ -139,9 +136,7 @@ rule study_report:
     input:
         simulations=simulation_results(),
         figures=list(study_figures("png").values()),
-        code=hubbeam_sources(
-            "study", "study/templates/report.md.j2", "study/templates/report.html.j2"
-        ),
+        code=script_code("study_report.py"),
     output:
         markdown=f"{RESULTS}/report/report.md",
         html=f"{RESULTS}/report/report.html",

@@ -8,15 +8,11 @@ shares, so that no two jobs compile the same code at the same time. Helpers (`sw
 `sweep_params`, `sweep_targets`) are in common.smk.
 """
 
-SWEEP_CODE = hubbeam_sources(
-    "__init__.py", "core", "sweep.py", "simulate.py", "eigen.py", "paper.py", "matrices.py",
-    "modes.py", "quadrature.py", "parameters.py", "provenance.py", "io.py"
-)
 
 
 rule sweep_kernel:
     input:
-        code=SWEEP_CODE,
+        code=script_code("sweep_compile.py"),
         simulation_kernel="logs/simulations/kernel.done",
     output:
         "logs/sweeps/kernel.done",
@@ -29,7 +25,7 @@ rule sweep_kernel:
 rule sweep:
     input:
         kernel="logs/sweeps/kernel.done",
-        code=SWEEP_CODE,
+        code=script_code("sweep_run.py"),
     output:
         ensure("results/sweeps/{sweep}.nc", non_empty=True),
     params:
@@ -48,7 +44,7 @@ rule figure_sweep:
     input:
         sweep="results/sweeps/{sweep}.nc",
         style=FIGURE_STYLE,
-        code=figure_code("plotting/sweep_maps.py"),
+        code=script_code("figure_sweep.py"),
     output:
         pdf=ensure("results/figures/sweep_{sweep}.pdf", non_empty=True),
         png=report(

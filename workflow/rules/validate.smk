@@ -14,8 +14,6 @@ Everything Exudyn is built only by the `validate` target (`snakemake validate`, 
 before running anything, saying so.
 """
 
-EXUDYN_CODE = hubbeam_sources("validation/exudyn_model.py", "core/maneuver.py", "core/jit.py",
-                              "parameters.py")
 
 
 rule validate:
@@ -26,9 +24,7 @@ rule validate:
 
 rule validate_published:
     input:
-        code=hubbeam_sources("validation/published.py", "validation/rotating_eigen.py",
-                             "validation/figures.py", "plotting/style.py", "matrices.py",
-                             "modes.py", "quadrature.py", "parameters.py"),
+        code=script_code("validate_published.py"),
         style=FIGURE_STYLE,
     output:
         table=ensure(f"{VALIDATION_DIR}/published_comparison.csv", non_empty=True),
@@ -51,7 +47,7 @@ rule validate_published:
 
 rule validate_exudyn:
     input:
-        code=EXUDYN_CODE,
+        code=script_code("validate_exudyn.py"),
     output:
         ensure(f"{VALIDATION_DIR}/runs/exudyn_{{vcase}}.nc", non_empty=True),
     wildcard_constraints:
@@ -69,8 +65,7 @@ rule validate_exudyn:
 
 rule validate_models:
     input:
-        code=hubbeam_sources("core", "simulate.py", "matrices.py", "modes.py", "quadrature.py",
-                             "parameters.py", "validation/comparison.py"),
+        code=script_code("validate_models.py"),
     output:
         ensure(f"{VALIDATION_DIR}/runs/models_{{vcase}}.nc", non_empty=True),
     wildcard_constraints:
@@ -90,7 +85,7 @@ rule validate_case:
     input:
         reference=f"{VALIDATION_DIR}/runs/exudyn_{{vcase}}.nc",
         models=f"{VALIDATION_DIR}/runs/models_{{vcase}}.nc",
-        code=hubbeam_sources("validation/comparison.py"),
+        code=script_code("validate_case.py"),
     output:
         ensure(f"{VALIDATION_DIR}/exudyn_{{vcase}}.nc", non_empty=True),
     wildcard_constraints:
@@ -104,8 +99,7 @@ rule validate_case:
 rule validate_comparison:
     input:
         cases=validation_case_files,
-        code=hubbeam_sources("validation/comparison.py", "validation/figures.py",
-                             "plotting/style.py"),
+        code=script_code("validate_comparison.py"),
         style=FIGURE_STYLE,
     output:
         table=ensure(f"{VALIDATION_DIR}/exudyn_comparison.csv", non_empty=True),
@@ -124,8 +118,7 @@ rule validate_comparison:
 rule validate_modes:
     input:
         references=validation_reference_files,
-        code=hubbeam_sources("core", "simulate.py", "matrices.py", "modes.py", "quadrature.py",
-                             "parameters.py", "validation/comparison.py"),
+        code=script_code("validate_modes.py"),
     output:
         ensure(f"{VALIDATION_DIR}/exudyn_mode_study.csv", non_empty=True),
     params:
@@ -142,7 +135,7 @@ rule validate_modes:
 
 rule validate_convergence:
     input:
-        code=EXUDYN_CODE + hubbeam_sources("validation/comparison.py"),
+        code=script_code("validate_convergence.py"),
     output:
         table=ensure(f"{VALIDATION_DIR}/exudyn_convergence.csv", non_empty=True),
         runs=ensure(f"{VALIDATION_DIR}/exudyn_convergence.nc", non_empty=True),
@@ -164,8 +157,7 @@ rule validation_report:
         figure=f"{VALIDATION_DIR}/exudyn_comparison.png",
         mode_study=f"{VALIDATION_DIR}/exudyn_mode_study.csv",
         convergence=f"{VALIDATION_DIR}/exudyn_convergence.csv",
-        code=hubbeam_sources("validation/report.py", "document.py", "templates/validation_exudyn.md.j2",
-                             "io.py"),
+        code=script_code("report_validation.py"),
     output:
         markdown=ensure("results/report/validation_exudyn.md", non_empty=True),
         html=report(

@@ -61,8 +61,8 @@ def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: o
                   workflow_root: os.PathLike | str, root: os.PathLike | str = ".",
                   top: str = TOP) -> Path:
     """Write ``output`` (.tar.gz) with ``files`` (paths relative to ``root``), the workflow in
-    ``workflow_root``, the config, the crate and the manifest, all under the directory ``top``; atomic (``hubbeam.io.staged``:
-    temporary file + rename). Raises FileNotFoundError naming a missing file."""
+    ``workflow_root``, the config, the crate and the manifest, all under the directory ``top``;
+    atomic (``hubbeam.io.staged``: temporary file + rename). Raises FileNotFoundError naming a missing file."""
     root, output = Path(root), Path(output)
     names = sorted({Path(os.path.relpath(Path(root, f), root)).as_posix() for f in files})
     workflow = workflow_files(workflow_root)

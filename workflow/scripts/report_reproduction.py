@@ -6,9 +6,9 @@ The published-table validation is read when the rule has its inputs (the config 
 
 from pathlib import Path
 
-from hubbeam.io import open_result, write_text
 from hubbeam.claims import read_claims
 from hubbeam.document import markdown_to_html
+from hubbeam.io import open_result, write_text
 from hubbeam.report import reproduction_markdown
 from hubbeam.validation.report import published_section
 

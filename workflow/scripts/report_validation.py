@@ -2,8 +2,8 @@
 
 from pathlib import Path
 
-from hubbeam.io import write_text
 from hubbeam.document import markdown_to_html
+from hubbeam.io import write_text
 from hubbeam.validation.report import exudyn_markdown
 
 out = Path(snakemake.output.markdown)

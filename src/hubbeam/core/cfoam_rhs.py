@@ -18,7 +18,7 @@ import numpy as np
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
 from hubbeam.core.eom import solve_spd
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
+from hubbeam.core.maneuver import applied_torque, hub_motion
 from hubbeam.core.radau import register_rhs
 
 #: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, the tensors ``ct``, and

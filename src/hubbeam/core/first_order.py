@@ -3,9 +3,10 @@
 ``z = (y_f, v_f)`` (free positions and velocities, see ``eom.free_dofs``), ``z' = f(t, z) =
 (v_f, a_f(t, y_f, v_f))`` with the accelerations (Eq. 24 solved for y'') of the problem hubbeam's
 integrator runs (:func:`hubbeam.core.integrate.integration_problem`), and its Jacobian
-``df/dz = [[0, I], [da/dy, da/dv]]`` by the forward differences hubbeam's Radau IIA uses (:func:`hubbeam.core.radau.jacobian`, ``2 N`` evaluations
-of ``a`` inside one call). These are what a user would hand to ``scipy.integrate.solve_ivp``
-(``fun`` and ``jac``); :mod:`hubbeam.benchmark` times scipy's methods with them.
+``df/dz = [[0, I], [da/dy, da/dv]]`` by the forward differences hubbeam's Radau IIA uses
+(:func:`hubbeam.core.radau.jacobian`, ``2 N`` evaluations of ``a`` inside one call). These are
+what a user would hand to ``scipy.integrate.solve_ivp`` (``fun`` and ``jac``); the benchmark
+(``benchmarks/``) times scipy's methods with them.
 """
 
 import numpy as np

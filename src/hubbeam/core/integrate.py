@@ -15,8 +15,16 @@ import numpy as np
 
 from hubbeam.core.cfoam_rhs import cfoam_problem
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors, no_tensors
-from hubbeam.core.eom import (CFOAM, foam_system, free_dofs, high_order_terms,
-                              impose_constraints, outputs, tip_outputs, workspace)
+from hubbeam.core.eom import (
+    CFOAM,
+    foam_system,
+    free_dofs,
+    high_order_terms,
+    impose_constraints,
+    outputs,
+    tip_outputs,
+    workspace,
+)
 from hubbeam.core.foam_rhs import foam_problem
 from hubbeam.core.jit import inline_kernel, kernel
 from hubbeam.core.radau import radau5

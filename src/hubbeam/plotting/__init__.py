@@ -11,7 +11,6 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from hubbeam.io import open_result
-
 from hubbeam.plotting.figures import FigureDataError
 from hubbeam.plotting.style import save_figure, styled
 

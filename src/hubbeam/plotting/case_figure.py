@@ -55,7 +55,7 @@ def plot(case: str, ds: xr.Dataset):
     t = ds["time"].values
     style = model_style(str(ds.attrs["model"]))
     end = maneuver_end(maneuver)
-    for index, (key, (name, label)) in enumerate(series(ds).items()):
+    for index, (name, label) in enumerate(series(ds).values()):
         axes[index].plot(t, ds[name].values, **style)
         axes[index].set_ylabel(label)
         mark_events(axes[index], ds, end)

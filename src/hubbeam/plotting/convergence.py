@@ -13,8 +13,14 @@ import numpy as np
 import xarray as xr
 
 from hubbeam.measures import after, fit_sinusoid, peak, residual_amplitude
-from hubbeam.plotting.figures import (curve_label, mark_maneuver_end, maneuver_value, n_modes,
-                                      plot_series, require_datasets)
+from hubbeam.plotting.figures import (
+    curve_label,
+    maneuver_value,
+    mark_maneuver_end,
+    n_modes,
+    plot_series,
+    require_datasets,
+)
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
 
 

@@ -10,8 +10,15 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (curve_label, mark_maneuver_end, maneuver_value, n_modes,
-                                      plot_series, require_datasets, select)
+from hubbeam.plotting.figures import (
+    curve_label,
+    maneuver_value,
+    mark_maneuver_end,
+    n_modes,
+    plot_series,
+    require_datasets,
+    select,
+)
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
 
 

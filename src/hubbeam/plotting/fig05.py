@@ -12,8 +12,14 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (distinct, limit_to_bounded, mark_maneuver_end, plot_series,
-                                      require_datasets, select)
+from hubbeam.plotting.figures import (
+    distinct,
+    limit_to_bounded,
+    mark_maneuver_end,
+    plot_series,
+    require_datasets,
+    select,
+)
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
 
 ROWS = (

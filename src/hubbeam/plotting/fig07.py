@@ -10,8 +10,15 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (curve_label, distinct, mark_maneuver_end, model, plot_series,
-                                      require_datasets, select)
+from hubbeam.plotting.figures import (
+    curve_label,
+    distinct,
+    mark_maneuver_end,
+    model,
+    plot_series,
+    require_datasets,
+    select,
+)
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, panel_title
 
 

@@ -10,8 +10,7 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (FigureDataError, distinct, mark_maneuver_end, model, n_modes,
-                                      plot_series, select)
+from hubbeam.plotting.figures import FigureDataError, distinct, mark_maneuver_end, model, n_modes, plot_series, select
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
 
 

@@ -10,8 +10,17 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (distinct, limit_to_bounded, maneuver_value, mark_maneuver_end,
-                                      model, plot_series, require_datasets, select, tip_position)
+from hubbeam.plotting.figures import (
+    distinct,
+    limit_to_bounded,
+    maneuver_value,
+    mark_maneuver_end,
+    model,
+    plot_series,
+    require_datasets,
+    select,
+    tip_position,
+)
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
 
 

@@ -124,11 +124,22 @@ def build_model(params, tip=None, maneuver=None, elements: int = 16) -> HubBeamM
     ``maneuver`` ``(wf, tf)`` of Eq. (43), or None for a hub held at ``theta = 0``.
     """
     exu = require_exudyn()
-    from exudyn.itemInterface import (CoordinateConstraint, GenericJoint, MarkerBodyRigid,
-                                      MarkerNodeCoordinate, MarkerNodeRigid, MassPoint2D,
-                                      NodePoint2D, NodePoint2DSlope1, NodePointGround,
-                                      NodeRigidBody2D, ObjectANCFCable2D, ObjectGround,
-                                      ObjectRigidBody2D, SensorNode)
+    from exudyn.itemInterface import (
+        CoordinateConstraint,
+        GenericJoint,
+        MarkerBodyRigid,
+        MarkerNodeCoordinate,
+        MarkerNodeRigid,
+        MassPoint2D,
+        NodePoint2D,
+        NodePoint2DSlope1,
+        NodePointGround,
+        NodeRigidBody2D,
+        ObjectANCFCable2D,
+        ObjectGround,
+        ObjectRigidBody2D,
+        SensorNode,
+    )
 
     length = params.L / elements
     tip_node_index = None

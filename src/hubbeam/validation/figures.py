@@ -29,7 +29,7 @@ def exudyn_comparison(datasets: Mapping[str, xr.Dataset]):
         raise ValueError("exudyn_comparison: no validation case given; allowed: one dataset or more")
     fig, axes = new_figure(len(datasets), 2, height=2.3 * len(datasets) + 0.6, width=7.2,
                            sharex=True)
-    for row, (name, ds) in enumerate(datasets.items()):
+    for row, ds in enumerate(datasets.values()):
         config = json.loads(ds.attrs["case_config"])
         tip = config.get("tip_mass") or {"mass": 0.0}
         time = ds["time"].values

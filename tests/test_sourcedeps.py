@@ -51,6 +51,24 @@ def test_closure_follows_every_kind_of_import(toy):
         "__init__.py", "a.py", "b.py", "sub/__init__.py", "sub/c.py", "sub/d.py"]
 
 
+def test_declared_package_data_counts_for_every_importer(toy):
+    root, script = toy
+    write(root, {"b.py": 'PACKAGE_DATA = ("templates/*.j2",)\n', "templates/r.md.j2": "x",
+                 "templates/notes.txt": "not matched", "other/t.md.j2": "not declared"})
+    files = relative(script_dependencies(script, root), root)
+    assert "templates/r.md.j2" in files
+    assert "templates/notes.txt" not in files and "other/t.md.j2" not in files
+
+
+def test_the_report_rules_depend_on_the_templates():
+    from hubbeam.sourcedeps import package_dir
+
+    root = package_dir()
+    script = Path(__file__).parents[1] / "workflow" / "scripts" / "report_reproduction.py"
+    files = relative(script_dependencies(script, root), root)
+    assert "templates/reproduction.md.j2" in files and "document.py" in files
+
+
 def test_extra_modules_are_added_with_their_imports(toy):
     root, script = toy
     files = relative(script_dependencies(script, root, ["hubbeam.late", "hubbeam.unused"]), root)

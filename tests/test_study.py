@@ -61,7 +61,7 @@ def test_peak_and_residual_of_a_decaying_sinusoid():
     assert list(row) == list(COLUMNS)
 
 
-def test_a_diverged_run_and_a_failed_convergence_check_are_reported():
+def test_a_diverged_run_and_a_failed_convergence_check_are_reported(tmp_path):
     t = np.linspace(0.0, 2.0, 21)
     tip = np.where(t <= 1.0, t, np.nan)
     ds = dataset(tip, t, {"kind": "prescribed", "wf": 5.0, "tf": 1.5}, diverged=1, diverged_at_s=1.0,
@@ -78,8 +78,11 @@ def test_a_diverged_run_and_a_failed_convergence_check_are_reported():
                               [row], {"boom": "../figures/case_boom.png"}, {}, {})
     assert "| boom | FOAM | prescribed | 3 |" in markdown and "yes (t = 1 s)" in markdown
     assert "NOT converged (tolerance 1e-06 m, modes 0.002 m)" in markdown
-    html = study_html(markdown, "s")
-    assert "<table>" in html and '<img src="../figures/case_boom.png"' in html
+    figure = tmp_path / "figures" / "case_boom.png"
+    figure.parent.mkdir()
+    figure.write_bytes(b"png bytes")
+    html = study_html(markdown, "s", tmp_path / "report")
+    assert "<table>" in html and '<img alt="case boom" src="data:image/png;base64,' in html
 
 
 TINY_STUDY = {
@@ -130,8 +133,10 @@ def test_a_tiny_study_builds_every_general_product_in_its_own_folder(tmp_path):
         with xr.open_dataset(folder / "simulations" / f"{case}.nc") as ds:
             assert float(rows[case]["peak_tip_deflection_m"]) == float(np.nanmax(np.abs(ds["tip_transverse"].values)))
         assert rows[case]["convergence"] in ("converged", "NOT converged")
+    markdown = (folder / "report" / "report.md").read_text()
+    assert all(f"(../figures/{name}.png)" in markdown for name in figures)
     html = (folder / "report" / "report.html").read_text()
-    assert all(f'src="../figures/{name}.png"' in html for name in figures)
+    assert html.count('src="data:image/png;base64,') == len(figures)
 
     script = REPO / "workflow" / "scripts" / "archive.py"
     spec = importlib.util.spec_from_file_location("hubbeam_archive_script", script)

@@ -9,12 +9,15 @@ from __future__ import annotations
 
 import base64
 import html
+import math
 from functools import cache
 from pathlib import Path
 
 import jinja2
 from markdown_it import MarkdownIt
 
+#: the templates :func:`render` reads (package data: the rules that render them depend on them)
+PACKAGE_DATA = ("templates/*.j2",)
 CSS = ("body{font-family:sans-serif;max-width:60rem;margin:2rem auto;padding:0 1rem;line-height:1.45}"
        "table{border-collapse:collapse;margin:1rem 0;font-size:.9rem}"
        "th,td{border:1px solid #ccc;padding:.25rem .5rem;vertical-align:top}th{background:#f2f2f2}"
@@ -22,11 +25,23 @@ CSS = ("body{font-family:sans-serif;max-width:60rem;margin:2rem auto;padding:0 1
        "code{background:#f5f5f5;padding:0 .2rem}")
 
 
+def number(value, digits: int = 4) -> str:
+    """A table cell (the templates' ``number`` filter): ``-`` for NaN, ``yes``/``no`` for flags,
+    ``digits`` significant figures for other floats."""
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, float):
+        return "-" if math.isnan(value) else f"{value:.{digits}g}"
+    return str(value)
+
+
 @cache
 def _environment() -> jinja2.Environment:
-    return jinja2.Environment(loader=jinja2.PackageLoader("hubbeam", "templates"),
-                              undefined=jinja2.StrictUndefined, trim_blocks=True,
-                              lstrip_blocks=True, keep_trailing_newline=True, autoescape=False)
+    environment = jinja2.Environment(loader=jinja2.PackageLoader("hubbeam", "templates"),
+                                     undefined=jinja2.StrictUndefined, trim_blocks=True,
+                                     lstrip_blocks=True, keep_trailing_newline=True, autoescape=False)
+    environment.filters["number"] = number
+    return environment
 
 
 def render(template: str, **context) -> str:

@@ -7,7 +7,10 @@ reading the import statements (``ast``) of the script and, transitively, of each
 it reaches, including imports inside functions. Importing ``a.b.c`` runs ``a/__init__.py`` and
 ``a/b/__init__.py`` too, so those are included. A module imported by a name computed at run time
 (``importlib.import_module``) is invisible to this analysis: callers name such modules
-themselves (``extra_modules``).
+themselves (``extra_modules``). A module that reads files of the package at run time (templates,
+say) declares them in a module-level tuple of glob patterns relative to its own directory,
+``PACKAGE_DATA = ("templates/*.j2",)``; those files count as dependencies of every script that
+imports the module.
 """
 
 from __future__ import annotations
@@ -67,6 +70,20 @@ def imported_names(path: Path, module: str | None = None) -> frozenset[str]:
     return frozenset(names)
 
 
+@cache
+def package_data(path: Path) -> tuple[Path, ...]:
+    """The files the module ``path`` declares in its literal ``PACKAGE_DATA`` tuple of glob
+    patterns (relative to the module's directory), sorted; none without such a tuple."""
+    tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+    for node in tree.body:
+        if (isinstance(node, ast.Assign) and len(node.targets) == 1
+                and isinstance(node.targets[0], ast.Name) and node.targets[0].id == "PACKAGE_DATA"):
+            patterns = ast.literal_eval(node.value)
+            return tuple(sorted(file for pattern in patterns for file in path.parent.glob(pattern)
+                                if file.is_file()))
+    return ()
+
+
 def with_parents(module: str) -> list[str]:
     """``a.b.c`` -> ``[a, a.b, a.b.c]``: importing a module runs its parent packages first."""
     parts = module.split(".")
@@ -92,8 +109,9 @@ def module_closure(script: Path, root: Path, extra_modules: Iterable[str] = (),
 
 def script_dependencies(script: Path, root: Path | None = None, extra_modules: Iterable[str] = (),
                         package: str = PACKAGE) -> list[Path]:
-    """The source files of ``package`` the script ``script`` runs (see :func:`module_closure`),
-    sorted; ``root`` defaults to the package's directory on the import path."""
+    """The source files of ``package`` the script ``script`` runs (see :func:`module_closure`)
+    and the package data those modules declare (:func:`package_data`), sorted; ``root`` defaults
+    to the package's directory on the import path."""
     script = Path(script)
     if not script.is_file():
         raise FileNotFoundError(f"script {script} does not exist; allowed: an existing Python file")
@@ -102,4 +120,5 @@ def script_dependencies(script: Path, root: Path | None = None, extra_modules: I
         if module_file(name, root, package) is None:
             raise ModuleNotFoundError(f"extra module {name!r} has no source file under {root}; "
                                       f"allowed: a module of {package}")
-    return sorted(set(module_closure(script, root, extra_modules, package).values()))
+    modules = module_closure(script, root, extra_modules, package).values()
+    return sorted({*modules, *(data for path in modules for data in package_data(path))})

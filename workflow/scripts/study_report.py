@@ -20,7 +20,7 @@ markdown = study_markdown(
     eigen_figures={name: path for name, path in relative.items() if not name.startswith(("case_", "compare_"))},
 )
 write_text(out.markdown, markdown)
-write_text(out.html, study_html(markdown, p.study.get("title", p.study["name"])))
+write_text(out.html, study_html(markdown, p.study.get("title", p.study["name"]), report_dir))
 with staged(out.summary) as (summary,), open(summary, "w", newline="") as handle:
     writer = csv.DictWriter(handle, fieldnames=COLUMNS)
     writer.writeheader()

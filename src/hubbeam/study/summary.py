@@ -15,6 +15,8 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
+from hubbeam import measures
+
 #: columns of a summary row, in the order of the report's table and csv file
 COLUMNS = ("case", "model", "maneuver", "modes", "tip_mass_kg", "peak_tip_deflection_m",
            "peak_time_s", "maneuver_end_s", "residual_amplitude_m", "diverged", "diverged_at_s",
@@ -51,11 +53,9 @@ def case_summary(case: str, ds: xr.Dataset) -> dict:
     attrs = ds.attrs
     maneuver = dataset_maneuver(ds)
     t = ds["time"].values
-    tip = np.abs(ds["tip_transverse"].values)
-    finite = np.isfinite(tip)
-    peak_index = int(np.nanargmax(np.where(finite, tip, -np.inf))) if finite.any() else None
+    tip = ds["tip_transverse"].values
+    bounded = bool(np.isfinite(tip).any())
     end = maneuver_end(maneuver)
-    after = finite & (t > end)
     diverged = int(attrs["diverged"]) == 1
     return {
         "case": case,
@@ -63,10 +63,10 @@ def case_summary(case: str, ds: xr.Dataset) -> dict:
         "maneuver": maneuver["kind"],
         "modes": int(attrs["n_modes"]),
         "tip_mass_kg": float(attrs["tip_mass_kg"]),
-        "peak_tip_deflection_m": float(tip[peak_index]) if peak_index is not None else math.nan,
-        "peak_time_s": float(t[peak_index]) if peak_index is not None else math.nan,
+        "peak_tip_deflection_m": measures.peak(tip) if bounded else math.nan,
+        "peak_time_s": measures.peak_time(t, tip) if bounded else math.nan,
         "maneuver_end_s": end,
-        "residual_amplitude_m": float(tip[after].max()) if after.any() else math.nan,
+        "residual_amplitude_m": measures.residual_amplitude(t, tip, end),
         "diverged": diverged,
         "diverged_at_s": float(attrs["diverged_at_s"]) if diverged else math.nan,
         "convergence": convergence_result(attrs),

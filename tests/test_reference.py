@@ -61,6 +61,7 @@ def test_pure_python_accelerations_call_no_compiled_code_and_agree(setup):
     sm = kernel_matrices(assemble(params, None, 2, 16))
     rng = np.random.default_rng(7)
     mp = np.array([2.8, 30.0])
+    C = np.stack([0.3 * np.eye(2), np.array([[0.2, 0.05], [0.05, 0.4]])])
     for model in eom.MODEL_IDS.values():
         for kind in (PRESCRIBED, TORQUE):
             free = eom.free_dofs(model, kind, 2)
@@ -68,7 +69,7 @@ def test_pure_python_accelerations_call_no_compiled_code_and_agree(setup):
                 t = rng.uniform(0, 40)
                 y, v = rng.normal(scale=0.1, size=(2, 5))
                 a_fast, a_plain = np.zeros(5), np.zeros(5)
-                args = (model, kind, mp, t)
+                args = (model, kind, mp, C, t)
                 out_fast = eom.accelerations(*args, y.copy(), v.copy(), sm, free, a_fast)
                 out_plain = plain(*args, y.copy(), v.copy(), sm, free, a_plain)
                 assert np.allclose(a_plain, a_fast, rtol=1e-12, atol=1e-12)

@@ -30,7 +30,8 @@ from hubbeam.core.eom import MODEL_IDS
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.parameters import CONFIG_KEYS, BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
-from hubbeam.simulate import INTEGRATOR, MANEUVERS, kernel_matrices
+from hubbeam.maneuvers import MANEUVERS
+from hubbeam.simulate import INTEGRATOR, kernel_matrices
 
 LOG = logging.getLogger(__name__)
 

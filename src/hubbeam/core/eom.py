@@ -467,17 +467,18 @@ def tip_outputs(y, sm):
 
 
 @borrowing_kernel
-def high_order_terms(Mc, Fc, tau, y, v, a, sm, Mf, Ff, dQ):
+def high_order_terms(Mc, Fc, tau, y, v, a, sm, C, Mf, Ff, dQ):
     """The CFOAM terms FOAM drops (Eqs. 35-39, re-derived), along a state with accelerations ``a``.
 
-    ``Mc, Fc`` are CFOAM's mass matrix and force at ``(y, v)`` with applied torque ``tau``;
-    ``Mf, Ff`` are overwritten with FOAM's. Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the
+    ``Mc, Fc`` are CFOAM's mass matrix and force at ``(y, v)`` with applied torque ``tau`` and the
+    damping forces of ``C``; ``Mf, Ff`` are overwritten with FOAM's (same damping, so it cancels). Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the
     generalised force the high-order terms add to FOAM's equations (theta, q1, q2 rows;
     accelerations moved to the right-hand side as in Eqs. 38-39) and returns
     ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35).
     """
     N = y.shape[0]
     foam_system(FOAM, y, v, tau, sm, Mf, Ff)
+    add_damping(C, v, Ff)
     for i in range(N):
         s = Fc[i] - Ff[i]
         for j in range(N):

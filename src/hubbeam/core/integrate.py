@@ -116,7 +116,7 @@ def _fill_rows(model, kind, mp, C, sm, ct, free, t_out, y_out, v_out, out):
         for i in range(2 * n):
             out[k, N_SCALAR + i] = y[1 + i]
         if model == CFOAM:
-            out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, y, v, a, sm, Mf, Ff, dQ)
+            out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, y, v, a, sm, C, Mf, Ff, dQ)
             for i in range(N):
                 out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
 

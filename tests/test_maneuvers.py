@@ -30,7 +30,7 @@ def setup(_study_config):
 
 def _case(maneuver, model="FOAM", t_end=6.0, modes=2, **extra):
     return {"name": "m", "model": model, "modes": modes, "t_end": t_end, "maneuver": maneuver,
-            "tip_mass": {"mass": 0.0, "position": 10.0}, **extra}
+            "tip_mass": {"mass": 0.0, "position": 8.0}, **extra}
 
 
 #: one maneuver of every kind, rows on the 0.01 s output grid

@@ -79,14 +79,16 @@ def test_modal_damping_gives_the_logarithmic_decrement_of_the_ratio(setup, zeta)
     STOP,
 ])
 def test_energy_change_is_work_less_dissipation(setup, model, damping, maneuver):
-    """Simpson's rule on the 0.005 s grid, as in test_maneuvers."""
+    """Simpson's rule on the 0.005 s grid, as in test_maneuvers; the dissipation rate also
+    carries the fast axial and higher bending modes (measured up to 1e-7 of the largest work,
+    bound 1e-6)."""
     params, numerics = setup
     ds = simulate(_case(maneuver, damping, model), params, dict(numerics, output_step=0.005))
     change = ds.energy.values - ds.energy.values[0]
     balance = ds.work.values - ds.dissipated_energy.values
     assert ds.dissipated_energy.values[-1] > 1e-3 * np.abs(ds.work.values).max()
     np.testing.assert_allclose(change, balance, rtol=0,
-                               atol=1e-5 * np.abs(ds.work.values).max())
+                               atol=1e-6 * np.abs(ds.work.values).max())
 
 
 def test_zero_damping_is_no_damping(setup):

@@ -78,15 +78,15 @@ def test_speed_table_sampled_from_eq43_reproduces_the_eq43_run(setup):
 @pytest.mark.parametrize("model", ["TLAM", "FOAM", "CFOAM"])
 @pytest.mark.parametrize("kind", list(KINDS))
 def test_work_of_the_hub_torque_equals_the_energy_change(setup, model, kind):
-    """Simpson's rule on the 0.005 s grid: error O(h^4) where the power is smooth, O(h^2) on the
-    few intervals around a kink of a linear torque table (|jump of the power's slope| h^2 ~ 1e-3
-    J at most): 1e-5 of the largest work, far below any energy error of a wrong equation."""
+    """Simpson's rule on the 0.005 s grid: error O(h^4) where the power is smooth (the table rows
+    lie on the grid, so no interval straddles a kink); measured about 1e-9 of the largest work,
+    bound 1e-7. SFOAM, without the balance, misses it by 4e-5 to 1e-3."""
     params, numerics = setup
     ds = simulate(_case(KINDS[kind], model), params, dict(numerics, output_step=0.005))
     change = ds.energy.values - ds.energy.values[0]
     work = ds.work.values
     assert np.abs(work).max() > 1.0
-    np.testing.assert_allclose(change, work, rtol=0, atol=1e-5 * np.abs(work).max())
+    np.testing.assert_allclose(change, work, rtol=0, atol=1e-7 * np.abs(work).max())
     assert np.all(ds.dissipated_energy.values == 0.0)
     assert ds.hub_torque.attrs["units"] == "N m" and ds.work.attrs["units"] == "J"
 

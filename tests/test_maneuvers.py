@@ -152,8 +152,8 @@ BAD = [
     ({"kind": "pd", "kp": 1.0, "kd": 1.0,
       "reference": {"kind": "angle_table", "time": [1.0, 1.0], "angle": [0.0, 1.0]}},
      "maneuver.reference.time = [1.0, 1.0]; allowed: strictly increasing times >= 0 s"),
-    ({"kind": "ramp"}, "maneuver.kind = 'ramp'; allowed: one of prescribed, torque, speed_table, "
-                       "torque_table, pd"),
+    ({"kind": "ramp"}, ("maneuver.kind = 'ramp'; allowed: one of prescribed, torque, "
+                        "speed_table, torque_table, pd")),
     ({"kind": "torque_table", "time": [0, 1], "torque": [0, 1], "speed": [0, 1]},
      "maneuver.speed: unknown key for kind 'torque_table'; allowed keys: kind, time, torque"),
 ]

@@ -26,7 +26,6 @@ from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
-
 from scipy.integrate import cumulative_simpson
 
 from hubbeam.core import radau

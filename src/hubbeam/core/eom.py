@@ -88,7 +88,6 @@ def add_damping(C, v, F):
             for j in range(n):
                 s += C[b, i, j] * v[o + j]
             F[o + i] -= s
-    return
 
 
 @borrowing_kernel

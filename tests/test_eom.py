@@ -321,6 +321,10 @@ MANEUVERS = [
 ]
 
 
+def _label(maneuver):
+    return maneuver["kind"] + maneuver.get("reference", {}).get("kind", "")
+
+
 def _undamped(sm):
     n = sm.M1.shape[0]
     return np.zeros((2, n, n))
@@ -333,7 +337,7 @@ def _damping(sm):
     return np.ascontiguousarray(0.05 * np.einsum("bij,bkj->bik", B, B))
 
 
-@pytest.mark.parametrize("maneuver", MANEUVERS, ids=lambda m: m["kind"] + m.get("reference", {}).get("kind", ""))
+@pytest.mark.parametrize("maneuver", MANEUVERS, ids=_label)
 @pytest.mark.parametrize("model", [eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM])
 @pytest.mark.parametrize("amplitude", [0.05, 2.0])
 @pytest.mark.parametrize("damped", [False, True])
@@ -371,7 +375,7 @@ def test_outputs_give_energy_and_momentum_of_the_state(sm, state):
         assert torque == pytest.approx(200.0 * np.sin(2 * np.pi * 4.0 / 10.0), rel=1e-13)
 
 
-@pytest.mark.parametrize("maneuver", MANEUVERS, ids=lambda m: m["kind"] + m.get("reference", {}).get("kind", ""))
+@pytest.mark.parametrize("maneuver", MANEUVERS, ids=_label)
 @pytest.mark.parametrize("model", [eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM])
 def test_dataset_outputs_equal_the_general_equations(sm, state, maneuver, model):
     """fill_outputs (CFOAM from the pre-contracted tensors) against the point-cloud equations of

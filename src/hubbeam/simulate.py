@@ -216,12 +216,12 @@ def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: Sys
     t = output_times(case["t_end"], numerics["output_step"])
     out = np.empty((t.size, n_output_columns(case["modes"])))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
-    start = time.perf_counter()
     C = damping_matrices(case.get("damping"), sm)
+    start = time.perf_counter()
     status, t_stop = simulate_kernel(
-        MODEL_IDS[case["model"]], kind, mp, C, sm, t, step_stops(case, t), float(numerics["rtol"]),
-        float(numerics["atol"]), float(numerics["divergence_limit"]) * params.L,
-        int(numerics["max_steps"]), out, stats)
+        MODEL_IDS[case["model"]], kind, mp, C, sm, t, step_stops(case, t),
+        float(numerics["rtol"]), float(numerics["atol"]),
+        float(numerics["divergence_limit"]) * params.L, int(numerics["max_steps"]), out, stats)
     wall = time.perf_counter() - start
     LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
              "%d rhs calls, %d Jacobians, %d LU", case.get("name", "<unnamed>"), case["model"],

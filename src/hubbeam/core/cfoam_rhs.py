@@ -7,9 +7,9 @@ summed over the point cloud once per simulation instead of summing over the clou
 call -- and solves Eq. (24) for the free accelerations by a Cholesky factorisation: the elastic
 block with the prescribed ``theta_ddot`` moved to the right-hand side (Eq. 43, a speed table),
 or the whole system for a free hub (Eq. 44, a torque table, PD feedback); the damping forces of
-the elastic coordinates (``C``, :func:`hubbeam.core.eom.add_damping`) join the force. These are the equations
-:func:`hubbeam.core.eom.accelerations` solves with the point-cloud kernel; the tests hold the two
-to rounding error.
+the elastic coordinates (``C``, :func:`hubbeam.core.eom.add_damping`) join the force. These are
+the equations :func:`hubbeam.core.eom.accelerations` solves with the point-cloud kernel; the tests
+hold the two to rounding error.
 """
 
 from collections import namedtuple

@@ -470,9 +470,10 @@ def high_order_terms(Mc, Fc, tau, y, v, a, sm, C, Mf, Ff, dQ):
     """The CFOAM terms FOAM drops (Eqs. 35-39, re-derived), along a state with accelerations ``a``.
 
     ``Mc, Fc`` are CFOAM's mass matrix and force at ``(y, v)`` with applied torque ``tau`` and the
-    damping forces of ``C``; ``Mf, Ff`` are overwritten with FOAM's (same damping, so it cancels). Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the
-    generalised force the high-order terms add to FOAM's equations (theta, q1, q2 rows;
-    accelerations moved to the right-hand side as in Eqs. 38-39) and returns
+    damping forces of ``C``; ``Mf, Ff`` are overwritten with FOAM's (same damping, so it cancels).
+    Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the generalised force the high-order terms add
+    to FOAM's equations (theta, q1, q2 rows; accelerations moved to the right-hand side as in
+    Eqs. 38-39) and returns
     ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35).
     """
     N = y.shape[0]

@@ -22,8 +22,9 @@ from hubbeam.core.integrate import (
     simulate_kernel,
     tip_watch,
 )
+from hubbeam.damping import damping_matrices
 from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import case_matrices, maneuver_parameters, output_times
+from hubbeam.simulate import case_matrices, maneuver_parameters, output_times, step_stops
 
 MAX_STEPS = 10_000_000
 
@@ -46,6 +47,7 @@ class BenchmarkCase:
     model: int
     kind: int
     mp: np.ndarray
+    C: np.ndarray
     free: np.ndarray
     t: np.ndarray
     stops: np.ndarray
@@ -55,7 +57,7 @@ class BenchmarkCase:
     @property
     def problem(self) -> tuple:
         """A fresh radau5 problem (with its work arrays) of the case, the one hubbeam runs."""
-        return integration_problem(self.model, self.kind, self.mp, self.sm)
+        return integration_problem(self.model, self.kind, self.mp, self.C, self.sm)
 
 
 @dataclass(frozen=True)
@@ -105,9 +107,8 @@ def prepare_case(name: str, case: Mapping, params: BeamParameters, numerics: Map
     model = MODEL_IDS[case["model"]]
     free = free_dofs(model, kind, case["modes"])
     t = output_times(case["t_end"], output_step)
-    tf = float(case["maneuver"]["tf"])
-    stops = np.array([tf]) if 0.0 < tf < t[-1] else np.empty(0)
-    return BenchmarkCase(name, dict(case), sm, model, kind, mp, free, t, stops,
+    C = damping_matrices(case.get("damping"), sm)
+    return BenchmarkCase(name, dict(case), sm, model, kind, mp, C, free, t, step_stops(case, t),
                          tip_watch(free, sm), float(numerics["divergence_limit"]) * params.L)
 
 
@@ -118,7 +119,7 @@ def run_hubbeam(bench: BenchmarkCase, rtol: float, atol: float, full: bool = Fal
     if full:
         out = np.empty((bench.t.size, n_output_columns(bench.case["modes"])))
         start = time.perf_counter()
-        status, _ = simulate_kernel(bench.model, bench.kind, bench.mp, bench.sm, bench.t,
+        status, _ = simulate_kernel(bench.model, bench.kind, bench.mp, bench.C, bench.sm, bench.t,
                                     bench.stops, rtol, atol, bench.tip_limit, MAX_STEPS, out,
                                     stats)
         wall = time.perf_counter() - start
@@ -127,9 +128,9 @@ def run_hubbeam(bench: BenchmarkCase, rtol: float, atol: float, full: bool = Fal
         y_out = np.empty((bench.t.size, bench.free.size))
         v_out = np.empty_like(y_out)
         start = time.perf_counter()
-        status, _, watch = integrate_free(bench.model, bench.kind, bench.mp, bench.sm, bench.t,
-                                          bench.stops, rtol, atol, bench.tip_limit, MAX_STEPS,
-                                          y_out, v_out, stats)
+        status, _, watch = integrate_free(bench.model, bench.kind, bench.mp, bench.C, bench.sm,
+                                          bench.t, bench.stops, rtol, atol, bench.tip_limit,
+                                          MAX_STEPS, y_out, v_out, stats)
         wall = time.perf_counter() - start
         tip = y_out @ watch
     return Run(tip, wall, int(stats[radau.RHS_CALLS]), status == radau.SUCCESS)

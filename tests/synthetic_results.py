@@ -74,7 +74,7 @@ def simulation_dataset(case: str, spec: dict, *, n_modes: int | None = None, t_e
     q1 = np.outer(-1e-4 * tip**2 - 1e-5 * thd**2, shape)
     data = {
         "theta": th, "theta_dot": thd, "theta_ddot": thdd,
-        "torque": 230.0 * thdd,
+        "hub_torque": 230.0 * thdd,
         "Q_theta": np.zeros_like(t) if model == "SFOAM" else -0.01 * thd * np.gradient(tip, t),
         "q1": q1, "q2": q2,
         "tip_transverse": tip, "tip_axial": q1.sum(axis=1) * 0.35,

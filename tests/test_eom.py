@@ -18,6 +18,7 @@ from hubbeam.core import eom
 from hubbeam.core.integrate import N_SCALAR, fill_outputs, integration_problem, n_output_columns
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
 from hubbeam.core.radau import problem_rhs
+from hubbeam.maneuvers import maneuver_parameters
 from hubbeam.matrices import SystemMatrices
 
 # The synthetic cloud uses the package's own SystemMatrices type: numba's on-disk cache records
@@ -274,7 +275,8 @@ def test_accelerations_solve_the_equations_with_constraints(sm, state):
             yy, vv = y.copy(), v.copy()
             a = np.zeros_like(y)
             free = eom.free_dofs(model, kind, n)
-            torque, q_theta = eom.accelerations(model, kind, mp, 7.0, yy, vv, sm, free, a)
+            torque, q_theta = eom.accelerations(model, kind, mp, _undamped(sm), 7.0, yy, vv, sm,
+                                                free, a)
             M, F = jitted_system(model, sm, yy, vv)
             residual = M @ a - F  # F without torque: the hub row's residual is the torque
             elastic = free[free > 0]
@@ -299,30 +301,61 @@ def test_high_order_terms_vanish_to_second_order(sm, state):
         vs[1:] *= eps
         as_[1:] *= eps
         eom.mass_matrix_and_force(eom.CFOAM, ys, vs, 3.0, sm, Mc, Fc)
-        dM = eom.high_order_terms(Mc, Fc, 3.0, ys, vs, as_, sm, Mf, Ff, dQ)
+        dM = eom.high_order_terms(Mc, Fc, 3.0, ys, vs, as_, sm, _undamped(sm), Mf, Ff, dQ)
         sizes.append((abs(dM), np.max(np.abs(dQ))))
     # Delta M_thth (Eq. 35) is cubic in q; the dropped generalised forces are quadratic
     assert sizes[1][0] == pytest.approx(sizes[0][0] / 1000, rel=0.05)
     assert sizes[1][1] == pytest.approx(sizes[0][1] / 100, rel=0.05)
 
 
-@pytest.mark.parametrize("kind,mp", [(PRESCRIBED, np.array([2.8, 30.0])),
-                                     (TORQUE, np.array([200.0, 10.0]))])
+#: every maneuver kind (hubbeam.maneuvers), each with rows around the times the tests use
+MANEUVERS = [
+    {"kind": "prescribed", "wf": 2.8, "tf": 30.0},
+    {"kind": "torque", "tau_max": 200.0, "tf": 10.0},
+    {"kind": "speed_table", "time": [0.0, 2.0, 5.0, 9.0], "speed": [0.0, 1.0, 2.5, 2.0]},
+    {"kind": "torque_table", "time": [0.5, 3.0, 8.0], "torque": [10.0, -40.0, 5.0]},
+    {"kind": "pd", "kp": 300.0, "kd": 80.0,
+     "reference": {"kind": "angle_table", "time": [0.0, 3.0, 6.0], "angle": [0.0, 1.0, 1.5]}},
+    {"kind": "pd", "kp": 300.0, "kd": 80.0,
+     "reference": {"kind": "prescribed", "wf": 1.0, "tf": 8.0}},
+]
+
+
+def _label(maneuver):
+    return maneuver["kind"] + maneuver.get("reference", {}).get("kind", "")
+
+
+def _undamped(sm):
+    n = sm.M1.shape[0]
+    return np.zeros((2, n, n))
+
+
+def _damping(sm):
+    """Symmetric positive semi-definite damping matrices of the size of ``sm``."""
+    n = sm.M1.shape[0]
+    B = np.random.default_rng(11).normal(size=(2, n, n))
+    return np.ascontiguousarray(0.05 * np.einsum("bij,bkj->bik", B, B))
+
+
+@pytest.mark.parametrize("maneuver", MANEUVERS, ids=_label)
 @pytest.mark.parametrize("model", [eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM])
 @pytest.mark.parametrize("amplitude", [0.05, 2.0])
-def test_integrator_rhs_equals_the_general_solve(sm, state, kind, mp, model, amplitude):
+@pytest.mark.parametrize("damped", [False, True])
+def test_integrator_rhs_equals_the_general_solve(sm, state, maneuver, model, amplitude, damped):
     """The integrator's right-hand side -- foam_rhs (modal mass inverted once, hub row by a Schur
     complement) or cfoam_rhs (pre-contracted tensors) -- equals accelerations (full mass matrix
     from the point cloud, Cholesky), also far outside the small-deformation range."""
     n = sm.M1.shape[0]
+    kind, mp = maneuver_parameters(maneuver)
+    C = _damping(sm) if damped else _undamped(sm)
     y, v = state
     y = np.concatenate([y[:1], amplitude / 0.05 * y[1:]])
     free = eom.free_dofs(model, kind, n)
     a_ref = np.zeros_like(y)
     yy, vv = y.copy(), v.copy()  # constrained entries overwritten by the maneuver
-    eom.accelerations(model, kind, mp, 4.0, yy, vv, sm, free, a_ref)
+    eom.accelerations(model, kind, mp, C, 4.0, yy, vv, sm, free, a_ref)
     a = np.full(free.size, np.nan)
-    problem_rhs(4.0, yy[free], vv[free], a, integration_problem(model, kind, mp, sm))
+    problem_rhs(4.0, yy[free], vv[free], a, integration_problem(model, kind, mp, C, sm))
     np.testing.assert_allclose(a, a_ref[free], rtol=1e-12, atol=1e-12 * np.max(np.abs(a_ref)))
 
 
@@ -342,14 +375,15 @@ def test_outputs_give_energy_and_momentum_of_the_state(sm, state):
         assert torque == pytest.approx(200.0 * np.sin(2 * np.pi * 4.0 / 10.0), rel=1e-13)
 
 
-@pytest.mark.parametrize("kind,mp", [(PRESCRIBED, np.array([2.8, 30.0])),
-                                     (TORQUE, np.array([200.0, 10.0]))])
+@pytest.mark.parametrize("maneuver", MANEUVERS, ids=_label)
 @pytest.mark.parametrize("model", [eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM])
-def test_dataset_outputs_equal_the_general_equations(sm, state, kind, mp, model):
+def test_dataset_outputs_equal_the_general_equations(sm, state, maneuver, model):
     """fill_outputs (CFOAM from the pre-contracted tensors) against the point-cloud equations of
     eom, output by output, at states far outside the small-deformation range too."""
     n = sm.M1.shape[0]
     N = 1 + 2 * n
+    kind, mp = maneuver_parameters(maneuver)
+    C = _damping(sm)
     y, v = state
     free = eom.free_dofs(model, kind, n)
     t = np.array([1.0, 4.0, 12.0])
@@ -357,7 +391,7 @@ def test_dataset_outputs_equal_the_general_equations(sm, state, kind, mp, model)
     y_out = np.ascontiguousarray(scales * y[free])
     v_out = np.ascontiguousarray(scales * v[free])
     out = np.empty((t.size, n_output_columns(n)))
-    fill_outputs(model, kind, mp, sm, free, t, y_out, v_out, out)
+    fill_outputs(model, kind, mp, C, sm, free, t, y_out, v_out, out)
     expected = np.full_like(out, np.nan)
     ws = eom.workspace(sm, free)
     Mf, Ff, dQ = np.empty((N, N)), np.empty(N), np.empty(N)
@@ -366,12 +400,14 @@ def test_dataset_outputs_equal_the_general_equations(sm, state, kind, mp, model)
         yy[free], vv[free] = y_out[k], v_out[k]
         tau = eom.impose_constraints(model, kind, mp, t[k], yy, vv, a)
         eom.mass_matrix_and_force(model, yy, vv, tau, sm, ws.M, ws.F)
+        eom.add_damping(C, vv, ws.F)
         torque, q_theta, e, p = eom.outputs(kind, tau, yy, vv, sm, free, a, ws)
+        dissipation = vv[1:1 + n] @ C[0] @ vv[1:1 + n] + vv[1 + n:] @ C[1] @ vv[1 + n:]
         expected[k, :N_SCALAR] = (yy[0], vv[0], a[0], torque, q_theta,
-                                  *eom.tip_outputs(yy, sm), e, p)
+                                  *eom.tip_outputs(yy, sm), e, p, dissipation)
         expected[k, N_SCALAR:N_SCALAR + 2 * n] = yy[1:]
         if model == eom.CFOAM:
-            dM = eom.high_order_terms(ws.M, ws.F, tau, yy, vv, a, sm, Mf, Ff, dQ)
+            dM = eom.high_order_terms(ws.M, ws.F, tau, yy, vv, a, sm, C, Mf, Ff, dQ)
             expected[k, N_SCALAR + 2 * n:] = (dM, *dQ)
     assert np.array_equal(np.isnan(out), np.isnan(expected))
     # every column to rounding error of its own size

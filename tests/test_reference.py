@@ -19,11 +19,10 @@ from numba.core.dispatcher import Dispatcher
 
 from hubbeam.config import case_settings
 from hubbeam.core import eom
-from hubbeam.core.maneuver import PRESCRIBED, TORQUE
 from hubbeam.matrices import assemble
 from hubbeam.parameters import BeamParameters
 from hubbeam.reference import pure_python, reference_simulation
-from hubbeam.simulate import kernel_matrices, simulate
+from hubbeam.simulate import kernel_matrices, maneuver_parameters, simulate
 
 
 @pytest.fixture(scope="module")
@@ -60,15 +59,21 @@ def test_pure_python_accelerations_call_no_compiled_code_and_agree(setup):
     assert not any(isinstance(f, Dispatcher) for f in _reachable_functions(plain))
     sm = kernel_matrices(assemble(params, None, 2, 16))
     rng = np.random.default_rng(7)
-    mp = np.array([2.8, 30.0])
+    C = np.stack([0.3 * np.eye(2), np.array([[0.2, 0.05], [0.05, 0.4]])])
+    maneuvers = [{"kind": "prescribed", "wf": 2.8, "tf": 30.0},
+                 {"kind": "torque", "tau_max": 50.0, "tf": 30.0},
+                 {"kind": "speed_table", "time": [0.0, 10.0, 30.0], "speed": [0.0, 2.0, 1.0]},
+                 {"kind": "torque_table", "time": [0.0, 10.0, 30.0], "torque": [0.0, 5.0, 1.0]},
+                 {"kind": "pd", "kp": 3.0, "kd": 1.0,
+                  "reference": {"kind": "angle_table", "time": [0.0, 20.0], "angle": [0.0, 1.0]}}]
     for model in eom.MODEL_IDS.values():
-        for kind in (PRESCRIBED, TORQUE):
+        for kind, mp in map(maneuver_parameters, maneuvers):
             free = eom.free_dofs(model, kind, 2)
             for _ in range(3):
                 t = rng.uniform(0, 40)
                 y, v = rng.normal(scale=0.1, size=(2, 5))
                 a_fast, a_plain = np.zeros(5), np.zeros(5)
-                args = (model, kind, mp, t)
+                args = (model, kind, mp, C, t)
                 out_fast = eom.accelerations(*args, y.copy(), v.copy(), sm, free, a_fast)
                 out_plain = plain(*args, y.copy(), v.copy(), sm, free, a_plain)
                 assert np.allclose(a_plain, a_fast, rtol=1e-12, atol=1e-12)
@@ -94,6 +99,17 @@ def test_fast_path_agrees_with_the_reference_on_fig5_foam(setup):
     # free hub: FOAM and SFOAM (Schur complement of the modal mass), SFOAM with a tip mass
     ("tab3_foam_tau200", {"t_end": 12.0}),
     ("fig08_sfoam_tau200", {"t_end": 12.0, "tip_mass": {"mass": 0.1, "position": 6.0}}),
+    # PD feedback on an angle table, modal damping; CFOAM under a damped speed table
+    ("tab3_foam_tau200", {"t_end": 8.0, "damping": {"kind": "modal", "axial": 0.02,
+                                                    "transverse": 0.05},
+                          "maneuver": {"kind": "pd", "kp": 2000.0, "kd": 800.0,
+                                       "reference": {"kind": "angle_table", "time": [0.0, 4.0],
+                                                     "angle": [0.0, 1.0]}}}),
+    ("fig04_cfoam", {"t_end": 10.0, "tip_mass": {"mass": 0.5, "position": 8.0},
+                     "damping": {"kind": "rayleigh", "mass_coefficient": 0.1,
+                                 "stiffness_coefficient": 1e-3},
+                     "maneuver": {"kind": "speed_table", "time": [0.0, 4.0, 8.0],
+                                  "speed": [0.0, 1.0, 0.5]}}),
 ])
 def test_fast_right_hand_sides_agree_with_the_reference(setup, name, changes):
     """The integrator's right-hand sides (core.foam_rhs, core.cfoam_rhs) against scipy on the

@@ -28,6 +28,7 @@ from scipy.integrate import solve_ivp
 from hubbeam.core import eom
 from hubbeam.core.integrate import fill_outputs, n_output_columns
 from hubbeam.core.radau import DIVERGED, NON_FINITE, STEP_UNDERFLOW, SUCCESS
+from hubbeam.damping import damping_matrices
 from hubbeam.matrices import SystemMatrices
 from hubbeam.parameters import BeamParameters
 from hubbeam.simulate import (
@@ -38,6 +39,7 @@ from hubbeam.simulate import (
     check_numerics,
     maneuver_parameters,
     output_times,
+    step_stops,
 )
 
 #: scipy methods accepted for the reference (implicit ones cope with the stiff axial modes)
@@ -75,8 +77,8 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     Arguments as :func:`hubbeam.simulate.simulate` (``numerics`` gives the output grid and the
     divergence limit); ``method``, ``rtol``, ``atol`` configure ``solve_ivp`` (``atol`` applies to
     every free position and velocity). The run is split at the end of the maneuver, as in the fast
-    path. Integrator attributes name scipy, the method and its counts (``n_steps`` is not known
-    to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
+    path (and at every row of a maneuver's table). Integrator attributes name scipy, the method and
+    its counts (``n_steps`` is not known to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
     """
     check_case(case)
     check_numerics(numerics)
@@ -85,6 +87,7 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     sm = case_matrices(case, params, numerics, matrices)
     model = MODEL_IDS[case["model"]]
     kind, mp = maneuver_parameters(case["maneuver"])
+    C = damping_matrices(case.get("damping"), sm)
     n = case["modes"]
     free = eom.free_dofs(model, kind, n)
     nf = free.size
@@ -96,7 +99,7 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     def rhs(t, z):
         y[free] = z[:nf]
         v[free] = z[nf:]
-        accelerations(model, kind, mp, t, y, v, sm, free, a)
+        accelerations(model, kind, mp, C, t, y, v, sm, free, a)
         return np.concatenate([z[nf:], a[free]])
 
     tip_limit = float(numerics["divergence_limit"]) * params.L
@@ -107,8 +110,7 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     tip_event.terminal = True
 
     t = output_times(case["t_end"], numerics["output_step"])
-    tf = float(case["maneuver"]["tf"])
-    edges = [t[0]] + ([tf] if t[0] < tf < t[-1] else []) + [t[-1]]
+    edges = [t[0], *step_stops(case, t), t[-1]]
     z = np.zeros(2 * nf)
     states = np.full((t.size, 2 * nf), np.nan)
     status, t_stop, nfev, njev, nlu = SUCCESS, t[-1], 0, 0, 0
@@ -132,7 +134,7 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
         z = result.y[:, -1]
     wall = time.perf_counter() - start
     out = np.empty((t.size, n_output_columns(n)))
-    fill_outputs(model, kind, mp, sm, free, t, np.ascontiguousarray(states[:, :nf]),
+    fill_outputs(model, kind, mp, C, sm, free, t, np.ascontiguousarray(states[:, :nf]),
                  np.ascontiguousarray(states[:, nf:]), out)
     integrator = {"integrator": f"scipy.integrate.solve_ivp {method} (hubbeam.reference)",
                   "rtol": float(rtol), "atol": float(atol), "n_rhs": int(nfev),

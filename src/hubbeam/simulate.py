@@ -26,21 +26,20 @@ from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
+from scipy.integrate import cumulative_simpson
 
 from hubbeam.beam import beam_attributes, beam_from_attributes
 from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
-from hubbeam.core.maneuver import PRESCRIBED, TORQUE
+from hubbeam.damping import check_damping, damping_matrices
 from hubbeam.limits import MAX_MODES, MAX_QUADRATURE_POINTS, MIN_MODES, MIN_QUADRATURE_POINTS, MIN_RTOL
+from hubbeam.maneuvers import check_maneuver, maneuver_parameters, maneuver_stops
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
 
 LOG = logging.getLogger(__name__)
-
-#: maneuver kind -> (kernel id, parameters in the order of the kernel's ``mp`` array)
-MANEUVERS = {"prescribed": (PRESCRIBED, ("wf", "tf")), "torque": (TORQUE, ("tau_max", "tf"))}
 
 #: numerics keys a simulation reads
 NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
@@ -52,7 +51,8 @@ VARIABLES = {
     "theta": (("time",), "rad", "hub angle theta"),
     "theta_dot": (("time",), "rad s-1", "hub angular velocity"),
     "theta_ddot": (("time",), "rad s-2", "hub angular acceleration"),
-    "torque": (("time",), "N m", "hub torque (applied by Eq. 44, or required by Eq. 43)"),
+    "hub_torque": (("time",), "N m",
+                   "hub torque (applied to a free hub, or required by a prescribed motion)"),
     "Q_theta": (("time",), "N m", "velocity-dependent generalised force Q_theta (Eq. 32)"),
     "q1": (("time", "mode"), "kg1/2 m", "axial modal coordinates q1 (unit modal mass modes)"),
     "q2": (("time", "mode"), "kg1/2 m", "transverse modal coordinates q2 (unit modal mass modes)"),
@@ -61,6 +61,12 @@ VARIABLES = {
     "tip_foreshortening": (("time",), "m", "tip foreshortening wc(L) = -q2' S(L) q2 / 2"),
     "energy": (("time",), "J", "total mechanical energy T + U"),
     "angular_momentum": (("time",), "kg m2 s-1", "angular momentum about the hub axis"),
+}
+#: cumulative integrals from t = 0 (:func:`cumulative_integral`) -> (integrand: output column
+#: names whose product it is, units, long name)
+CUMULATIVE_VARIABLES = {
+    "work": (("hub_torque", "theta_dot"), "J", "cumulative work of the hub torque"),
+    "dissipated_energy": (("dissipation_rate",), "J", "cumulative energy dissipated by damping"),
 }
 #: CFOAM only: the high-order terms FOAM drops, along the CFOAM trajectory (note 5, Fig. 3)
 HIGH_ORDER_VARIABLES = {
@@ -83,16 +89,11 @@ def check_case(case: Mapping) -> None:
     if case.get("model") not in MODEL_IDS:
         raise SimulationError(f"cases.{name}.model = {case.get('model')!r}; "
                               f"allowed: one of {', '.join(MODEL_IDS)}")
-    maneuver = case.get("maneuver")
-    kind = maneuver.get("kind") if isinstance(maneuver, Mapping) else None
-    if kind not in MANEUVERS:
-        raise SimulationError(f"cases.{name}.maneuver.kind = {kind!r}; "
-                              f"allowed: one of {', '.join(MANEUVERS)}")
-    for key in MANEUVERS[kind][1]:
-        value = maneuver.get(key)
-        if not _finite(value) or (key == "tf" and value <= 0.0):
-            raise SimulationError(f"cases.{name}.maneuver.{key} = {value!r}; allowed: a finite "
-                                  f"number{' > 0 s' if key == 'tf' else ''}")
+    try:
+        check_maneuver(case.get("maneuver"), f"cases.{name}.maneuver")
+        check_damping(case.get("damping"), f"cases.{name}.damping")
+    except ValueError as error:
+        raise SimulationError(str(error)) from error
     if not _finite(case.get("t_end")) or case["t_end"] <= 0.0:
         raise SimulationError(f"cases.{name}.t_end = {case.get('t_end')!r}; "
                               "allowed: a number > 0 s")
@@ -143,12 +144,6 @@ def output_times(t_end: float, output_step: float) -> np.ndarray:
     return np.arange(count + 1) * output_step
 
 
-def maneuver_parameters(maneuver: Mapping) -> tuple[int, np.ndarray]:
-    """Kernel id and parameter array ``mp`` of a maneuver (``[wf, tf]`` or ``[tau_max, tf]``)."""
-    kind, keys = MANEUVERS[maneuver["kind"]]
-    return kind, np.array([float(maneuver[key]) for key in keys])
-
-
 def kernel_matrices(sm: SystemMatrices) -> SystemMatrices:
     """``sm`` with C-contiguous float64 arrays and float scalars (one compiled kernel for all)."""
     return SystemMatrices(*(np.ascontiguousarray(value, dtype=np.float64) if np.ndim(value)
@@ -182,7 +177,8 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     Parameters
     ----------
     case : a resolved case (``hubbeam.config.case_settings``): ``name``, ``model``, ``maneuver``
-        (``kind`` and ``wf, tf`` or ``tau_max, tf``), ``t_end``, ``modes``, ``tip_mass``.
+        (:mod:`hubbeam.maneuvers`), ``t_end``, ``modes``, ``tip_mass``, optional ``damping``
+        (:mod:`hubbeam.damping`).
     params : Table 1 parameters.
     numerics : the ``numerics`` section of the config (``rtol``, ``atol``, ``output_step``,
         ``max_steps``, ``step_warning``, ``divergence_limit``, and ``quadrature_points`` when
@@ -221,11 +217,12 @@ def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: Sys
     t = output_times(case["t_end"], numerics["output_step"])
     out = np.empty((t.size, n_output_columns(case["modes"])))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
+    C = damping_matrices(case.get("damping"), sm)
     start = time.perf_counter()
     status, t_stop = simulate_kernel(
-        MODEL_IDS[case["model"]], kind, mp, sm, t, _stops(case, t), float(numerics["rtol"]),
-        float(numerics["atol"]), float(numerics["divergence_limit"]) * params.L,
-        int(numerics["max_steps"]), out, stats)
+        MODEL_IDS[case["model"]], kind, mp, C, sm, t, step_stops(case, t),
+        float(numerics["rtol"]), float(numerics["atol"]),
+        float(numerics["divergence_limit"]) * params.L, int(numerics["max_steps"]), out, stats)
     wall = time.perf_counter() - start
     LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
              "%d rhs calls, %d Jacobians, %d LU", case.get("name", "<unnamed>"), case["model"],
@@ -313,6 +310,10 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
     data_vars = {name: (dims, np.ascontiguousarray(out[:, columns[name]]),
                         {"units": units, "long_name": long_name})
                  for name, (dims, units, long_name) in variables.items()}
+    for name, (factors, units, long_name) in CUMULATIVE_VARIABLES.items():
+        integrand = np.prod([out[:, columns[factor]] for factor in factors], axis=0)
+        data_vars[name] = ("time", cumulative_integral(integrand, t),
+                           {"units": units, "long_name": long_name})
     coords = {
         "time": ("time", t, {"units": "s", "long_name": "time since the start of the maneuver",
                              "standard_name": "time"}),
@@ -332,6 +333,7 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
     attributes = {
         "model": case["model"],
         "maneuver": dict(case["maneuver"]),
+        "damping": dict(case.get("damping") or {}),
         "tip_mass_kg": float(tip["mass"]),
         "tip_position_m": float(tip["position"]),
         "n_modes": int(n),
@@ -396,15 +398,30 @@ def compile_kernels() -> float:
     t = output_times(case["t_end"], numerics["output_step"])
     out = np.empty((t.size, n_output_columns(1)))
     stats = np.zeros(len(radau.STAT_NAMES), np.int64)
-    simulate_kernel(MODEL_IDS["FOAM"], kind, mp, sm, t, _stops(case, t), 1e-6, 1e-8, 1.0, 1000,
-                    out, stats)
+    simulate_kernel(MODEL_IDS["FOAM"], kind, mp, damping_matrices(None, sm), sm, t,
+                    step_stops(case, t), 1e-6, 1e-8, 1.0, 1000, out, stats)
     return time.perf_counter() - start
 
 
-def _stops(case: Mapping, t: np.ndarray) -> np.ndarray:
-    """Times no step may cross: the end of the maneuver, where Eq. 43/44 are only C^1 or C^3."""
-    tf = float(case["maneuver"]["tf"])
-    return np.array([tf]) if 0.0 < tf < t[-1] else np.empty(0)
+def step_stops(case: Mapping, t: np.ndarray) -> np.ndarray:
+    """Times no step may cross: where the maneuver is not smooth (the end of Eq. 43/44, where they
+    are only C^1 or C^3; table rows), inside the output span."""
+    stops = maneuver_stops(case["maneuver"])
+    return np.ascontiguousarray(stops[(stops > 0.0) & (stops < t[-1])])
+
+
+def cumulative_integral(rate: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """``int_0^t rate dt`` on the output grid by the composite Simpson rule
+    (``scipy.integrate.cumulative_simpson``; error ``O(output_step^4)`` where ``rate`` is smooth,
+    ``O(output_step^2)`` over an output interval with a kink); NaN after the first NaN."""
+    result = np.full(t.size, np.nan)
+    finite = np.isfinite(rate)
+    count = t.size if finite.all() else int(np.argmin(finite))
+    if count >= 2:
+        result[:count] = cumulative_simpson(rate[:count], x=t[:count], initial=0.0)
+    elif count == 1:
+        result[0] = 0.0
+    return result
 
 
 def _finite(value) -> bool:

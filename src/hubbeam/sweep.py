@@ -27,10 +27,11 @@ from hubbeam import eigen
 from hubbeam.core import radau
 from hubbeam.core import sweep as kernels
 from hubbeam.core.eom import MODEL_IDS
+from hubbeam.maneuvers import MANEUVERS
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.parameters import CONFIG_KEYS, BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
-from hubbeam.simulate import INTEGRATOR, MANEUVERS, kernel_matrices
+from hubbeam.simulate import INTEGRATOR, kernel_matrices
 
 LOG = logging.getLogger(__name__)
 

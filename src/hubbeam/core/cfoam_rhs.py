@@ -5,10 +5,11 @@ Eqs. 35-39, ``docs/cfoam.md``), so every evaluation assembles ``M(y)`` and ``F(y
 with :func:`hubbeam.core.cfoam_tensors.cfoam_system`, which contracts the state with tensors
 summed over the point cloud once per simulation instead of summing over the cloud at every
 call -- and solves Eq. (24) for the free accelerations by a Cholesky factorisation: the elastic
-block with the prescribed ``theta_ddot`` moved to the right-hand side (Eq. 43), or the whole
-system for a torque-driven hub (Eq. 44). These are the equations
-:func:`hubbeam.core.eom.accelerations` solves with the point-cloud kernel; the tests hold the two
-to rounding error.
+block with the prescribed ``theta_ddot`` moved to the right-hand side (Eq. 43, a speed table),
+or the whole system for a free hub (Eq. 44, a torque table, PD feedback); the damping forces of
+the elastic coordinates (``C``, :func:`hubbeam.core.eom.add_damping`) join the force. These are
+the equations :func:`hubbeam.core.eom.accelerations` solves with the point-cloud kernel; the tests
+hold the two to rounding error.
 """
 
 from collections import namedtuple
@@ -16,21 +17,23 @@ from collections import namedtuple
 import numpy as np
 
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
-from hubbeam.core.eom import solve_spd
+from hubbeam.core.eom import add_damping, solve_spd
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import applied_torque, hub_motion
+from hubbeam.core.maneuver import hub_torque, prescribed_motion
 from hubbeam.core.radau import register_rhs
 
-#: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, the tensors ``ct``, and
-#: work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F`` of Eq. (24).
-CfoamProblem = namedtuple("CfoamProblem", "kind mp ct y v M F")
+#: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, damping matrices ``C``,
+#: the tensors ``ct``, and work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F``
+#: of Eq. (24).
+CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F")
 
 
 @kernel
-def cfoam_problem(kind, mp, sm):
-    """The :data:`CfoamProblem` of CFOAM under maneuver ``kind`` for ``SystemMatrices`` ``sm``."""
+def cfoam_problem(kind, mp, C, sm):
+    """The :data:`CfoamProblem` of CFOAM under maneuver ``kind`` with damping matrices ``C`` for
+    ``SystemMatrices`` ``sm``."""
     N = 1 + 2 * sm.M1.shape[0]
-    return CfoamProblem(kind, mp, cfoam_tensors(sm), np.zeros(N), np.zeros(N), np.empty((N, N)),
+    return CfoamProblem(kind, mp, C, cfoam_tensors(sm), np.zeros(N), np.zeros(N), np.empty((N, N)),
                         np.empty(N))
 
 
@@ -43,14 +46,15 @@ def cfoam_rhs(t, yf, vf, af, problem):
     thdd = 0.0
     tau = 0.0
     if o == 1:
-        y[0], thd, thdd = hub_motion(t, problem.mp)
+        y[0], thd, thdd = prescribed_motion(problem.kind, t, problem.mp)
         v[0] = thd
     else:
-        tau = applied_torque(t, problem.mp)
+        tau = hub_torque(problem.kind, t, yf[0], vf[0], problem.mp)
     for i in range(nf):
         y[o + i] = yf[i]
         v[o + i] = vf[i]
     cfoam_system(y, v, tau, problem.ct, M, F)
+    add_damping(problem.C, v, F)
     for i in range(nf):
         af[i] = F[o + i] - M[o + i, 0] * thdd
     # the free block is factored where it lies (M is rebuilt at every call)

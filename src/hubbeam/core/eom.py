@@ -30,7 +30,7 @@ from collections import namedtuple
 import numpy as np
 
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
+from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
 
 TLAM = 0
 FOAM = 1
@@ -43,13 +43,13 @@ MODEL_IDS = {"TLAM": TLAM, "FOAM": FOAM, "SFOAM": SFOAM, "CFOAM": CFOAM}
 def free_dofs(model, kind, n):
     """Indices of ``y`` that are integrated: theta unless prescribed, q1 unless SFOAM."""
     count = 2 * n + 1
-    if kind == PRESCRIBED:
+    if prescribed(kind):
         count -= 1
     if model == SFOAM:
         count -= n
     free = np.empty(count, dtype=np.int64)
     k = 0
-    if kind != PRESCRIBED:
+    if not prescribed(kind):
         free[k] = 0
         k += 1
     if model != SFOAM:
@@ -74,6 +74,27 @@ def _quad(A, a, b, n, off_a, off_b):
                 row += A[i, j] * b[off_b + j]
             s += ai * row
     return s
+
+
+@borrowing_kernel
+def add_damping(C, v, F):
+    """Subtract the damping forces ``C1 q1'`` and ``C2 q2'`` (``C = [C1, C2]``, shape
+    ``(2, n, n)``, from ``hubbeam.damping``) from the q1 and q2 rows of ``F``."""
+    n = C.shape[1]
+    for b in range(2):
+        o = 1 + b * n
+        for i in range(n):
+            s = 0.0
+            for j in range(n):
+                s += C[b, i, j] * v[o + j]
+            F[o + i] -= s
+
+
+@borrowing_kernel
+def dissipation_rate(C, v):
+    """Power dissipated by the damping forces, ``q1'^T C1 q1' + q2'^T C2 q2'``."""
+    n = C.shape[1]
+    return _quad(C[0], v, v, n, 1, 1) + _quad(C[1], v, v, n, 1 + n, 1 + n)
 
 
 @borrowing_kernel
@@ -233,7 +254,8 @@ def _cfoam_system(y, v, tau, sm, M, F):
 
 @kernel
 def mass_matrix_and_force(model, y, v, tau, sm, M, F):
-    """Fill the full ``M(y)`` and ``F(y, y')`` of ``model`` (``F_theta = tau + Q_theta``)."""
+    """Fill the full ``M(y)`` and ``F(y, y')`` of ``model`` (``F_theta = tau + Q_theta``), without
+    damping (:func:`add_damping`)."""
     if model == CFOAM:
         _cfoam_system(y, v, tau, sm, M, F)
     else:
@@ -244,18 +266,19 @@ def mass_matrix_and_force(model, y, v, tau, sm, M, F):
 def impose_constraints(model, kind, mp, t, y, v, a):
     """Overwrite the constrained entries of y, y', y'' and return the applied torque.
 
-    A prescribed maneuver sets theta and its rates from Eq. (43) and applies no torque of its own
-    (the torque it needs is an output); a torque maneuver applies Eq. (44). SFOAM holds q1 at zero.
+    A prescribed maneuver (Eq. 43, a speed table) sets theta and its rates and applies no torque
+    of its own (the torque it needs is an output); a free hub gets the torque of its maneuver
+    (Eq. 44, a torque table, PD feedback on the state's theta, theta'). SFOAM holds q1 at zero.
     """
     n = (y.shape[0] - 1) // 2
     tau = 0.0
-    if kind == PRESCRIBED:
-        th, thd, thdd = hub_motion(t, mp)
+    if prescribed(kind):
+        th, thd, thdd = prescribed_motion(kind, t, mp)
         y[0] = th
         v[0] = thd
         a[0] = thdd
     else:
-        tau = applied_torque(t, mp)
+        tau = hub_torque(kind, t, y[0], v[0], mp)
     if model == SFOAM:
         for i in range(n):
             y[1 + i] = 0.0
@@ -356,7 +379,7 @@ def solve_free(kind, tau, free, a_out, ws):
     for i in range(nf):
         a_out[free[i]] = rhs[i]
     q_theta = F[0] - tau
-    if kind == PRESCRIBED:
+    if prescribed(kind):
         ma0 = 0.0
         for j in range(N):
             ma0 += M[0, j] * a_out[j]
@@ -365,17 +388,19 @@ def solve_free(kind, tau, free, a_out, ws):
 
 
 @kernel
-def accelerations(model, kind, mp, t, y, v, sm, free, a_out):
+def accelerations(model, kind, mp, C, t, y, v, sm, free, a_out):
     """Accelerations of every coordinate at time ``t``; returns ``(torque, Q_theta)``.
 
     ``y`` and ``v`` are full-length; their constrained entries are overwritten from the maneuver.
+    ``C`` holds the damping matrices of the elastic coordinates (:func:`add_damping`).
     The free accelerations solve ``M_ff a_f = F_f - M_fc a_c`` with the constrained accelerations
-    ``a_c`` known. ``torque`` is the applied torque of Eq. (44), or the torque a prescribed motion
+    ``a_c`` known. ``torque`` is the applied torque of a free hub, or the torque a prescribed motion
     requires, ``(M a)_theta - Q_theta`` (the hub row of Eq. 24). SFOAM has no Q_theta (zero).
     """
     ws = workspace(sm, free)
     tau = impose_constraints(model, kind, mp, t, y, v, a_out)
     mass_matrix_and_force(model, y, v, tau, sm, ws.M, ws.F)
+    add_damping(C, v, ws.F)
     return solve_free(kind, tau, free, a_out, ws)
 
 
@@ -441,17 +466,19 @@ def tip_outputs(y, sm):
 
 
 @borrowing_kernel
-def high_order_terms(Mc, Fc, tau, y, v, a, sm, Mf, Ff, dQ):
+def high_order_terms(Mc, Fc, tau, y, v, a, sm, C, Mf, Ff, dQ):
     """The CFOAM terms FOAM drops (Eqs. 35-39, re-derived), along a state with accelerations ``a``.
 
-    ``Mc, Fc`` are CFOAM's mass matrix and force at ``(y, v)`` with applied torque ``tau``;
-    ``Mf, Ff`` are overwritten with FOAM's. Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the
-    generalised force the high-order terms add to FOAM's equations (theta, q1, q2 rows;
-    accelerations moved to the right-hand side as in Eqs. 38-39) and returns
+    ``Mc, Fc`` are CFOAM's mass matrix and force at ``(y, v)`` with applied torque ``tau`` and the
+    damping forces of ``C``; ``Mf, Ff`` are overwritten with FOAM's (same damping, so it cancels).
+    Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the generalised force the high-order terms add
+    to FOAM's equations (theta, q1, q2 rows; accelerations moved to the right-hand side as in
+    Eqs. 38-39) and returns
     ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35).
     """
     N = y.shape[0]
     foam_system(FOAM, y, v, tau, sm, Mf, Ff)
+    add_damping(C, v, Ff)
     for i in range(N):
         s = Fc[i] - Ff[i]
         for j in range(N):

@@ -7,14 +7,16 @@ the elastic rows (Eqs. 29-31, 33-34, the ``D`` terms dropped for TLAM) solved fo
 affine in the hub rate and acceleration:
 
     e'' = u + theta_ddot r,
-    u   = thd^2 b0 + (P0 + thd^2 P1) e + 2 thd P2 e',       r = b1 + P2 e,
+    u   = thd^2 b0 + (P0 + thd^2 P1) e + (2 thd P2 + P3) e',       r = b1 + P2 e,
 
     P0 = -Me^-1 diag(K1, K2),     P1 = Me^-1 diag(M1, M2 - D),   P2 = Me^-1 [[0, R], [-R^T, 0]],
-    b0 = Me^-1 (V1, 0),           b1 = Me^-1 (0, -V2),
+    P3 = -Me^-1 diag(C1, C2),     b0 = Me^-1 (V1, 0),            b1 = Me^-1 (0, -V2),
 
 all restricted to the free elastic coordinates, so that an evaluation costs a few ``n x n``
-products instead of assembling and factoring ``M(y)``. For a prescribed hub (Eq. 43) theta_ddot
-is known. For a torque-driven hub (Eq. 44) the hub row ``m00 theta_ddot + c . e'' = tau + Q_theta``
+products instead of assembling and factoring ``M(y)``; ``C1, C2`` are the damping matrices of
+the elastic coordinates (``hubbeam.damping``; zero by default, when ``P3 = 0`` adds exact zeros).
+For a prescribed hub (Eq. 43, a speed table) theta_ddot is known. For a free hub (Eq. 44, a
+torque table, PD feedback) the hub row ``m00 theta_ddot + c . e'' = tau + Q_theta``
 (Eqs. 25-27, 32) with ``c = C0 + C1 e = (-R q2, V2 + R^T q1)`` is solved by eliminating ``e''``
 (a Schur complement of the constant block):
 
@@ -33,21 +35,22 @@ import numpy as np
 
 from hubbeam.core.eom import SFOAM, TLAM, free_dofs
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import PRESCRIBED, applied_torque, hub_motion
+from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
 from hubbeam.core.radau import register_rhs
 
-#: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1`` and ``b`` stacks
+#: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1, P3`` and ``b`` stacks
 #: ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
 #: ``scalars = (J0, q_theta_factor)``; ``kind`` and ``mp`` the maneuver; ``work`` holds ``u, r``.
 FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work")
 
-P0, P1, P2, G, C1 = range(5)
+P0, P1, P2, G, C1, P3 = range(6)
 B0, B1, G_VEC, C0 = range(4)
 
 
 @kernel
-def foam_problem(model, kind, mp, sm):
-    """The :data:`FoamProblem` of ``model`` (TLAM, FOAM or SFOAM) under maneuver ``kind``."""
+def foam_problem(model, kind, mp, C, sm):
+    """The :data:`FoamProblem` of ``model`` (TLAM, FOAM or SFOAM) under maneuver ``kind`` with the
+    damping matrices ``C = [C1, C2]``."""
     n = sm.M1.shape[0]
     cD = 0.0 if model == TLAM else 1.0
     Z = np.zeros((n, n))
@@ -55,13 +58,15 @@ def foam_problem(model, kind, mp, sm):
     stiffness = np.vstack((np.hstack((sm.K1, Z)), np.hstack((Z, sm.K2))))
     G_full = np.vstack((np.hstack((sm.M1, Z)), np.hstack((Z, sm.M2 - cD * sm.D))))
     R_full = np.vstack((np.hstack((Z, sm.R)), np.hstack((-sm.R.T, Z))))
+    damping = np.vstack((np.hstack((C[0], Z)), np.hstack((Z, C[1]))))
     zero = np.zeros(n)
     mass_inv = np.linalg.inv(mass)
     # free elastic coordinates as indices into (q1, q2)
     free = free_dofs(model, kind, n)
     elastic = free[free > 0] - 1
     ne = elastic.shape[0]
-    full_P = (-mass_inv @ stiffness, mass_inv @ G_full, mass_inv @ R_full, G_full, -R_full)
+    full_P = (-mass_inv @ stiffness, mass_inv @ G_full, mass_inv @ R_full, G_full, -R_full,
+              -mass_inv @ damping)
     full_b = (mass_inv @ np.concatenate((sm.V1, zero)),
               mass_inv @ np.concatenate((zero, -sm.V2)),
               np.concatenate((sm.V1, zero)), np.concatenate((zero, sm.V2)))
@@ -86,10 +91,10 @@ def foam_rhs(t, y, v, a, problem):
     b = problem.b
     u = problem.work[0]
     r = problem.work[1]
-    o = 0 if problem.kind == PRESCRIBED else 1
+    o = 0 if prescribed(problem.kind) else 1
     ne = y.shape[0] - o
     if o == 0:
-        thd, thdd = hub_motion(t, problem.mp)[1:]
+        thd, thdd = prescribed_motion(problem.kind, t, problem.mp)[1:]
     else:
         thd = v[0]
         thdd = 0.0
@@ -99,7 +104,8 @@ def foam_rhs(t, y, v, a, problem):
         ri = b[B1, i]
         for j in range(ne):
             ej = y[o + j]
-            ui += (P[P0, i, j] + thd2 * P[P1, i, j]) * ej + 2.0 * thd * P[P2, i, j] * v[o + j]
+            ui += ((P[P0, i, j] + thd2 * P[P1, i, j]) * ej
+                   + (2.0 * thd * P[P2, i, j] + P[P3, i, j]) * v[o + j])
             ri += P[P2, i, j] * ej
         u[i] = ui
         r[i] = ri
@@ -120,7 +126,8 @@ def foam_rhs(t, y, v, a, problem):
             c_u += ci * u[i]
             c_r += ci * r[i]
         q_theta = -2.0 * thd * gee * problem.scalars[1]
-        thdd = (applied_torque(t, problem.mp) + q_theta - c_u) / (m00 + c_r)
+        tau = hub_torque(problem.kind, t, y[0], thd, problem.mp)
+        thdd = (tau + q_theta - c_u) / (m00 + c_r)
         a[0] = thdd
     for i in range(ne):
         a[o + i] = u[i] + thdd * r[i]

@@ -9,6 +9,8 @@ The integrator runs on right-hand sides built for speed (:mod:`hubbeam.core.foam
 :mod:`hubbeam.core.cfoam_rhs`); the outputs come from the full mass matrix and force of Eq. (24):
 the general equations of :mod:`hubbeam.core.eom` for TLAM, FOAM and SFOAM, CFOAM's pre-contracted
 tensors (:mod:`hubbeam.core.cfoam_tensors`), which the tests hold equal to the point cloud.
+``kind, mp`` is the maneuver (:mod:`hubbeam.core.maneuver`), ``C`` the damping matrices
+``[C1, C2]`` of the elastic coordinates (:func:`hubbeam.core.eom.add_damping`; zeros: undamped).
 """
 
 import numpy as np
@@ -17,6 +19,8 @@ from hubbeam.core.cfoam_rhs import cfoam_problem
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors, no_tensors
 from hubbeam.core.eom import (
     CFOAM,
+    add_damping,
+    dissipation_rate,
     foam_system,
     free_dofs,
     high_order_terms,
@@ -31,9 +35,11 @@ from hubbeam.core.radau import radau5
 
 #: Columns of the output array: these, then ``q1[0..n-1]``, ``q2[0..n-1]``, then the CFOAM
 #: high-order terms ``dM_thth``, ``dQ_theta``, ``dQ_q1[0..n-1]``, ``dQ_q2[0..n-1]`` (NaN for the
-#: other models); see :func:`output_columns`.
-SCALAR_OUTPUTS = ("theta", "theta_dot", "theta_ddot", "torque", "Q_theta", "tip_transverse",
-                  "tip_axial", "tip_foreshortening", "energy", "angular_momentum")
+#: other models); see :func:`output_columns`. ``dissipation_rate`` is the power of the damping
+#: forces (:func:`hubbeam.core.eom.dissipation_rate`).
+SCALAR_OUTPUTS = ("theta", "theta_dot", "theta_ddot", "hub_torque", "Q_theta", "tip_transverse",
+                  "tip_axial", "tip_foreshortening", "energy", "angular_momentum",
+                  "dissipation_rate")
 N_SCALAR = len(SCALAR_OUTPUTS)
 
 
@@ -54,12 +60,12 @@ def n_output_columns(n):
     return N_SCALAR + 4 * n + 2
 
 
-def integration_problem(model, kind, mp, sm):
+def integration_problem(model, kind, mp, C, sm):
     """The radau5 problem :func:`integrate_free` runs for ``model`` (for callers outside numba,
     such as the benchmark's scipy runs, which must integrate the same equations)."""
     if model == CFOAM:
-        return cfoam_problem(kind, mp, sm)
-    return foam_problem(model, kind, mp, sm)
+        return cfoam_problem(kind, mp, C, sm)
+    return foam_problem(model, kind, mp, C, sm)
 
 
 @kernel
@@ -74,7 +80,7 @@ def tip_watch(free, sm):
 
 
 @kernel
-def _fill_rows(model, kind, mp, sm, ct, free, t_out, y_out, v_out, out):
+def _fill_rows(model, kind, mp, C, sm, ct, free, t_out, y_out, v_out, out):
     """:func:`fill_outputs` with the CFOAM tensors ``ct`` (:func:`no_tensors` for other models)."""
     n = sm.K1.shape[0]
     N = 1 + 2 * n
@@ -102,6 +108,7 @@ def _fill_rows(model, kind, mp, sm, ct, free, t_out, y_out, v_out, out):
             cfoam_system(y, v, tau, ct, ws.M, ws.F)
         else:
             foam_system(model, y, v, tau, sm, ws.M, ws.F)
+        add_damping(C, v, ws.F)
         torque, q_theta, e, p = outputs(kind, tau, y, v, sm, free, a, ws)
         transverse, axial, foreshortening = tip_outputs(y, sm)
         out[k, 0] = y[0]
@@ -114,16 +121,17 @@ def _fill_rows(model, kind, mp, sm, ct, free, t_out, y_out, v_out, out):
         out[k, 7] = foreshortening
         out[k, 8] = e
         out[k, 9] = p
+        out[k, 10] = dissipation_rate(C, v)
         for i in range(2 * n):
             out[k, N_SCALAR + i] = y[1 + i]
         if model == CFOAM:
-            out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, y, v, a, sm, Mf, Ff, dQ)
+            out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, y, v, a, sm, C, Mf, Ff, dQ)
             for i in range(N):
                 out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
 
 
 @kernel
-def fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out):
+def fill_outputs(model, kind, mp, C, sm, free, t_out, y_out, v_out, out):
     """Every output at the times ``t_out`` from the free positions and velocities ``y_out``,
     ``v_out`` (rows with NaN give NaN rows): columns as in :func:`output_columns`.
 
@@ -133,11 +141,11 @@ def fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out):
     :func:`hubbeam.core.eom.foam_system` (which ``eom.mass_matrix_and_force`` calls for them).
     """
     ct = cfoam_tensors(sm) if model == CFOAM else no_tensors()
-    _fill_rows(model, kind, mp, sm, ct, free, t_out, y_out, v_out, out)
+    _fill_rows(model, kind, mp, C, sm, ct, free, t_out, y_out, v_out, out)
 
 
 @inline_kernel
-def integrate_free(model, kind, mp, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps, y_out,
+def integrate_free(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps, y_out,
                    v_out, stats):
     """Simulate from rest (``y = 0``, ``y' = 0``) and write the free positions and velocities
     (``eom.free_dofs``) on ``t_out`` into ``y_out``, ``v_out`` (shape ``(len(t_out), n_free)``;
@@ -156,22 +164,23 @@ def integrate_free(model, kind, mp, sm, t_out, t_stops, rtol, atol, tip_limit, m
     watch = tip_watch(free, sm)
     atol_z = np.full(2 * nf, atol)
     if model == CFOAM:
-        status, t_stop = radau5(cfoam_problem(kind, mp, sm), np.zeros(nf), np.zeros(nf),
+        status, t_stop = radau5(cfoam_problem(kind, mp, C, sm), np.zeros(nf), np.zeros(nf),
                                 t_out, t_stops, rtol, atol_z, watch, tip_limit, max_steps, 0.0,
                                 False, y_out, v_out, stats)
     else:
-        status, t_stop = radau5(foam_problem(model, kind, mp, sm), np.zeros(nf), np.zeros(nf),
+        status, t_stop = radau5(foam_problem(model, kind, mp, C, sm), np.zeros(nf), np.zeros(nf),
                                 t_out, t_stops, rtol, atol_z, watch, tip_limit, max_steps, 0.0,
                                 False, y_out, v_out, stats)
     return status, t_stop, watch
 
 
 @kernel
-def simulate_kernel(model, kind, mp, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps,
+def simulate_kernel(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps,
                     out, stats):
     """Simulate from rest over ``t_out`` (:func:`integrate_free`) and fill ``out``.
 
-    ``model``, ``kind``: ids of ``eom`` and ``maneuver``; ``mp``: maneuver parameters; ``sm``:
+    ``model``, ``kind``: ids of ``eom`` and ``maneuver``; ``mp``: maneuver parameters; ``C``:
+    damping matrices (2, n, n); ``sm``:
     SystemMatrices; ``t_stops``: times no step may cross (end of the maneuver); tolerances and
     ``tip_limit`` as in :func:`integrate_free`. ``out`` has shape
     ``(len(t_out), n_output_columns(n))``, columns as in :func:`output_columns`; rows after the
@@ -181,7 +190,7 @@ def simulate_kernel(model, kind, mp, sm, t_out, t_stops, rtol, atol, tip_limit, 
     free = free_dofs(model, kind, sm.K1.shape[0])
     y_out = np.empty((t_out.shape[0], free.shape[0]))
     v_out = np.empty_like(y_out)
-    status, t_stop, _ = integrate_free(model, kind, mp, sm, t_out, t_stops, rtol, atol,
+    status, t_stop, _ = integrate_free(model, kind, mp, C, sm, t_out, t_stops, rtol, atol,
                                        tip_limit, max_steps, y_out, v_out, stats)
-    fill_outputs(model, kind, mp, sm, free, t_out, y_out, v_out, out)
+    fill_outputs(model, kind, mp, C, sm, free, t_out, y_out, v_out, out)
     return status, t_stop

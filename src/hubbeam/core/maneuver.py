@@ -1,4 +1,9 @@
-"""Jitted hub maneuvers of Section 4.
+"""Jitted hub maneuvers: Section 4's Eqs. (43)-(44) and tabulated or feedback-driven hubs.
+
+A maneuver is an integer ``kind`` and a float array ``mp`` of its parameters (tables packed into
+it by ``hubbeam.maneuvers``). The hub is *prescribed* (``PRESCRIBED``, ``SPEED_TABLE``: theta and
+its rates are known functions of time, the torque that drives them is an output) or *free*
+(``TORQUE``, ``TORQUE_TABLE``, ``PD``: the applied torque enters the hub row of Eq. 24).
 
 ``PRESCRIBED``: the spin-up of Eq. (43) with the factor ``t`` the transcription lost (reproduction
 note 1); ``mp = [wf, tf]``. The hub angle, rate and acceleration are
@@ -11,6 +16,24 @@ and theta_dot = wf, theta_ddot = 0 afterwards.
 
 ``TORQUE``: the rest-to-rest torque pulse of Eq. (44) with ``T = tf`` (note 8); ``mp = [tau_max, tf]``:
 tau = tau_max sin(2 pi t / tf) for 0 <= t <= tf and zero afterwards; the hub is free.
+
+``SPEED_TABLE``: theta_dot from a table ``(t_k, w_k)``; ``mp`` is a packed table (below) of the
+clamped cubic spline of the speed (zero slope at both ends), theta its exact integral from
+``theta(0) = 0`` and theta_ddot its derivative, continuous everywhere. Before the first time the
+first speed is held, after the last time the last speed (theta_ddot = 0 outside the table).
+
+``TORQUE_TABLE``: the applied torque interpolated linearly in a table ``(t_k, tau_k)``; the first
+value is held before the table, the last after it; the hub is free.
+
+``PD``: a free hub under the feedback torque ``tau = kp (theta_r - theta) + kd (theta_r' -
+theta')``; ``mp = [kp, kd, reference kind, reference parameters...]`` with the reference
+``PRESCRIBED`` (Eq. 43, ``[wf, tf]``; theta_r, theta_r' from :func:`hub_motion`) or ``ANGLE_TABLE``
+(a packed clamped cubic spline of the angle, zero slope at both ends, held outside the table).
+
+Packed table at offset ``o`` of ``mp`` (``m >= 2`` rows, times ``t_k`` increasing): ``mp[o] = m``,
+then ``t_0..t_{m-1}``, the integrals ``I_k`` of the interpolant from 0 to ``t_k``, the cubic
+coefficients ``c0..c3`` of every interval (value ``c0 + c1 s + c2 s^2 + c3 s^3``, ``s = t - t_k``),
+and the last value; ``6 m - 2`` numbers. :func:`table` evaluates it without allocating.
 """
 
 import math
@@ -19,13 +42,24 @@ from hubbeam.core.jit import borrowing_kernel
 
 PRESCRIBED = 0
 TORQUE = 1
+SPEED_TABLE = 2
+TORQUE_TABLE = 3
+PD = 4
+#: reference kind of a ``PD`` maneuver besides ``PRESCRIBED``
+ANGLE_TABLE = 5
+#: offset of the reference's parameters in a ``PD`` maneuver's ``mp``
+PD_REFERENCE = 3
 
 
 @borrowing_kernel
-def hub_motion(t, mp):
-    """Prescribed hub angle, rate and acceleration of Eq. (43) at time ``t``."""
-    wf = mp[0]
-    tf = mp[1]
+def prescribed(kind):
+    """True if ``kind`` prescribes the hub motion (theta not integrated)."""
+    return kind == PRESCRIBED or kind == SPEED_TABLE
+
+
+@borrowing_kernel
+def _spin_up(t, wf, tf):
+    """Hub angle, rate and acceleration of Eq. (43)."""
     if t <= 0.0:
         return 0.0, 0.0, 0.0
     if t >= tf:
@@ -38,6 +72,12 @@ def hub_motion(t, mp):
 
 
 @borrowing_kernel
+def hub_motion(t, mp):
+    """Prescribed hub angle, rate and acceleration of Eq. (43) at time ``t`` (``mp = [wf, tf]``)."""
+    return _spin_up(t, mp[0], mp[1])
+
+
+@borrowing_kernel
 def applied_torque(t, mp):
     """Hub torque of Eq. (44) at time ``t`` (zero outside the pulse)."""
     tau_max = mp[0]
@@ -45,3 +85,64 @@ def applied_torque(t, mp):
     if t <= 0.0 or t >= tf:
         return 0.0
     return tau_max * math.sin(2.0 * math.pi * t / tf)
+
+
+@borrowing_kernel
+def table(t, mp, o):
+    """``(integral from 0, value, derivative)`` at ``t`` of the table packed at ``mp[o]``."""
+    m = int(mp[o])
+    ts = o + 1
+    integrals = ts + m
+    cs = integrals + m
+    if t < mp[ts]:
+        y0 = mp[cs]
+        return mp[integrals] + y0 * (t - mp[ts]), y0, 0.0
+    if t >= mp[ts + m - 1]:
+        y1 = mp[cs + 4 * (m - 1)]
+        return mp[integrals + m - 1] + y1 * (t - mp[ts + m - 1]), y1, 0.0
+    lo = 0
+    hi = m - 1
+    while hi - lo > 1:  # bisection: mp[ts + lo] <= t < mp[ts + hi]
+        mid = (lo + hi) // 2
+        if mp[ts + mid] <= t:
+            lo = mid
+        else:
+            hi = mid
+    s = t - mp[ts + lo]
+    c = cs + 4 * lo
+    c0 = mp[c]
+    c1 = mp[c + 1]
+    c2 = mp[c + 2]
+    c3 = mp[c + 3]
+    value = c0 + s * (c1 + s * (c2 + s * c3))
+    derivative = c1 + s * (2.0 * c2 + s * 3.0 * c3)
+    integral = mp[integrals + lo] + s * (c0 + s * (0.5 * c1 + s * (c2 / 3.0 + s * 0.25 * c3)))
+    return integral, value, derivative
+
+
+@borrowing_kernel
+def prescribed_motion(kind, t, mp):
+    """Hub angle, rate and acceleration of a prescribed maneuver (Eq. 43 or a speed table)."""
+    if kind == SPEED_TABLE:
+        return table(t, mp, 0)
+    return hub_motion(t, mp)
+
+
+@borrowing_kernel
+def _reference(t, mp):
+    """Reference angle and rate of a ``PD`` maneuver."""
+    o = PD_REFERENCE
+    if int(mp[2]) == ANGLE_TABLE:
+        return table(t, mp, o)[1:]
+    return _spin_up(t, mp[o], mp[o + 1])[:2]
+
+
+@borrowing_kernel
+def hub_torque(kind, t, theta, theta_dot, mp):
+    """Torque applied to a free hub at ``t`` in the state ``(theta, theta_dot)``."""
+    if kind == TORQUE_TABLE:
+        return table(t, mp, 0)[1]
+    if kind == PD:
+        theta_r, theta_r_dot = _reference(t, mp)
+        return mp[0] * (theta_r - theta) + mp[1] * (theta_r_dot - theta_dot)
+    return applied_torque(t, mp)

@@ -125,13 +125,16 @@ def tip_extrema(model, kind, mp, sm, t_end, t_mark, output_step, rtol, atol, tip
     """One sweep point: simulate from rest to ``t_end`` and return
     ``(status, t_stop, peak, peak_time, residual)`` (see the module docstring; NaN extrema unless
     the run succeeded). ``stats`` receives radau5's counters."""
-    nf = free_dofs(model, kind, sm.K1.shape[0]).shape[0]
+    n = sm.K1.shape[0]
+    nf = free_dofs(model, kind, n).shape[0]
     t_out = output_grid(t_end, output_step, t_mark)
     n_out = t_out.shape[0]
     y_out = np.empty((n_out, nf))
     v_out = np.empty((n_out, nf))
-    status, t_stop, watch = integrate_free(model, kind, mp, sm, t_out, np.array([t_mark]), rtol,
-                                           atol, tip_limit, max_steps, y_out, v_out, stats)
+    undamped = np.zeros((2, n, n))
+    status, t_stop, watch = integrate_free(model, kind, mp, undamped, sm, t_out,
+                                           np.array([t_mark]), rtol, atol, tip_limit, max_steps,
+                                           y_out, v_out, stats)
     if status != SUCCESS:
         return status, t_stop, np.nan, np.nan, np.nan
     peak = 0.0

@@ -1,0 +1,157 @@
+"""Hub maneuvers of a case: checks, the kernel's parameter array, the times no step may cross.
+
+A case's ``maneuver`` mapping has a ``kind``:
+
+* ``prescribed`` ``{wf, tf}``: the spin-up of Eq. (43); ``torque`` ``{tau_max, tf}``: the torque
+  pulse of Eq. (44);
+* ``speed_table`` ``{time, speed}`` (s, rad s-1): a prescribed hub speed, a clamped cubic spline
+  with zero slope at both ends (theta_ddot continuous and zero at the ends; theta its exact
+  integral from theta(0) = 0), the first speed held before the table and the last after it;
+* ``torque_table`` ``{time, torque}`` (s, N m): the torque on a free hub, linear between the rows,
+  the first value held before the table and the last after it;
+* ``pd`` ``{kp, kd, reference}`` (N m rad-1, N m s rad-1): a free hub under ``tau = kp (theta_r -
+  theta) + kd (theta_r' - theta')`` tracking ``reference`` = ``{kind: prescribed, wf, tf}``
+  (Eq. 43) or ``{kind: angle_table, time, angle}`` (s, rad; clamped cubic spline as above).
+
+The kernels (:mod:`hubbeam.core.maneuver`) take an integer kind and a float array; the splines'
+coefficients are computed here once per run (scipy's ``CubicSpline``, ``bc_type="clamped"``).
+Every check raises ``ValueError`` naming the key, the value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from hubbeam.core import maneuver as kernels
+
+#: kinds with scalar parameters -> (kernel id, parameters in the order of the kernel's ``mp``)
+MANEUVERS = {"prescribed": (kernels.PRESCRIBED, ("wf", "tf")),
+             "torque": (kernels.TORQUE, ("tau_max", "tf"))}
+#: tabulated kinds -> (kernel id, value column, interpolation: "spline" or "linear")
+TABLES = {"speed_table": (kernels.SPEED_TABLE, "speed", "spline"),
+          "torque_table": (kernels.TORQUE_TABLE, "torque", "linear")}
+#: every maneuver kind a case may name
+KINDS = (*MANEUVERS, *TABLES, "pd")
+#: keys of each kind besides ``kind``
+KEYS = {**{kind: keys for kind, (_, keys) in MANEUVERS.items()},
+        **{kind: ("time", column) for kind, (_, column, _) in TABLES.items()},
+        "pd": ("kp", "kd", "reference")}
+#: reference kinds of ``pd`` -> (kernel id, keys)
+REFERENCES = {"prescribed": (kernels.PRESCRIBED, ("wf", "tf")),
+              "angle_table": (kernels.ANGLE_TABLE, ("time", "angle"))}
+
+
+def _finite(value) -> bool:
+    return (isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
+            and math.isfinite(value))
+
+
+def _kind(maneuver, where: str, allowed) -> str:
+    kind = maneuver.get("kind") if isinstance(maneuver, Mapping) else None
+    if kind not in allowed:
+        raise ValueError(f"{where}.kind = {kind!r}; allowed: one of {', '.join(allowed)}")
+    unknown = sorted(set(maneuver) - {"kind", *allowed[kind]})
+    if unknown:
+        raise ValueError(f"{where}.{unknown[0]}: unknown key for kind {kind!r}; allowed keys: "
+                         f"kind, {', '.join(allowed[kind])}")
+    return kind
+
+
+def _check_parameters(maneuver: Mapping, keys, where: str) -> None:
+    for key in keys:
+        value = maneuver.get(key)
+        if not _finite(value) or (key == "tf" and value <= 0.0):
+            raise ValueError(f"{where}.{key} = {value!r}; allowed: a finite "
+                             f"number{' > 0 s' if key == 'tf' else ''}")
+
+
+def _check_table(maneuver: Mapping, column: str, where: str) -> None:
+    time, values = maneuver.get("time"), maneuver.get(column)
+    for key, row in (("time", time), (column, values)):
+        if (not isinstance(row, (list, tuple, np.ndarray)) or len(row) < 2
+                or not all(_finite(value) for value in row)):
+            raise ValueError(f"{where}.{key} = {row!r}; allowed: a list of at least 2 finite "
+                             "numbers")
+    if len(time) != len(values):
+        raise ValueError(f"{where}.{column} has {len(values)} rows but {where}.time has "
+                         f"{len(time)}; allowed: one {column} per time")
+    if time[0] < 0.0 or np.any(np.diff(np.asarray(time, float)) <= 0.0):
+        raise ValueError(f"{where}.time = {list(time)!r}; allowed: strictly increasing times "
+                         ">= 0 s")
+
+
+def check_maneuver(maneuver, where: str) -> None:
+    """Raise ``ValueError`` unless ``maneuver`` (at config path ``where``) can be run."""
+    kind = _kind(maneuver, where, KEYS)
+    if kind in MANEUVERS:
+        _check_parameters(maneuver, KEYS[kind], where)
+    elif kind in TABLES:
+        _check_table(maneuver, TABLES[kind][1], where)
+    else:
+        for key in ("kp", "kd"):
+            value = maneuver.get(key)
+            if not _finite(value) or value < 0.0:
+                raise ValueError(f"{where}.{key} = {value!r}; allowed: a finite number >= 0")
+        reference = maneuver.get("reference")
+        ref_where = f"{where}.reference"
+        ref_kind = _kind(reference, ref_where,
+                         {name: keys for name, (_, keys) in REFERENCES.items()})
+        if ref_kind == "prescribed":
+            _check_parameters(reference, REFERENCES[ref_kind][1], ref_where)
+        else:
+            _check_table(reference, "angle", ref_where)
+
+
+def packed_table(time, values, interpolation: str) -> np.ndarray:
+    """The table layout of :mod:`hubbeam.core.maneuver`: ``[m, t, I, c (per interval), last]``.
+
+    ``interpolation`` is ``"spline"`` (clamped cubic spline, zero slope at both ends) or
+    ``"linear"``; ``I_k`` is the exact integral of the interpolant from 0 (the first value held
+    before ``t_0``) to ``t_k``.
+    """
+    t = np.asarray(time, dtype=float)
+    y = np.asarray(values, dtype=float)
+    h = np.diff(t)
+    if interpolation == "spline":
+        coefficients = CubicSpline(t, y, bc_type="clamped").c[::-1].T  # rows (c0, c1, c2, c3)
+    else:
+        slope = np.diff(y) / h
+        coefficients = np.column_stack([y[:-1], slope, np.zeros_like(h), np.zeros_like(h)])
+    c0, c1, c2, c3 = coefficients.T
+    pieces = h * (c0 + h * (c1 / 2.0 + h * (c2 / 3.0 + h * c3 / 4.0)))
+    integrals = y[0] * t[0] + np.concatenate([[0.0], np.cumsum(pieces)])
+    return np.concatenate([[t.size], t, integrals, coefficients.ravel(), [y[-1]]])
+
+
+def maneuver_parameters(maneuver: Mapping) -> tuple[int, np.ndarray]:
+    """Kernel id and parameter array ``mp`` of a checked maneuver (:mod:`hubbeam.core.maneuver`)."""
+    kind = maneuver["kind"]
+    if kind in MANEUVERS:
+        code, keys = MANEUVERS[kind]
+        return code, np.array([float(maneuver[key]) for key in keys])
+    if kind in TABLES:
+        code, column, interpolation = TABLES[kind]
+        return code, packed_table(maneuver["time"], maneuver[column], interpolation)
+    reference = maneuver["reference"]
+    ref_code, keys = REFERENCES[reference["kind"]]
+    if ref_code == kernels.ANGLE_TABLE:
+        ref = packed_table(reference["time"], reference["angle"], "spline")
+    else:
+        ref = np.array([float(reference[key]) for key in keys])
+    head = [float(maneuver["kp"]), float(maneuver["kd"]), float(ref_code)]
+    assert len(head) == kernels.PD_REFERENCE
+    return kernels.PD, np.concatenate([head, ref])
+
+
+def maneuver_stops(maneuver: Mapping) -> np.ndarray:
+    """Sorted times where the maneuver's forcing is not smooth: the end ``tf`` of Eq. (43)/(44),
+    or the rows of a table (spline knots, kinks of a linear table)."""
+    if maneuver["kind"] == "pd":
+        maneuver = maneuver["reference"]
+    if "tf" in maneuver:
+        return np.array([float(maneuver["tf"])])
+    return np.asarray(maneuver["time"], dtype=float)

@@ -261,7 +261,7 @@ def test_the_archive_describes_itself_as_a_workflow_run_crate(tiny_workflow, tmp
         if name.endswith(".nc"):
             with netCDF4.Dataset(crate_dir / name) as nc:
                 assert entity["description"] == f"{nc.title} (netCDF)"
-    assert graph["results/figures/fig05.png"]["description"].startswith("Fig. 5. TLAM against FOAM")
+    assert graph["results/figures/fig05.png"]["description"] == "Fig. 5: TLAM against FOAM (PNG)"
 
 
 RO_CRATE_CONTEXT_URL = "https://w3id.org/ro/crate/1.1/context"

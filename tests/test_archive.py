@@ -273,13 +273,17 @@ def offline_validator_cache(cache_home: Path) -> Path:
     that ``validate --offline`` resolves the crate's ``@context`` without a network."""
     import requests
     import requests_cache
+    import urllib3
 
     session = requests_cache.CachedSession(str(cache_home / "rocrate-validator" / "http_cache"),
                                            backend="sqlite", allowable_methods=("GET",))
+    data = RO_CRATE_CONTEXT.read_bytes()
+    headers = {"Content-Type": "application/ld+json"}
     response = requests.Response()
-    response.status_code, response.url = 200, RO_CRATE_CONTEXT_URL
-    response.headers["Content-Type"] = "application/ld+json"
-    response._content = RO_CRATE_CONTEXT.read_bytes()
+    response.status_code, response.url, response._content = 200, RO_CRATE_CONTEXT_URL, data
+    response.headers = requests.structures.CaseInsensitiveDict(headers)
+    response.raw = urllib3.HTTPResponse(body=io.BytesIO(data), headers=headers, status=200,
+                                        preload_content=False, request_url=RO_CRATE_CONTEXT_URL)
     response.request = requests.Request("GET", RO_CRATE_CONTEXT_URL).prepare()
     session.cache.save_response(response)
     return cache_home

@@ -2,7 +2,6 @@
 
 from hubbeam.beam import beam_from_config
 from hubbeam.io import write_netcdf
-
 from hubbeam.provenance import global_attributes
 from hubbeam.validation.comparison import simulate_models
 

@@ -6,7 +6,6 @@ import pandas as pd
 
 from hubbeam.beam import beam_from_config
 from hubbeam.io import open_result, staged
-
 from hubbeam.validation.comparison import mode_study
 
 p = snakemake.params

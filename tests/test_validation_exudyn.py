@@ -202,3 +202,10 @@ def test_validate_plans_a_studys_exudyn_jobs_in_its_own_folder(tmp_path):
     assert "results/tiny/validation/nonuniform_pybmodes.csv" in paths  # the beam is off the axis
     assert "results/tiny/report/validation_exudyn.html" in paths
     assert paths and all(path.startswith(("results/tiny/", "logs/tiny/")) for path in paths), paths
+
+
+def test_a_sectioned_beam_is_refused_by_the_exudyn_model_naming_the_key():
+    from hubbeam.validation.nonuniform import tapered_beam
+
+    with pytest.raises(ValueError, match=r"beam.sections: the Exudyn reference models a uniform beam"):
+        exudyn_model.build_model(tapered_beam(TABLE1))

@@ -196,7 +196,9 @@ def check_speeds(params) -> np.ndarray:
 
 
 def nonuniform_tables(params, pybmodes: bool = True) -> dict[str, pd.DataFrame]:
-    """The tables of the non-uniform checks of :func:`validation_beam` ``(params)``.
+    """The tables of the non-uniform checks of :func:`validation_beam` ``(params)``: the
+    frequencies at constant hub speed of the Ritz model (Eq. 31 with the tip-mass terms) against
+    the independent solutions.
 
     ``ritz_fe``: :func:`ritz_vs_fe` for the bare beam and with a tip mass of
     :data:`TIP_MASS_RATIO` times the beam's mass at the tip (column ``case``: ``bare`` or

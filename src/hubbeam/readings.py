@@ -25,6 +25,7 @@ import math
 from collections.abc import Mapping
 
 import numpy as np
+import xarray as xr
 
 from hubbeam import claims as claim_defs
 from hubbeam import measures
@@ -36,6 +37,7 @@ from hubbeam.parameters import TipMass
 from hubbeam.plotting.figures import maneuver_value, variable
 from hubbeam.products import PAPER_PRODUCTS
 from hubbeam.simulate import simulate
+from hubbeam.tables import read_csv_rows
 
 CHANGE_KINDS = ("case", "maneuver", "beam", "tip_mass", "measure")
 #: samples per second of the tables that carry a generated maneuver
@@ -280,3 +282,58 @@ def evaluate_reading(cfg: Mapping, name: str, simulations: Mapping, table2_csv, 
     if kind == "measure":
         selected = [dataclasses.replace(claim, compute=MEASURES[value][claim.id]) for claim in selected]
     return claim_defs.evaluate(results, selected), runs
+
+
+# --- the matrix claim x reading -------------------------------------------------------------------
+
+READING_COLUMNS = ("reading", "id", "unit", "paper", "default", "computed", "rel_diff", "tolerance",
+                   "verdict")
+
+
+def reading_rows(name: str, rows: list[dict], default_rows: Mapping[str, Mapping]) -> list[dict]:
+    """Claim rows of reading ``name`` with the reading's name and the default computed value."""
+    return [{"reading": name, "default": default_rows[row["id"]]["computed"],
+             **{key: row[key] for key in READING_COLUMNS if key in row}} for row in rows]
+
+
+def write_rows(rows: list[dict], path) -> None:
+    """The rows as csv (empty cell for NaN or None)."""
+    claim_defs.write_table(rows, path, READING_COLUMNS)
+
+
+def read_rows(path) -> list[dict]:
+    return read_csv_rows(path, ("paper", "default", "computed", "rel_diff", "tolerance"))
+
+
+def matrix(rows: list[dict], readings: Mapping[str, Mapping]) -> xr.Dataset:
+    """The claims x readings matrix (CF attributes): computed value, relative difference to the
+    print and verdict flag of each claim under each reading that recomputes it (NaN / -1 where the
+    reading does not)."""
+    claim_ids = [claim.id for claim in claim_defs.claims() if any(r["id"] == claim.id for r in rows)]
+    names = list(readings)
+    shape = (len(claim_ids), len(names))
+    computed, rel, flag = np.full(shape, np.nan), np.full(shape, np.nan), np.full(shape, -1, np.int8)
+    paper, default = np.full(len(claim_ids), np.nan), np.full(len(claim_ids), np.nan)
+    for row in rows:
+        i, j = claim_ids.index(row["id"]), names.index(row["reading"])
+        computed[i, j], rel[i, j] = row["computed"], row["rel_diff"]
+        flag[i, j] = VERDICT_FLAGS.index(row["verdict"])
+        paper[i], default[i] = row["paper"], row["default"]
+    dims = ("claim", "reading")
+    flags = {"flag_values": np.arange(len(VERDICT_FLAGS), dtype=np.int8),
+             "flag_meanings": " ".join(VERDICT_FLAGS), "_FillValue": np.int8(-1)}
+    return xr.Dataset(
+        {"computed": (dims, computed, {"long_name": "claim value computed under the reading"}),
+         "rel_diff": (dims, rel, {"long_name": "(computed - paper) / |paper|", "units": "1"}),
+         "verdict": (dims, flag, {"long_name": "verdict of the claim under the reading", **flags}),
+         "paper": ("claim", paper, {"long_name": "value printed in the paper"}),
+         "default": ("claim", default, {"long_name": "claim value under the default reading"})},
+        coords={"claim": ("claim", claim_ids, {"long_name": "claim id of claims.csv"}),
+                "reading": ("reading", names, {"long_name": "alternative reading (config readings)"}),
+                "why": ("reading", [readings[n]["why"] for n in names],
+                        {"long_name": "the changed interpretation"})},
+    )
+
+
+#: verdict flags of the matrix (index = flag value)
+VERDICT_FLAGS = ("agrees", "differs", "qualitative")

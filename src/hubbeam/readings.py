@@ -7,8 +7,8 @@ A reading (config ``readings``) names ONE change of how the paper is read, as da
 * ``maneuver``: a maneuver generated from each run's own one (:data:`MANEUVER_READINGS`): the
   spin-up of Eq. (43) as printed, other periods or shapes of the torque pulse of Eq. (44);
 * ``beam``: Table 1 values replacing the configured ones (every run and the eigen tables);
-* ``tip_mass``: ``{position}`` or ``{replace, mass}`` (mass ``replace`` becomes ``mass``) for every run with a tip mass and for the
-  critical speeds;
+* ``tip_mass``: ``{position}`` or ``{replace, mass}`` (mass ``replace`` becomes ``mass``) for
+  every run with a tip mass and for the critical speeds;
 * ``measure``: how a claim is measured (:data:`MEASURES`), on the default runs.
 
 :func:`reading_case` maps (reading, base case) to the generated case ``reading-<reading>--<case>``
@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import json
 import math
 from collections.abc import Mapping
 
@@ -248,7 +249,7 @@ def as_base(ds, cfg: Mapping, base: str):
     settings = case_settings(cfg, base)
     out = ds.copy()
     out.attrs.update(reading_maneuver=ds.attrs["maneuver"], reading_tip_mass_kg=ds.attrs["tip_mass_kg"],
-                     maneuver=dict(settings["maneuver"]), tip_mass_kg=settings["tip_mass"]["mass"])
+                     maneuver=json.dumps(settings["maneuver"]), tip_mass_kg=settings["tip_mass"]["mass"])
     return out
 
 

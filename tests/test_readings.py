@@ -23,10 +23,12 @@ from hubbeam.eigen import critical_speed_table, table2
 from hubbeam.io import write_netcdf
 from hubbeam.plotting.figures import maneuver
 from hubbeam.readings import (
+    VERDICT_FLAGS,
     ReadingError,
     check_reading,
     evaluate_reading,
     generated_name,
+    matrix,
     reading_beam,
     reading_case,
     reading_cases,
@@ -229,3 +231,15 @@ def test_dry_run_plans_every_reading_and_no_default_run_twice(tmp_path, repo_roo
                   if line.strip() and line.split()[0] in ("reading", "simulate", "readings_matrix"))
     assert int(counts["reading"]) == len(cfg["readings"])
     assert int(counts["simulate"]) <= len(case_names(cfg))  # generated runs never go through simulate
+
+
+def test_matrix_holds_each_reading_s_values_and_nothing_else():
+    rows = [{**_row("table3_tau50", 6.24e-3, 6.42e-3, reading="a"), "unit": "N m", "default": 6.4e-3},
+            {**_row("table3_tau400", 2.62, 2.0, reading="b"), "unit": "N m", "default": 1.95}]
+    ds = matrix(rows, {"a": {"why": "first"}, "b": {"why": "second"}})
+    assert list(ds["claim"].values) == ["table3_tau50", "table3_tau400"]
+    assert ds["computed"].sel(claim="table3_tau50", reading="a") == 6.42e-3
+    assert np.isnan(ds["computed"].sel(claim="table3_tau50", reading="b"))
+    assert int(ds["verdict"].sel(claim="table3_tau50", reading="b")) == -1
+    assert int(ds["verdict"].sel(claim="table3_tau400", reading="b")) == VERDICT_FLAGS.index("differs")
+    assert list(ds["why"].values) == ["first", "second"]

@@ -264,17 +264,16 @@ def _eigen_settings(cfg: Mapping, reading: Mapping) -> dict | None:
             "speed": cfg["eigen"]["table2_speed"], "search_max": cfg["eigen"]["critical_speed_search_max"]}
 
 
-def evaluate_reading(cfg: Mapping, name: str, simulations: Mapping, table2_csv, critical_speeds_csv,
-                     numerics: Mapping | None = None) -> tuple[list[dict], dict]:
+def evaluate_reading(cfg: Mapping, name: str, simulations: Mapping, table2_csv,
+                     critical_speeds_csv) -> tuple[list[dict], dict]:
     """Claim rows of reading ``name`` (:func:`hubbeam.claims.evaluate` on its runs) and its runs
     ``{generated name: dataset}``; ``simulations`` are the default runs by case name."""
     reading = cfg["readings"][name]
     params = beam_from_config(reading_beam(reading, cfg["beam"]))
-    numerics = numerics or cfg["numerics"]
     runs, by_base = {}, {}
     for base, case in reading_cases(cfg, name).items():
         if case is not None:
-            runs[case["name"]] = simulate(case, params, numerics)
+            runs[case["name"]] = simulate(case, params, cfg["numerics"])
             by_base[base] = as_base(runs[case["name"]], cfg, base)
     results = ReadingResults(simulations, table2_csv, critical_speeds_csv, by_base,
                              _eigen_settings(cfg, reading))
@@ -315,11 +314,12 @@ def matrix(rows: list[dict], readings: Mapping[str, Mapping]) -> xr.Dataset:
     shape = (len(claim_ids), len(names))
     computed, rel, flag = np.full(shape, np.nan), np.full(shape, np.nan), np.full(shape, -1, np.int8)
     paper, default = np.full(len(claim_ids), np.nan), np.full(len(claim_ids), np.nan)
+    units = [""] * len(claim_ids)
     for row in rows:
         i, j = claim_ids.index(row["id"]), names.index(row["reading"])
         computed[i, j], rel[i, j] = row["computed"], row["rel_diff"]
         flag[i, j] = VERDICT_FLAGS.index(row["verdict"])
-        paper[i], default[i] = row["paper"], row["default"]
+        paper[i], default[i], units[i] = row["paper"], row["default"], row["unit"]
     dims = ("claim", "reading")
     flags = {"flag_values": np.arange(len(VERDICT_FLAGS), dtype=np.int8),
              "flag_meanings": " ".join(VERDICT_FLAGS), "_FillValue": np.int8(-1)}
@@ -330,6 +330,7 @@ def matrix(rows: list[dict], readings: Mapping[str, Mapping]) -> xr.Dataset:
          "paper": ("claim", paper, {"long_name": "value printed in the paper"}),
          "default": ("claim", default, {"long_name": "claim value under the default reading"})},
         coords={"claim": ("claim", claim_ids, {"long_name": "claim id of claims.csv"}),
+                "unit": ("claim", units, {"long_name": "unit of the claim's values (paper, default, computed)"}),
                 "reading": ("reading", names, {"long_name": "alternative reading (config readings)"}),
                 "why": ("reading", [readings[n]["why"] for n in names],
                         {"long_name": "the changed interpretation"})},

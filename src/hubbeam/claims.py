@@ -379,6 +379,11 @@ def evaluate(results: Results, selected: list[Claim] | None = None) -> list[dict
 
 
 def write_claims(rows: list[dict], path) -> Path:
+    return write_table(rows, path, CLAIM_COLUMNS)
+
+
+def write_table(rows: list[dict], path, columns) -> Path:
+    """``rows`` as csv with ``columns``: floats by ``repr``, NaN and None as empty cells."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
 
@@ -389,9 +394,9 @@ def write_claims(rows: list[dict], path) -> Path:
 
     with path.open("w", newline="") as handle:
         writer = csv.writer(handle, lineterminator="\n")
-        writer.writerow(CLAIM_COLUMNS)
+        writer.writerow(columns)
         for row in rows:
-            writer.writerow([cell(row[c]) for c in CLAIM_COLUMNS])
+            writer.writerow([cell(row[c]) for c in columns])
     return path
 
 

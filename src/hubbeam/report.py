@@ -62,7 +62,7 @@ def runs_markdown(datasets: Mapping[str, xr.Dataset]) -> str:
 
 def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Path],
                           tables: Mapping[str, str | Path], datasets: Mapping[str, xr.Dataset],
-                          numerics: Mapping, report_dir, validation=None,
+                          numerics: Mapping, report_dir, validation=None, readings=None,
                           products: Mapping[str, Product] = PAPER_PRODUCTS) -> str:
     """The reproduction report (Markdown), figures linked relative to ``report_dir``.
 
@@ -70,7 +70,8 @@ def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Pa
     section with its caption and the claims it carries. ``validation`` is the
     :class:`hubbeam.validation.report.Section` of the published-table validation (its summary
     sentence joins the report's summary), or None when the configuration has no ``validation``
-    section.
+    section. ``readings`` is the section of :func:`hubbeam.explain.section` (None without a
+    ``readings`` section in the configuration).
     """
     report_dir = Path(report_dir).resolve()
     by_id = {row["id"]: row for row in claim_rows}
@@ -90,7 +91,7 @@ def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Pa
     return render(
         "reproduction.md.j2", version=__version__, commits=", ".join(f"`{c}`" for c in commits),
         numerics={key: numerics.get(key) for key in ("rtol", "atol", "output_step", "quadrature_points")},
-        claims=claim_rows, validation=validation, differing=differing,
+        claims=claim_rows, validation=validation, readings=readings, differing=differing,
         counts={v: sum(r["verdict"] == v for r in claim_rows) for v in ("agrees", "differs", "qualitative")},
         tables=[Path(tables[name]).read_text().strip() for name in sorted(tables)],
         figures=sections, all_claims=claims_markdown(claim_rows), runs=runs_markdown(datasets))

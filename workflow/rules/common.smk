@@ -63,6 +63,7 @@ def final_targets():
         + report_targets()
         + sweep_targets()
         + published_validation_results()
+        + reading_targets()
         + ["results/hubbeam-results.tar.gz"]
     )
 
@@ -125,7 +126,8 @@ def archive_inputs(wildcards):
     sweeps), figures, tables, the report and the published-table validation (the optional Exudyn
     validation is not bundled)."""
     results = simulation_results() + matrices_results() + eigen_results() + sweep_targets()
-    products = figure_targets() + table_targets() + report_targets() + published_validation_results()
+    products = (figure_targets() + table_targets() + report_targets() + published_validation_results()
+                + reading_targets())
     return sorted(set(results + products))
 
 
@@ -362,3 +364,43 @@ def sweep_targets():
     return expand("results/sweeps/{sweep}.nc", sweep=sweeps()) + expand(
         "results/figures/sweep_{sweep}.{ext}", sweep=sweeps(), ext=("pdf", "png")
     )
+
+
+# --- alternative readings (rules in readings.smk) ------------------------------------------------
+
+
+def reading_names():
+    """Names of the configured readings (`readings`), in config order; none without the section."""
+    return list(config.get("readings", {}))
+
+
+def reading_targets():
+    """The claims x readings matrix (none without a `readings` section)."""
+    return ["results/readings/readings.csv", "results/readings/readings.nc"] if reading_names() else []
+
+
+def reading_inputs():
+    """The matrix the reproduction report reads, by input name (none without `readings`)."""
+    return {"readings": "results/readings/readings.csv"} if reading_names() else {}
+
+
+def _reading_cases(name):
+    from hubbeam.readings import ReadingError, reading_cases
+
+    if name not in config.get("readings", {}):
+        raise WorkflowError(f"results/readings/claims/{name}.csv: unknown reading {name!r}; "
+                            f"allowed: {', '.join(reading_names()) or 'none configured'}")
+    try:
+        return reading_cases(config, name)
+    except ReadingError as error:
+        raise WorkflowError(str(error)) from error
+
+
+def reading_base_cases(wildcards):
+    """The default runs the job's reading reads (its claims' products), sorted."""
+    return sorted(_reading_cases(wildcards.reading))
+
+
+def reading_generated_cases(wildcards):
+    """`params:` function: the generated cases of the job's reading (editing one reruns it)."""
+    return {base: case for base, case in _reading_cases(wildcards.reading).items() if case is not None}

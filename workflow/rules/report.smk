@@ -32,6 +32,8 @@ rule reproduction_report:
         datasets=simulation_results(),
         # the published-table validation (none when the config has no `validation` section)
         **published_validation_inputs(),
+        # the claims under alternative readings (none when the config has no `readings` section)
+        **reading_inputs(),
         code=script_code("report_reproduction.py"),
     output:
         markdown=ensure("results/report/reproduction.md", non_empty=True),

@@ -1,14 +1,17 @@
 """Snakemake shim: the reproduction report (Markdown and self-contained HTML).
 
-The published-table validation is read when the rule has its inputs (the config has a
-`validation` section, see `published_validation_inputs` in common.smk).
+The published-table validation and the claims under alternative readings are read when the rule
+has those inputs (the config has a `validation` or `readings` section, see
+`published_validation_inputs` and `reading_inputs` in common.smk).
 """
 
 from pathlib import Path
 
 from hubbeam.claims import read_claims
 from hubbeam.document import markdown_to_html
+from hubbeam.explain import section
 from hubbeam.io import open_result, write_text
+from hubbeam.readings import read_rows
 from hubbeam.report import reproduction_markdown
 from hubbeam.validation.report import published_section
 
@@ -22,8 +25,12 @@ if "published" in snakemake.input.keys():
     validation = published_section(snakemake.input.published, snakemake.input.tip_mass,
                                    snakemake.input.curves, snakemake.input.published_figure,
                                    out.parent)
-text = reproduction_markdown(read_claims(snakemake.input.claims), figures, tables, datasets,
-                             snakemake.params.numerics, out.parent, validation=validation)
+claims = read_claims(snakemake.input.claims)
+readings = None
+if "readings" in snakemake.input.keys():
+    readings = section(claims, read_rows(snakemake.input.readings), snakemake.config["readings"])
+text = reproduction_markdown(claims, figures, tables, datasets, snakemake.params.numerics, out.parent,
+                             validation=validation, readings=readings)
 write_text(out, text)
 write_text(snakemake.output.html, markdown_to_html(text, out.parent))
 with open(snakemake.log[0], "w") as log:

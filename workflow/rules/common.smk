@@ -103,10 +103,6 @@ def table_targets():
     return expand("results/tables/{key}.{ext}", key=table_keys(), ext=("csv", "md", "tex"))
 
 
-def used_tip_masses():
-    return sorted({case_config(case)["tip_mass"]["mass"] for case in cases()})
-
-
 def claim_cases():
     """The runs the claims read: every case of the paper's products."""
     return product_cases(PAPER_PRODUCTS)

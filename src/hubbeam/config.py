@@ -146,7 +146,10 @@ def load_config(paths: os.PathLike | str | Iterable[os.PathLike | str],
 
 
 def validate_config(cfg: Any, files: Iterable[os.PathLike | str] = ()) -> dict:
-    """Check ``cfg`` against the schema and the physical constraints; return it unchanged.
+    """Check ``cfg`` against the schema and the physical constraints; return it.
+
+    Numbers YAML read as text (``1e-9``) are converted in ``cfg`` itself (:func:`coerce_numbers`),
+    so that the config a workflow hands its rules holds floats.
 
     ``files`` are the files ``cfg`` was merged from (in Snakemake, ``workflow.configfiles``); they
     are re-read only to detect repeated keys, which YAML loaders silently resolve (last one wins).
@@ -257,6 +260,7 @@ def _update(config: dict, override: Mapping) -> None:
 
 def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None) -> dict:
     schema = SCHEMA if section is None else _with_section(section)
+    coerce_numbers(cfg, schema)
     found = [problem for error in _VALIDATOR_CLASS(schema).iter_errors(cfg) for problem in _explain(error, schema)]
     found += _physical_problems(cfg)
     if section is not None and not found:
@@ -265,6 +269,35 @@ def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section
     if problems:
         raise ConfigError(problems, sources)
     return cfg
+
+
+def coerce_numbers(node: Any, schema: dict, parts: list | None = None) -> None:
+    """Replace, in place, every text in ``node`` that stands where ``schema`` wants a number and
+    reads as a finite decimal number (``"1e-9"``, ``"2.7667e3"``, ``"2.0"``) by that number.
+
+    YAML 1.1, the rules Snakemake reads configs with, takes an exponent form without a decimal
+    point or without a signed exponent for text; converting it here, before validation, lets the
+    rules receive floats. Other text (``"fast"``, ``"nan"``) stays and the schema rejects it.
+    """
+    parts = [] if parts is None else parts
+    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+    for key, value in list(items):
+        where = parts + [key]
+        if isinstance(value, (dict, list)):
+            coerce_numbers(value, schema, where)
+        elif isinstance(value, str) and _schema_at(where, schema).get("type") == "number":
+            number = _finite_float(value)
+            if number is not None:
+                node[key] = number
+
+
+def _finite_float(text: str) -> float | None:
+    """``text`` as a finite float, None if it is not one."""
+    try:
+        number = float(text)
+    except ValueError:
+        return None
+    return number if math.isfinite(number) else None
 
 
 def _with_section(section: Section) -> dict:
@@ -301,9 +334,6 @@ def _explain(error: jsonschema.ValidationError, schema: dict) -> list[Problem]:
     got = f"got {_show(instance)}"
     if kind == "type":
         got += f" ({_type_name(instance)})"
-        if isinstance(instance, str) and _parses_as_float(instance):
-            got += (", as YAML 1.1 reads an exponent form without a decimal point and a signed exponent "
-                    "as text (write 2.7667e+3 or 1.0e-9, not 2.7667e3 or 1e-9)")
     return [Problem(_path(parts), f"{got}; allowed: {_allowed(parts, schema)}")]
 
 
@@ -420,7 +450,7 @@ def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
     """A beam is uniform (all of UNIFORM_BEAM_KEYS) or given by stations from 0 to L, not both."""
     if "sections" not in beam:
         return [Problem(f"beam.{key}", f"missing (required for a uniform beam, i.e. without "
-                        f"beam.sections); allowed: {_allowed(['beam', key])}")
+                        f"beam.sections); allowed: {_allowed(['beam', key], SCHEMA)}")
                 for key in UNIFORM_BEAM_KEYS if key not in beam]
     problems = [Problem(f"beam.{key}", f"got {_show(beam[key])}; not allowed together with "
                         "beam.sections (allowed: either the uniform keys or sections)")
@@ -445,7 +475,7 @@ def _study_problems(cfg: Mapping, eigen: Mapping, cases: Mapping) -> list[Proble
         if "table2_speed" in eigen or not eigen:
             return []
         return [Problem("eigen.table2_speed", "missing (required for the paper's Table 2, i.e. "
-                        f"without a study section); allowed: {_allowed(['eigen', 'table2_speed'])}")]
+                        f"without a study section); allowed: {_allowed(['eigen', 'table2_speed'], SCHEMA)}")]
     study = _section(cfg, "study")
     problems = []
     if study.get("name") in PAPER_FOLDERS:
@@ -666,14 +696,6 @@ def _show(value: Any) -> str:
 
 def _type_name(value: Any) -> str:
     return _TYPE_NAMES.get(type(value), type(value).__name__)
-
-
-def _parses_as_float(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
 
 
 def _path(parts: list) -> str:

@@ -33,11 +33,27 @@ from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.damping import check_damping, damping_matrices
-from hubbeam.limits import MAX_MODES, MAX_QUADRATURE_POINTS, MIN_MODES, MIN_QUADRATURE_POINTS, MIN_RTOL
+from hubbeam.limits import (
+    MAX_MODES,
+    MAX_QUADRATURE_POINTS,
+    MEMORY_BUDGET_MB,
+    MIN_MODES,
+    MIN_QUADRATURE_POINTS,
+    MIN_RTOL,
+)
 from hubbeam.maneuvers import check_maneuver, maneuver_parameters, maneuver_stops
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
+from hubbeam.variables import (
+    CUMULATIVE_VARIABLES,
+    HIGH_ORDER_VARIABLES,
+    MIB,
+    VARIABLES,
+    budget_text,
+    output_count,
+    simulation_bytes,
+)
 
 LOG = logging.getLogger(__name__)
 
@@ -45,36 +61,6 @@ LOG = logging.getLogger(__name__)
 NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
 #: keys of the optional convergence check (``numerics.convergence_check``, :func:`convergence`)
 CONVERGENCE_KEYS = ("tolerance_factor", "extra_modes", "threshold_m")
-
-#: variable -> (dimensions, UDUNITS units, long name)
-VARIABLES = {
-    "theta": (("time",), "rad", "hub angle theta"),
-    "theta_dot": (("time",), "rad s-1", "hub angular velocity"),
-    "theta_ddot": (("time",), "rad s-2", "hub angular acceleration"),
-    "hub_torque": (("time",), "N m",
-                   "hub torque (applied to a free hub, or required by a prescribed motion)"),
-    "Q_theta": (("time",), "N m", "velocity-dependent generalised force Q_theta (Eq. 32)"),
-    "q1": (("time", "mode"), "kg1/2 m", "axial modal coordinates q1 (unit modal mass modes)"),
-    "q2": (("time", "mode"), "kg1/2 m", "transverse modal coordinates q2 (unit modal mass modes)"),
-    "tip_transverse": (("time",), "m", "transverse tip deflection v(L) = f2(L) q2"),
-    "tip_axial": (("time",), "m", "pure axial tip deformation w1(L) = f1(L) q1"),
-    "tip_foreshortening": (("time",), "m", "tip foreshortening wc(L) = -q2' S(L) q2 / 2"),
-    "energy": (("time",), "J", "total mechanical energy T + U"),
-    "angular_momentum": (("time",), "kg m2 s-1", "angular momentum about the hub axis"),
-}
-#: cumulative integrals from t = 0 (:func:`cumulative_integral`) -> (integrand: output column
-#: names whose product it is, units, long name)
-CUMULATIVE_VARIABLES = {
-    "work": (("hub_torque", "theta_dot"), "J", "cumulative work of the hub torque"),
-    "dissipated_energy": (("dissipation_rate",), "J", "cumulative energy dissipated by damping"),
-}
-#: CFOAM only: the high-order terms FOAM drops, along the CFOAM trajectory (note 5, Fig. 3)
-HIGH_ORDER_VARIABLES = {
-    "dM_thth": (("time",), "kg m2", "CFOAM minus FOAM rotary inertia M_thth (Eq. 35)"),
-    "dQ_theta": (("time",), "N m", "CFOAM minus FOAM generalised force of the theta equation"),
-    "dQ_q1": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM axial generalised force"),
-    "dQ_q2": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM transverse generalised force"),
-}
 
 INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
 
@@ -119,6 +105,18 @@ def check_numerics(numerics: Mapping) -> None:
                               f"{MIN_RTOL:.3g} (100 machine epsilons)")
 
 
+def check_memory(case: Mapping, numerics: Mapping) -> None:
+    """Raise :class:`SimulationError` when the outputs of ``case`` would exceed the memory budget
+    ``numerics["memory_budget_mb"]`` (default :data:`hubbeam.limits.MEMORY_BUDGET_MB`), the
+    estimate of :func:`hubbeam.variables.simulation_bytes` the startup checks apply as well."""
+    budget_mb = numerics.get("memory_budget_mb", MEMORY_BUDGET_MB)
+    size = simulation_bytes(case["model"], case["modes"], case["t_end"], numerics["output_step"])
+    if size > budget_mb * MIB:
+        raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.t_end = {case['t_end']!r}: its outputs "
+                              f"would take {budget_text(size, budget_mb)}; allowed: a shorter t_end, a "
+                              "longer numerics.output_step or a larger numerics.memory_budget_mb")
+
+
 def check_convergence_settings(settings: Mapping) -> None:
     """Raise :class:`SimulationError` unless ``settings`` is a usable convergence check."""
     where = "numerics.convergence_check"
@@ -140,8 +138,7 @@ def check_convergence_settings(settings: Mapping) -> None:
 
 def output_times(t_end: float, output_step: float) -> np.ndarray:
     """The uniform output grid ``0, dt, 2 dt, ...`` up to the last multiple of ``dt`` <= t_end."""
-    count = int(math.floor(t_end / output_step + 1e-9))
-    return np.arange(count + 1) * output_step
+    return np.arange(output_count(t_end, output_step)) * output_step
 
 
 def kernel_matrices(sm: SystemMatrices) -> SystemMatrices:
@@ -193,6 +190,7 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     """
     check_case(case)
     check_numerics(numerics)
+    check_memory(case, numerics)
     if convergence_check is not None:
         check_convergence_settings(convergence_check)
     sm = case_matrices(case, params, numerics, matrices)

@@ -48,6 +48,7 @@ import numpy as np
 from numba.extending import overload
 
 from hubbeam.core.jit import JIT_OPTIONS, borrowing_kernel, inline_kernel, kernel
+from hubbeam.core.step_control import INITIAL_STEP_FRACTION, MAX_FACTOR, MIN_FACTOR
 
 # Status codes returned by :func:`radau5`, the one home of a run's status (the names are stored
 # in the datasets as ``integrator_status`` and as the sweeps' flag meanings).
@@ -76,8 +77,6 @@ JACOBIAN_REFRESH = 0.03    # recompute J after a step whose Newton contraction r
 KEEP_STEP_LOW = 1.0        # keep h (and the LU factors) when the proposed ratio is in [low, high]
 KEEP_STEP_HIGH = 1.2
 SAFETY = 0.9
-MIN_FACTOR = 0.2
-MAX_FACTOR = 8.0
 
 
 def _radau_constants():
@@ -605,7 +604,7 @@ def radau5(problem, y0, v0, t_out, t_stops, rtol, atol, watch, watch_limit, max_
     watch, watch_limit : the run stops with status ``DIVERGED`` after the first accepted step
         with ``|watch . y| > watch_limit``.
     max_steps : budget of attempted steps (accepted, rejected and Newton failures).
-    h_init : first step size; ``<= 0`` picks ``1e-6 (t_out[-1] - t_out[0])``.
+    h_init : first step size; ``<= 0`` picks ``INITIAL_STEP_FRACTION (t_out[-1] - t_out[0])``.
     fixed_step : if True every step has size ``h_init`` (shortened only to land on a stop or the
         end, or halved after a Newton failure), uses a fresh Jacobian and is accepted without
         error control (for convergence studies).
@@ -650,7 +649,7 @@ def _march(problem, y, v, w, t_out, t_stops, rtol, atol, watch, watch_limit, max
         i_stop += 1
 
     tol_newton = newton_tolerance(rtol)
-    h = h_init if h_init > 0.0 else 1e-6 * span
+    h = h_init if h_init > 0.0 else INITIAL_STEP_FRACTION * span
     h_acc = h            # size of the last accepted step
     err_acc = 1e-2       # error norm of the last accepted step (Gustafsson's controller)
     eta = 1.0

@@ -391,17 +391,6 @@ def _physical_problems(cfg: Any) -> list[Problem]:
     return problems
 
 
-def numerics_settings(cfg: Mapping) -> dict:
-    """The ``numerics`` section of a validated config with the defaults of its optional keys
-    (:data:`NUMERICS_DEFAULTS`) filled in."""
-    return NUMERICS_DEFAULTS | dict(cfg["numerics"])
-
-
-#: optional ``numerics`` keys and their defaults (:mod:`hubbeam.limits`)
-NUMERICS_DEFAULTS = {"memory_budget_mb": limits.MEMORY_BUDGET_MB,
-                     "small_deflection_limit": limits.SMALL_DEFLECTION_LIMIT}
-
-
 def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
     """Every case, validation run and sweep whose outputs would exceed ``numerics.memory_budget_mb``
     (:mod:`hubbeam.variables`), each named with its estimated size and the budget."""

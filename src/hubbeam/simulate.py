@@ -4,12 +4,15 @@
 (Table 1) and the ``numerics`` section of the config into the simulation dataset of
 ``docs/architecture.md``. The hub-beam starts at rest and undeformed (``theta = 0``, ``q = 0``,
 all rates zero). The whole time integration runs in :func:`hubbeam.core.integrate.simulate_kernel`
-(Radau IIA of order 5, :mod:`hubbeam.core.radau`); a divergent run (tip deflection beyond
-``numerics.divergence_limit * L``, a non-finite state or a vanishing step size) is a result,
-recorded as ``diverged = 1`` with NaN outputs after ``diverged_at_s``.
+(Radau IIA of order 5, :mod:`hubbeam.core.radau`). A run stopped early is a result with NaN
+outputs after ``stopped_at_s``: stopped at a tip deflection beyond ``numerics.divergence_limit * L``
+it has ``left_range = 1``, or ``diverged = 1`` when it went beyond its critical speed (or its state
+blew up); a completed run beyond ``numerics.small_deflection_limit * L`` has
+``large_deflection = 1`` (:mod:`hubbeam.validity`, attribute ``validity``).
 
 Guard rails written into the dataset's ``warnings`` attribute: more accepted steps than
-``numerics.step_warning``, an exhausted step budget, a divergence, and, when the optional
+``numerics.step_warning``, an exhausted step budget, a large deflection, a run that left the range
+of the models or diverged, and, when the optional
 convergence check (``numerics.convergence_check``) is given, a tip deflection that changes by more
 than its threshold when the case is rerun at a tighter tolerance or with more modes.
 :func:`simulation_inputs` turns the attributes of a dataset back into the arguments that
@@ -28,6 +31,7 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import cumulative_simpson
 
+from hubbeam import validity
 from hubbeam.beam import beam_attributes, beam_from_attributes
 from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS
@@ -40,6 +44,7 @@ from hubbeam.limits import (
     MIN_MODES,
     MIN_QUADRATURE_POINTS,
     MIN_RTOL,
+    SMALL_DEFLECTION_LIMIT,
 )
 from hubbeam.maneuvers import check_maneuver, maneuver_parameters, maneuver_stops
 from hubbeam.matrices import SystemMatrices, assemble
@@ -59,6 +64,8 @@ LOG = logging.getLogger(__name__)
 
 #: numerics keys a simulation reads
 NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
+#: optional numerics keys a simulation reads, with their defaults
+OPTIONAL_NUMERICS = {"small_deflection_limit": SMALL_DEFLECTION_LIMIT}
 #: keys of the optional convergence check (``numerics.convergence_check``, :func:`convergence`)
 CONVERGENCE_KEYS = ("tolerance_factor", "extra_modes", "threshold_m")
 
@@ -100,6 +107,10 @@ def check_numerics(numerics: Mapping) -> None:
         if not ok:
             allowed = "an integer >= 1" if integer else "a finite number > 0"
             raise SimulationError(f"numerics.{key} = {value!r}; allowed: {allowed}")
+    for key, default in OPTIONAL_NUMERICS.items():
+        value = numerics.get(key, default)
+        if not (_finite(value) and value > 0.0):
+            raise SimulationError(f"numerics.{key} = {value!r}; allowed: a finite number > 0")
     if numerics["rtol"] < MIN_RTOL:
         raise SimulationError(f"numerics.rtol = {numerics['rtol']!r}; allowed: a number >= "
                               f"{MIN_RTOL:.3g} (100 machine epsilons)")
@@ -194,7 +205,7 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     if convergence_check is not None:
         check_convergence_settings(convergence_check)
     sm = case_matrices(case, params, numerics, matrices)
-    ds = build_dataset(case, params, numerics, *_integrate(case, params, numerics, sm))
+    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm))
     ds.attrs["quadrature_points"] = quadrature_points(sm)
     if convergence_check is not None:
         found = convergence(ds, case, params, numerics, sm, convergence_check)
@@ -293,12 +304,15 @@ def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics:
     return found
 
 
-def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: np.ndarray,
-                  out: np.ndarray, status: int, t_stop: float, integrator: Mapping) -> xr.Dataset:
+def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices,
+                  t: np.ndarray, out: np.ndarray, status: int, t_stop: float,
+                  integrator: Mapping) -> xr.Dataset:
     """The simulation dataset of ``docs/architecture.md`` from the kernel's output array.
 
-    ``status`` and ``t_stop`` are the kernel's return values; ``integrator`` holds the integrator
-    attributes (name, tolerances and statistics, including ``n_steps``).
+    ``sm`` are the case's matrices (their ``K22`` of Eq. 31 tells a divergence from a run that
+    left the range of the models, :mod:`hubbeam.validity`); ``status`` and ``t_stop`` are the
+    kernel's return values; ``integrator`` holds the integrator attributes (name, tolerances and
+    statistics, including ``n_steps``).
     """
     n = case["modes"]
     columns = output_columns(n)
@@ -317,7 +331,9 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
                              "standard_name": "time"}),
         "mode": ("mode", np.arange(1, n + 1), {"units": "1", "long_name": "mode number"}),
     }
-    diverged = status in radau.DIVERGED_STATUSES
+    small_limit = float(numerics.get("small_deflection_limit", OPTIONAL_NUMERICS["small_deflection_limit"]))
+    found = validity.run_attributes(status, t_stop, case["model"], sm, out[:, columns["theta_dot"]],
+                                    out[:, columns["tip_transverse"]], params.L, small_limit)
     warnings = []
     if integrator.get("n_steps", 0) > numerics["step_warning"]:
         warnings.append(f"{integrator['n_steps']} accepted steps exceed numerics.step_warning = "
@@ -325,8 +341,9 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
     if status == radau.TOO_MANY_STEPS:
         warnings.append(f"step budget numerics.max_steps = {numerics['max_steps']} exhausted at "
                         f"t = {t_stop:.6g} s; outputs after it are NaN")
-    if diverged:
-        warnings.append(f"stopped as diverged ({radau.STATUS_NAMES[status]}) at t = {t_stop:.6g} s")
+    warning = found.pop("warning")
+    if warning:
+        warnings.append(warning)
     tip = case.get("tip_mass") or {"mass": 0.0, "position": params.L}
     attributes = {
         "model": case["model"],
@@ -336,8 +353,7 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
         "tip_position_m": float(tip["position"]),
         "n_modes": int(n),
         **beam_attributes(params),
-        "diverged": int(diverged),
-        "diverged_at_s": float(t_stop) if diverged else math.nan,
+        **found,
         "integrator_status": radau.STATUS_NAMES[status],
         "stopped_at_s": float(t_stop),
         "output_step": float(numerics["output_step"]),
@@ -368,7 +384,7 @@ def simulation_inputs(attrs: Mapping) -> dict:
 
     integers = ("max_steps", "step_warning", "quadrature_points")
     numerics = {key: int(get(key)) if key in integers else float(get(key))
-                for key in (*NUMERICS_KEYS, "quadrature_points")}
+                for key in (*NUMERICS_KEYS, *OPTIONAL_NUMERICS, "quadrature_points")}
     settings = attrs.get("convergence_check")
     return {
         "case": json.loads(get("case_config")),

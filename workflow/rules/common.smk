@@ -139,9 +139,10 @@ def simulation_matrices(wildcards):
 
 def simulation_numerics():
     """The `numerics` settings a simulation reads (changing any other one does not rerun it)."""
-    from hubbeam.simulate import NUMERICS_KEYS
+    from hubbeam.simulate import NUMERICS_KEYS, OPTIONAL_NUMERICS
 
-    return {key: config["numerics"][key] for key in NUMERICS_KEYS}
+    return {key: config["numerics"].get(key, default) for key, default in
+            {**dict.fromkeys(NUMERICS_KEYS), **OPTIONAL_NUMERICS}.items()}
 
 
 # --- system matrices (rule in matrices.smk) ------------------------------------------------------

@@ -24,6 +24,7 @@ foreshortening to second order (Eqs. 11-13, 35), and nothing of higher order. A 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
@@ -101,3 +102,17 @@ def run_attributes(status: int, t_stop: float, model: str, sm, theta_dot: np.nda
         "small_deflection_limit": float(small_limit),
         "warning": warning,
     }
+
+
+def describe(attrs: Mapping) -> str:
+    """A report cell for the simulation dataset attributes ``attrs``: ``valid``, ``large
+    deflection (0.54 L)``, ``left range at 12.3 s (0.98 L)`` or ``diverged at 41.2 s``."""
+    name = str(attrs["validity"])
+    ratio = f"{float(attrs['max_deflection_ratio']):.2g} L"
+    if name == "valid":
+        return name
+    if name == "large_deflection":
+        return f"large deflection ({ratio})"
+    if name == "left_range":
+        return f"left range at {float(attrs['stopped_at_s']):.2f} s ({ratio})"
+    return f"diverged at {float(attrs['diverged_at_s']):.2f} s"

@@ -1,4 +1,4 @@
-"""Independent validation (issue 8, docs/validation.md); helpers in common.smk.
+"""Independent validation (docs/validation.md); helpers in common.smk.
 
 Builds in results/validation/:
 * published_comparison.csv, tip_mass_comparison.csv, rotating_eigen.nc, rotating_frequencies.pdf/png:

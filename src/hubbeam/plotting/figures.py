@@ -186,13 +186,14 @@ def mark_maneuver_end(ax, case: str, ds: xr.Dataset) -> None:
 
 
 def limit_to_bounded(ax, datasets: Mapping[str, xr.Dataset], name: str) -> None:
-    """Keep bounded runs readable next to diverged ones.
+    """Keep bounded runs readable next to runs stopped early (diverged or left the range).
 
-    When the axes hold both diverged and non-diverged runs, the y-range is the range of the
-    non-diverged runs widened by that range on either side; the diverged curve leaves the frame
-    and its divergence time is marked by :func:`plot_series`.
+    When the axes hold both stopped and completed runs, the y-range is the range of the
+    completed runs widened by that range on either side; the stopped curve leaves the frame and
+    its stop is marked by :func:`plot_series`.
     """
-    bounded = [ds[name].values for c, ds in datasets.items() if diverged_at(c, ds) is None]
+    bounded = [ds[name].values for c, ds in datasets.items()
+               if diverged_at(c, ds) is None and left_range_at(c, ds) is None]
     if len(bounded) == len(datasets) or not bounded:
         return
     low = min(float(np.nanmin(values)) for values in bounded)

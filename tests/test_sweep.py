@@ -248,3 +248,18 @@ def test_both_figure_kinds_are_drawn(spinup, with_tip_mass, tmp_path):
     peak = ds.peak_tip_deflection
     expected = abs(peak.sel(model="TLAM") / peak.sel(model="FOAM") - 1.0)
     np.testing.assert_allclose(departure.values, expected.values, rtol=1e-12)
+
+
+def test_sweep_cells_tell_left_range_from_diverged(_study_config, params):
+    """At 3 rad/s with a heavy tip mass and a tight limit, FOAM's bounded response is stopped
+    (left_range: its linearisation has no critical speed), TLAM's, beyond its critical speed,
+    diverged."""
+    sweep = small_sweep(_study_config, "tlam_vs_foam", wf=[1.0, 3.0], tip_mass=[0.0, 10.0])
+    sweep["t_after"] = 5.0
+    sweep["divergence_limit"] = 0.3
+    ds = run_sweep(sweep, params)
+    cell = ds.validity.sel(wf=3.0, tip_mass=10.0)
+    assert int(cell.sel(model="FOAM")) == validity.LEFT_RANGE
+    assert int(cell.sel(model="TLAM")) == validity.DIVERGED
+    assert int(ds.validity.sel(model="FOAM", wf=1.0, tip_mass=0.0)) == validity.VALID
+    assert ds.attrs["n_left_range"] == int((ds.validity == validity.LEFT_RANGE).sum()) >= 1

@@ -77,8 +77,8 @@ def sweep_bytes(points: int, stored: int, t_end: float, output_step: float, mode
     """Bytes of a sweep of ``points`` runs that keeps ``stored`` values per run, the longest
     running to ``t_end``: the per-run values, plus, on each of ``threads`` threads, the dense
     output of one run (times, positions and velocities of at most ``1 + 2 modes`` coordinates
-    on the output grid of ``hubbeam.core.sweep.output_grid``, at most two times more than
-    :func:`output_count`)."""
+    on the output grid of ``hubbeam.core.sweep.output_grid``, which has at most two more times
+    than :func:`output_count`)."""
     per_run = (output_count(t_end, output_step) + 2) * (1 + 2 * (1 + 2 * modes))
     return BYTES_PER_VALUE * (points * stored + threads * per_run)
 

@@ -26,7 +26,8 @@ REPO = Path(__file__).resolve().parents[1]
 def dataset(tip, t, maneuver, **attrs) -> xr.Dataset:
     """A minimal simulation dataset: the variables and attributes the summary reads."""
     base = {"model": "FOAM", "maneuver": json.dumps(maneuver), "n_modes": 3, "tip_mass_kg": 0.0,
-            "diverged": 0, "diverged_at_s": math.nan}
+            "diverged": 0, "diverged_at_s": math.nan, "validity": "valid", "left_range": 0,
+            "max_deflection_ratio": float(np.nanmax(np.abs(tip))), "stopped_at_s": float(t[-1])}
     return xr.Dataset({"tip_transverse": ("time", tip)}, coords={"time": t}, attrs=base | attrs)
 
 
@@ -65,6 +66,7 @@ def test_a_diverged_run_and_a_failed_convergence_check_are_reported(tmp_path):
     t = np.linspace(0.0, 2.0, 21)
     tip = np.where(t <= 1.0, t, np.nan)
     ds = dataset(tip, t, {"kind": "prescribed", "wf": 5.0, "tf": 1.5}, diverged=1, diverged_at_s=1.0,
+                 validity="diverged",
                  convergence_check="{}", convergence_tolerance_diff_m=1e-6, convergence_modes_diff_m=2e-3,
                  warnings="not converged in the modes: ...")
     row = case_summary("boom", ds)
@@ -76,7 +78,7 @@ def test_a_diverged_run_and_a_failed_convergence_check_are_reported(tmp_path):
                                               "youngs_modulus": 1.0, "second_moment": 1.0,
                                               "hub_inertia": 1.0, "hub_radius": 0.0},
                               [row], {"boom": "../figures/case_boom.png"}, {}, {})
-    assert "| boom | FOAM | prescribed | 3 |" in markdown and "yes (t = 1 s)" in markdown
+    assert "| boom | FOAM | prescribed | 3 |" in markdown and "| diverged at 1.00 s |" in markdown
     assert "NOT converged (tolerance 1e-06 m, modes 0.002 m)" in markdown
     figure = tmp_path / "figures" / "case_boom.png"
     figure.parent.mkdir()

@@ -17,8 +17,11 @@ import math
 
 import numpy as np
 import pytest
+import xarray as xr
 
+from hubbeam import validity
 from hubbeam.config import ConfigError, validate_config
+from hubbeam.core import radau
 from hubbeam.core.sweep import hermite_abs_max, output_grid
 from hubbeam.io import open_result, write_netcdf
 from hubbeam.parameters import BeamParameters
@@ -100,13 +103,18 @@ def test_diverged_run_is_flagged_not_raised(spinup, params):
     sweep, ds = spinup
     tlam = ds.sel(model="TLAM", wf=4.0)  # above TLAM's critical speed (2.9 rad/s)
     assert (tlam.diverged == 1).all()
-    assert (tlam.status == 1).all()  # radau5 DIVERGED
+    assert (tlam.status == radau.LEFT_RANGE).all()  # stopped at |v(L)| > divergence_limit * L
+    assert (tlam.validity == validity.DIVERGED).all()  # beyond the critical speed: not left_range
     assert np.isnan(tlam.peak_tip_deflection).all()
     assert (tlam.stopped_at < tlam.tf + sweep["t_after"]).all()
     assert float(ds.critical_speed.sel(eigen_model="TLAM")) < 4.0
     foam = ds.sel(model="FOAM", wf=4.0)
     assert (foam.diverged == 0).all() and np.isfinite(foam.peak_tip_deflection).all()
     assert ds.attrs["n_diverged"] == int(ds.diverged.sum()) == 2
+    # the runs that complete: large_deflection exactly where the peak exceeds 0.1 L
+    done = ds.status == radau.SUCCESS
+    expected = xr.where(ds.peak_tip_deflection > 0.1 * params.L, validity.LARGE_DEFLECTION, validity.VALID)
+    np.testing.assert_array_equal(ds.validity.where(done, drop=True), expected.where(done, drop=True))
 
 
 def test_tlam_diverges_exactly_above_its_critical_speed(_study_config, params):
@@ -127,10 +135,11 @@ def test_tlam_diverges_exactly_above_its_critical_speed(_study_config, params):
     ds = run_sweep(sweep, params)
     np.testing.assert_allclose(ds.critical_speed.sel(eigen_model="TLAM").values, critical)
     for mass, speed in zip(masses, critical):
-        diverged = ds.diverged.sel(model="TLAM", tip_mass=mass)
+        stopped = ds.status.sel(model="TLAM", tip_mass=mass) == radau.LEFT_RANGE
         away = abs(ds.wf - speed) >= margin
-        np.testing.assert_array_equal(diverged.where(away, drop=True).values,
+        np.testing.assert_array_equal(stopped.where(away, drop=True).values,
                                       (ds.wf > speed).where(away, drop=True).values)
+        np.testing.assert_array_equal(ds.diverged.sel(model="TLAM", tip_mass=mass).values, stopped.values)
 
 
 def test_grid_and_coordinates_follow_the_config(_study_config):
@@ -168,7 +177,8 @@ def test_dataset_is_self_describing_and_round_trips(with_tip_mass, tmp_path):
         assert "long_name" in variable.attrs, name
         if name not in ("model", "eigen_model"):
             assert "units" in variable.attrs, name
-    assert ds.diverged.attrs["flag_meanings"] == "completed diverged"
+    assert ds.diverged.attrs["flag_meanings"] == "bounded diverged"
+    assert ds.validity.attrs["flag_meanings"] == "valid large_deflection left_range diverged"
     for key in ("rtol", "atol", "output_step", "max_steps", "divergence_limit", "integrator",
                 "Conventions", "git_commit"):
         assert key in ds.attrs
@@ -238,3 +248,18 @@ def test_both_figure_kinds_are_drawn(spinup, with_tip_mass, tmp_path):
     peak = ds.peak_tip_deflection
     expected = abs(peak.sel(model="TLAM") / peak.sel(model="FOAM") - 1.0)
     np.testing.assert_allclose(departure.values, expected.values, rtol=1e-12)
+
+
+def test_sweep_cells_tell_left_range_from_diverged(_study_config, params):
+    """At 3 rad/s with a heavy tip mass and a tight limit, FOAM's bounded response is stopped
+    (left_range: its linearisation has no critical speed), TLAM's, beyond its critical speed,
+    diverged."""
+    sweep = small_sweep(_study_config, "tlam_vs_foam", wf=[1.0, 3.0], tip_mass=[0.0, 10.0])
+    sweep["t_after"] = 5.0
+    sweep["divergence_limit"] = 0.3
+    ds = run_sweep(sweep, params)
+    cell = ds.validity.sel(wf=3.0, tip_mass=10.0)
+    assert int(cell.sel(model="FOAM")) == validity.LEFT_RANGE
+    assert int(cell.sel(model="TLAM")) == validity.DIVERGED
+    assert int(ds.validity.sel(model="FOAM", wf=1.0, tip_mass=0.0)) == validity.VALID
+    assert ds.attrs["n_left_range"] == int((ds.validity == validity.LEFT_RANGE).sum()) >= 1

@@ -7,8 +7,13 @@ Validation has two layers, reported together in one :class:`ConfigError`:
    spans at least one output step, grids increase, numbers are finite, case names stay distinct
    on case-insensitive file systems, keys are text, and no YAML file repeats a key; a beam is
    either uniform or given by stations (``beam.sections``, from x = 0 to x = L), tables of
-   stations and times increase, a maneuver or damping has only the keys of its kind, and a study
-   (``study`` section) neither takes a folder of the paper's products nor compares unknown cases.
+   stations and times increase, a maneuver or damping has only the keys of its kind, a study
+   (``study`` section) neither takes a folder of the paper's products nor compares unknown cases,
+   and no case, validation run or sweep would need more memory than ``numerics.memory_budget_mb``
+   (:mod:`hubbeam.variables`).
+
+Before validation, text that reads as a finite number where the schema wants a number is taken
+as that number (:func:`coerce_numbers`): YAML 1.1 reads ``1e-9`` as text.
 
 Every problem names the key path (``cases.fig05_tlam.maneuver.wf``), the offending value and
 what is allowed. :func:`case_settings` resolves one case with the defaults of ``numerics``.
@@ -28,7 +33,7 @@ from typing import Any, NamedTuple
 import jsonschema
 import yaml
 
-from hubbeam import limits
+from hubbeam import limits, variables
 from hubbeam.study import PAPER_FOLDERS
 
 SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
@@ -60,6 +65,7 @@ class ConfigError(ValueError):
 
 
 _RTOL_BOUND = {"minimum": limits.MIN_RTOL}
+_STEPS_BOUND = {"minimum": limits.MIN_STEPS}
 #: schema node (keys from the root) -> the bounds of :mod:`hubbeam.limits` filled in at load time;
 #: the schema file states none of these numbers itself
 SCHEMA_LIMITS = {
@@ -68,6 +74,8 @@ SCHEMA_LIMITS = {
         {"minimum": limits.MIN_QUADRATURE_POINTS, "maximum": limits.MAX_QUADRATURE_POINTS},
     ("properties", "numerics", "properties", "rtol"): _RTOL_BOUND,
     ("properties", "sweeps", "properties", "numerics", "properties", "rtol"): _RTOL_BOUND,
+    ("properties", "numerics", "properties", "max_steps"): _STEPS_BOUND,
+    ("properties", "sweeps", "properties", "numerics", "properties", "max_steps"): _STEPS_BOUND,
 }
 
 
@@ -146,7 +154,10 @@ def load_config(paths: os.PathLike | str | Iterable[os.PathLike | str],
 
 
 def validate_config(cfg: Any, files: Iterable[os.PathLike | str] = ()) -> dict:
-    """Check ``cfg`` against the schema and the physical constraints; return it unchanged.
+    """Check ``cfg`` against the schema and the physical constraints; return it.
+
+    Numbers YAML read as text (``1e-9``) are converted in ``cfg`` itself (:func:`coerce_numbers`),
+    so that the config a workflow hands its rules holds floats.
 
     ``files`` are the files ``cfg`` was merged from (in Snakemake, ``workflow.configfiles``); they
     are re-read only to detect repeated keys, which YAML loaders silently resolve (last one wins).
@@ -257,6 +268,7 @@ def _update(config: dict, override: Mapping) -> None:
 
 def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None) -> dict:
     schema = SCHEMA if section is None else _with_section(section)
+    coerce_numbers(cfg, schema)
     found = [problem for error in _VALIDATOR_CLASS(schema).iter_errors(cfg) for problem in _explain(error, schema)]
     found += _physical_problems(cfg)
     if section is not None and not found:
@@ -265,6 +277,35 @@ def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section
     if problems:
         raise ConfigError(problems, sources)
     return cfg
+
+
+def coerce_numbers(node: Any, schema: dict, parts: list | None = None) -> None:
+    """Replace, in place, every text in ``node`` that stands where ``schema`` wants a number and
+    reads as a finite decimal number (``"1e-9"``, ``"2.7667e3"``, ``"2.0"``) by that number.
+
+    YAML 1.1, the rules Snakemake reads configs with, takes an exponent form without a decimal
+    point or without a signed exponent for text; converting it here, before validation, lets the
+    rules receive floats. Other text (``"fast"``, ``"nan"``) stays and the schema rejects it.
+    """
+    parts = [] if parts is None else parts
+    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+    for key, value in list(items):
+        where = parts + [key]
+        if isinstance(value, (dict, list)):
+            coerce_numbers(value, schema, where)
+        elif isinstance(value, str) and _schema_at(where, schema).get("type") == "number":
+            number = _finite_float(value)
+            if number is not None:
+                node[key] = number
+
+
+def _finite_float(text: str) -> float | None:
+    """``text`` as a finite float, None if it is not one."""
+    try:
+        number = float(text)
+    except ValueError:
+        return None
+    return number if math.isfinite(number) else None
 
 
 def _with_section(section: Section) -> dict:
@@ -301,9 +342,6 @@ def _explain(error: jsonschema.ValidationError, schema: dict) -> list[Problem]:
     got = f"got {_show(instance)}"
     if kind == "type":
         got += f" ({_type_name(instance)})"
-        if isinstance(instance, str) and _parses_as_float(instance):
-            got += (", as YAML 1.1 reads an exponent form without a decimal point and a signed exponent "
-                    "as text (write 2.7667e+3 or 1.0e-9, not 2.7667e3 or 1e-9)")
     return [Problem(_path(parts), f"{got}; allowed: {_allowed(parts, schema)}")]
 
 
@@ -354,6 +392,79 @@ def _physical_problems(cfg: Any) -> list[Problem]:
     problems += _study_problems(cfg, eigen, cases)
     problems += _sweep_problems(_section(cfg, "sweeps"), length)
     problems += _validation_problems(_section(cfg, "validation"), length, output_step)
+    problems += _memory_problems(cfg, output_step)
+    return problems
+
+
+def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
+    """Every case, validation run and sweep whose outputs would exceed ``numerics.memory_budget_mb``
+    (:mod:`hubbeam.variables`), each named with its estimated size and the budget."""
+    numerics = _section(cfg, "numerics")
+    budget_mb = _positive(numerics.get("memory_budget_mb", limits.MEMORY_BUDGET_MB))
+    default_modes = _integer(numerics.get("modes"))
+    if budget_mb is None or output_step is None or default_modes is None:
+        return []  # the schema reports it
+    budget = budget_mb * variables.MIB
+    problems = []
+
+    def check_run(where: str, what: str, model: str, modes: int, t_end: float) -> None:
+        size = variables.simulation_bytes(model, modes, t_end, output_step)
+        if size <= budget:
+            return
+        values = variables.values_per_time(model, modes)
+        count = variables.output_count(t_end, output_step)
+        longest = (math.floor((budget / variables.BYTES_PER_VALUE - modes) / values) - 1) * output_step
+        problems.append(Problem(where, f"got {t_end:g} s: {what} ({model}, {modes} modes) would store "
+                                f"{count} output times x {values} values x {variables.BYTES_PER_VALUE} "
+                                f"bytes = {variables.budget_text(size, budget_mb)}; allowed: t_end <= "
+                                f"{longest:.6g} s at numerics.output_step = {output_step:g} s (or a "
+                                "longer output step, or a larger numerics.memory_budget_mb)"))
+
+    for name, case in _section(cfg, "cases").items():
+        case = case if isinstance(case, dict) else {}
+        t_end, modes, model = _positive(case.get("t_end")), case.get("modes", default_modes), case.get("model")
+        if t_end is not None and _integer(modes) is not None and isinstance(model, str):
+            check_run(f"cases.{name}.t_end", f"case {name}", model, modes, t_end)
+    validation = _section(cfg, "validation")
+    models = [m for m in validation.get("models", []) if isinstance(m, str)] if isinstance(
+        validation.get("models"), list) else []
+    study = validation.get("mode_study") if isinstance(validation.get("mode_study"), list) else []
+    modes = max([default_modes, *(m for m in study if _integer(m) is not None)])
+    for name, case in _section(validation, "cases").items():
+        t_end = _positive(case.get("t_end")) if isinstance(case, dict) else None
+        if t_end is not None and models:
+            model = max(models, key=lambda m: variables.values_per_time(m, modes))
+            check_run(f"validation.cases.{name}.t_end", f"validation run {name}", model, modes, t_end)
+    problems += _sweep_memory_problems(_section(cfg, "sweeps"), default_modes, budget_mb)
+    return problems
+
+
+def _sweep_memory_problems(sweeps: Mapping, default_modes: int, budget_mb: float) -> list[Problem]:
+    """The sweeps whose per-run values and dense outputs would exceed the memory budget."""
+    output_step = _positive(_section(sweeps, "numerics").get("output_step"))
+    problems = []
+    for name, spec in _section(sweeps, "maps").items():
+        if not isinstance(spec, dict) or output_step is None:
+            continue
+        grid, maneuver = _section(spec, "grid"), _section(spec, "maneuver")
+        counts = [_integer(_section(grid, key).get("num")) for key in grid]
+        tf = _positive(_section(grid, "tf").get("stop")) if "tf" in grid else _positive(maneuver.get("tf"))
+        t_after, modes = _number(spec.get("t_after")), spec.get("modes", default_modes)
+        models, outputs = spec.get("models"), spec.get("outputs")
+        if (None in counts or tf is None or t_after is None or _integer(modes) is None
+                or not isinstance(models, list) or not isinstance(outputs, list)):
+            continue  # the schema reports it
+        points = len(models) * math.prod(counts)
+        threads = os.cpu_count() or 1
+        size = variables.sweep_bytes(points, len(outputs) + variables.SWEEP_VALUES_PER_RUN, tf + t_after,
+                                     output_step, modes, threads)
+        if size > budget_mb * variables.MIB:
+            problems.append(Problem(f"sweeps.maps.{name}", f"got {points} runs ({len(models)} models x "
+                                    f"{' x '.join(map(str, counts))} grid points) up to t = {tf + t_after:g} s "
+                                    f"on {threads} threads: sweep {name} would take "
+                                    f"{variables.budget_text(size, budget_mb)}; allowed: fewer grid points, "
+                                    "a shorter t_after or tf, a longer sweeps.numerics.output_step, or a "
+                                    "larger numerics.memory_budget_mb"))
     return problems
 
 
@@ -666,14 +777,6 @@ def _show(value: Any) -> str:
 
 def _type_name(value: Any) -> str:
     return _TYPE_NAMES.get(type(value), type(value).__name__)
-
-
-def _parses_as_float(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
 
 
 def _path(parts: list) -> str:

@@ -9,6 +9,8 @@ jitted core imports nothing of the rest of the package. Importing this module is
 
 import numpy as np
 
+from hubbeam.core.step_control import fewest_steps
+
 #: the fewest and the most assumed modes per coordinate set (Eqs. 7-8); above 20 the clamped-free
 #: modes' exponent-safe evaluation has not been checked
 MIN_MODES = 1
@@ -20,3 +22,14 @@ MIN_RTOL = 100 * float(np.finfo(np.float64).eps)
 MIN_QUADRATURE_POINTS = 8
 #: above this many nodes numpy's Legendre rule is no longer accurate to double precision
 MAX_QUADRATURE_POINTS = 1000
+#: the smallest step budget (``numerics.max_steps``): the Radau IIA integrator starts with a step of
+#: 1e-6 of the span and grows it at most eightfold per step, so no run ends in fewer attempts
+#: (``hubbeam.core.step_control.fewest_steps``)
+MIN_STEPS = fewest_steps()
+#: default memory budget of one run's outputs or one sweep, MiB (``numerics.memory_budget_mb``):
+#: a run holds about twice its outputs while its dataset is built, so the default keeps one
+#: simulation below about 4 GiB
+MEMORY_BUDGET_MB = 2048.0
+#: default small-deflection limit, as a fraction of L (``numerics.small_deflection_limit``); the
+#: models linearise the strain in the elastic deformation (docs/reliability.md)
+SMALL_DEFLECTION_LIMIT = 0.1

@@ -27,7 +27,7 @@ from scipy.integrate import solve_ivp
 
 from hubbeam.core import eom
 from hubbeam.core.integrate import fill_outputs, n_output_columns
-from hubbeam.core.radau import DIVERGED, NON_FINITE, STEP_UNDERFLOW, SUCCESS
+from hubbeam.core.radau import LEFT_RANGE, NON_FINITE, STEP_UNDERFLOW, SUCCESS
 from hubbeam.damping import damping_matrices
 from hubbeam.matrices import SystemMatrices
 from hubbeam.parameters import BeamParameters
@@ -124,7 +124,7 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
         nlu += result.nlu
         states[np.flatnonzero(inside)[:result.t.size]] = result.y.T
         if result.status == 1:
-            status, t_stop = DIVERGED, float(result.t_events[0][0])
+            status, t_stop = LEFT_RANGE, float(result.t_events[0][0])
             break
         if result.status != 0:
             finite = np.all(np.isfinite(result.y))
@@ -140,5 +140,5 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
                   "rtol": float(rtol), "atol": float(atol), "n_rhs": int(nfev),
                   "n_jacobian": int(njev), "n_lu": int(nlu), "wall_time_s": float(wall),
                   "pure_python_rhs": int(pure_python_rhs)}
-    return build_dataset(case, params, numerics, t, out, status, t_stop, integrator)
+    return build_dataset(case, params, numerics, sm, t, out, status, t_stop, integrator)
 

@@ -15,9 +15,9 @@ from pathlib import Path
 
 import xarray as xr
 
-from hubbeam import __version__
+from hubbeam import __version__, validity
 from hubbeam.document import render
-from hubbeam.plotting.figures import diverged_at, maneuver, model, n_modes, tip_mass
+from hubbeam.plotting.figures import maneuver, model, n_modes, tip_mass
 from hubbeam.products import PAPER_PRODUCTS, Product
 
 
@@ -46,16 +46,15 @@ def claims_markdown(rows: list[dict]) -> str:
 
 def runs_markdown(datasets: Mapping[str, xr.Dataset]) -> str:
     """The settings of every simulation run, read from the datasets' attributes."""
-    lines = ["| case | model | n | maneuver | t_end (s) | tip mass (kg) at l (m) | diverged at (s) | steps |",
-             "|---|---|---:|---|---:|---|---:|---:|"]
+    lines = ["| case | model | n | maneuver | t_end (s) | tip mass (kg) at l (m) | validity | steps |",
+             "|---|---|---:|---|---:|---|---|---:|"]
     for case, ds in sorted(datasets.items()):
         man = maneuver(case, ds)
         law = ", ".join(f"{k} = {v:g}" if isinstance(v, (int, float)) else f"{k} = {v}" for k, v in man.items())
-        t_div = diverged_at(case, ds)
         mass = tip_mass(case, ds)
         where = f"{mass:g} at {float(ds.attrs['tip_position_m']):g}" if mass else "none"
         lines.append(f"| {case} | {model(case, ds)} | {n_modes(case, ds)} | {law} | "
-                     f"{float(ds['time'].values[-1]):g} | {where} | {'-' if t_div is None else f'{t_div:.2f}'} | "
+                     f"{float(ds['time'].values[-1]):g} | {where} | {validity.describe(ds.attrs)} | "
                      f"{ds.attrs.get('n_steps', '-')} |")
     return "\n".join(lines)
 

@@ -4,12 +4,15 @@
 (Table 1) and the ``numerics`` section of the config into the simulation dataset of
 ``docs/architecture.md``. The hub-beam starts at rest and undeformed (``theta = 0``, ``q = 0``,
 all rates zero). The whole time integration runs in :func:`hubbeam.core.integrate.simulate_kernel`
-(Radau IIA of order 5, :mod:`hubbeam.core.radau`); a divergent run (tip deflection beyond
-``numerics.divergence_limit * L``, a non-finite state or a vanishing step size) is a result,
-recorded as ``diverged = 1`` with NaN outputs after ``diverged_at_s``.
+(Radau IIA of order 5, :mod:`hubbeam.core.radau`). A run stopped early is a result with NaN
+outputs after ``stopped_at_s``: stopped at a tip deflection beyond ``numerics.divergence_limit * L``
+it has ``left_range = 1``, or ``diverged = 1`` when it went beyond its critical speed (or its state
+blew up); a completed run beyond ``numerics.small_deflection_limit * L`` has
+``large_deflection = 1`` (:mod:`hubbeam.validity`, attribute ``validity``).
 
 Guard rails written into the dataset's ``warnings`` attribute: more accepted steps than
-``numerics.step_warning``, an exhausted step budget, a divergence, and, when the optional
+``numerics.step_warning``, an exhausted step budget, a large deflection, a run that left the range
+of the models or diverged, and, when the optional
 convergence check (``numerics.convergence_check``) is given, a tip deflection that changes by more
 than its threshold when the case is rerun at a tighter tolerance or with more modes.
 :func:`simulation_inputs` turns the attributes of a dataset back into the arguments that
@@ -28,53 +31,43 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import cumulative_simpson
 
+from hubbeam import validity
 from hubbeam.beam import beam_attributes, beam_from_attributes
 from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.damping import check_damping, damping_matrices
-from hubbeam.limits import MAX_MODES, MAX_QUADRATURE_POINTS, MIN_MODES, MIN_QUADRATURE_POINTS, MIN_RTOL
+from hubbeam.limits import (
+    MAX_MODES,
+    MAX_QUADRATURE_POINTS,
+    MEMORY_BUDGET_MB,
+    MIN_MODES,
+    MIN_QUADRATURE_POINTS,
+    MIN_RTOL,
+    SMALL_DEFLECTION_LIMIT,
+)
 from hubbeam.maneuvers import check_maneuver, maneuver_parameters, maneuver_stops
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
+from hubbeam.variables import (
+    CUMULATIVE_VARIABLES,
+    HIGH_ORDER_VARIABLES,
+    MIB,
+    VARIABLES,
+    budget_text,
+    output_count,
+    simulation_bytes,
+)
 
 LOG = logging.getLogger(__name__)
 
 #: numerics keys a simulation reads
 NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
+#: optional numerics keys a simulation reads, with their defaults
+OPTIONAL_NUMERICS = {"small_deflection_limit": SMALL_DEFLECTION_LIMIT}
 #: keys of the optional convergence check (``numerics.convergence_check``, :func:`convergence`)
 CONVERGENCE_KEYS = ("tolerance_factor", "extra_modes", "threshold_m")
-
-#: variable -> (dimensions, UDUNITS units, long name)
-VARIABLES = {
-    "theta": (("time",), "rad", "hub angle theta"),
-    "theta_dot": (("time",), "rad s-1", "hub angular velocity"),
-    "theta_ddot": (("time",), "rad s-2", "hub angular acceleration"),
-    "hub_torque": (("time",), "N m",
-                   "hub torque (applied to a free hub, or required by a prescribed motion)"),
-    "Q_theta": (("time",), "N m", "velocity-dependent generalised force Q_theta (Eq. 32)"),
-    "q1": (("time", "mode"), "kg1/2 m", "axial modal coordinates q1 (unit modal mass modes)"),
-    "q2": (("time", "mode"), "kg1/2 m", "transverse modal coordinates q2 (unit modal mass modes)"),
-    "tip_transverse": (("time",), "m", "transverse tip deflection v(L) = f2(L) q2"),
-    "tip_axial": (("time",), "m", "pure axial tip deformation w1(L) = f1(L) q1"),
-    "tip_foreshortening": (("time",), "m", "tip foreshortening wc(L) = -q2' S(L) q2 / 2"),
-    "energy": (("time",), "J", "total mechanical energy T + U"),
-    "angular_momentum": (("time",), "kg m2 s-1", "angular momentum about the hub axis"),
-}
-#: cumulative integrals from t = 0 (:func:`cumulative_integral`) -> (integrand: output column
-#: names whose product it is, units, long name)
-CUMULATIVE_VARIABLES = {
-    "work": (("hub_torque", "theta_dot"), "J", "cumulative work of the hub torque"),
-    "dissipated_energy": (("dissipation_rate",), "J", "cumulative energy dissipated by damping"),
-}
-#: CFOAM only: the high-order terms FOAM drops, along the CFOAM trajectory (note 5, Fig. 3)
-HIGH_ORDER_VARIABLES = {
-    "dM_thth": (("time",), "kg m2", "CFOAM minus FOAM rotary inertia M_thth (Eq. 35)"),
-    "dQ_theta": (("time",), "N m", "CFOAM minus FOAM generalised force of the theta equation"),
-    "dQ_q1": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM axial generalised force"),
-    "dQ_q2": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM transverse generalised force"),
-}
 
 INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
 
@@ -114,9 +107,25 @@ def check_numerics(numerics: Mapping) -> None:
         if not ok:
             allowed = "an integer >= 1" if integer else "a finite number > 0"
             raise SimulationError(f"numerics.{key} = {value!r}; allowed: {allowed}")
+    for key, default in OPTIONAL_NUMERICS.items():
+        value = numerics.get(key, default)
+        if not (_finite(value) and value > 0.0):
+            raise SimulationError(f"numerics.{key} = {value!r}; allowed: a finite number > 0")
     if numerics["rtol"] < MIN_RTOL:
         raise SimulationError(f"numerics.rtol = {numerics['rtol']!r}; allowed: a number >= "
                               f"{MIN_RTOL:.3g} (100 machine epsilons)")
+
+
+def check_memory(case: Mapping, numerics: Mapping) -> None:
+    """Raise :class:`SimulationError` when the outputs of ``case`` would exceed the memory budget
+    ``numerics["memory_budget_mb"]`` (default :data:`hubbeam.limits.MEMORY_BUDGET_MB`), the
+    estimate of :func:`hubbeam.variables.simulation_bytes` the startup checks apply as well."""
+    budget_mb = numerics.get("memory_budget_mb", MEMORY_BUDGET_MB)
+    size = simulation_bytes(case["model"], case["modes"], case["t_end"], numerics["output_step"])
+    if size > budget_mb * MIB:
+        raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.t_end = {case['t_end']!r}: its outputs "
+                              f"would take {budget_text(size, budget_mb)}; allowed: a shorter t_end, a "
+                              "longer numerics.output_step or a larger numerics.memory_budget_mb")
 
 
 def check_convergence_settings(settings: Mapping) -> None:
@@ -140,8 +149,7 @@ def check_convergence_settings(settings: Mapping) -> None:
 
 def output_times(t_end: float, output_step: float) -> np.ndarray:
     """The uniform output grid ``0, dt, 2 dt, ...`` up to the last multiple of ``dt`` <= t_end."""
-    count = int(math.floor(t_end / output_step + 1e-9))
-    return np.arange(count + 1) * output_step
+    return np.arange(output_count(t_end, output_step)) * output_step
 
 
 def kernel_matrices(sm: SystemMatrices) -> SystemMatrices:
@@ -193,10 +201,11 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     """
     check_case(case)
     check_numerics(numerics)
+    check_memory(case, numerics)
     if convergence_check is not None:
         check_convergence_settings(convergence_check)
     sm = case_matrices(case, params, numerics, matrices)
-    ds = build_dataset(case, params, numerics, *_integrate(case, params, numerics, sm))
+    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm))
     ds.attrs["quadrature_points"] = quadrature_points(sm)
     if convergence_check is not None:
         found = convergence(ds, case, params, numerics, sm, convergence_check)
@@ -295,12 +304,15 @@ def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics:
     return found
 
 
-def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: np.ndarray,
-                  out: np.ndarray, status: int, t_stop: float, integrator: Mapping) -> xr.Dataset:
+def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices,
+                  t: np.ndarray, out: np.ndarray, status: int, t_stop: float,
+                  integrator: Mapping) -> xr.Dataset:
     """The simulation dataset of ``docs/architecture.md`` from the kernel's output array.
 
-    ``status`` and ``t_stop`` are the kernel's return values; ``integrator`` holds the integrator
-    attributes (name, tolerances and statistics, including ``n_steps``).
+    ``sm`` are the case's matrices (their ``K22`` of Eq. 31 tells a divergence from a run that
+    left the range of the models, :mod:`hubbeam.validity`); ``status`` and ``t_stop`` are the
+    kernel's return values; ``integrator`` holds the integrator attributes (name, tolerances and
+    statistics, including ``n_steps``).
     """
     n = case["modes"]
     columns = output_columns(n)
@@ -319,7 +331,9 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
                              "standard_name": "time"}),
         "mode": ("mode", np.arange(1, n + 1), {"units": "1", "long_name": "mode number"}),
     }
-    diverged = status in radau.DIVERGED_STATUSES
+    small_limit = float(numerics.get("small_deflection_limit", OPTIONAL_NUMERICS["small_deflection_limit"]))
+    found = validity.run_attributes(status, t_stop, case["model"], sm, out[:, columns["theta_dot"]],
+                                    out[:, columns["tip_transverse"]], params.L, small_limit)
     warnings = []
     if integrator.get("n_steps", 0) > numerics["step_warning"]:
         warnings.append(f"{integrator['n_steps']} accepted steps exceed numerics.step_warning = "
@@ -327,8 +341,9 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
     if status == radau.TOO_MANY_STEPS:
         warnings.append(f"step budget numerics.max_steps = {numerics['max_steps']} exhausted at "
                         f"t = {t_stop:.6g} s; outputs after it are NaN")
-    if diverged:
-        warnings.append(f"stopped as diverged ({radau.STATUS_NAMES[status]}) at t = {t_stop:.6g} s")
+    warning = found.pop("warning")
+    if warning:
+        warnings.append(warning)
     tip = case.get("tip_mass") or {"mass": 0.0, "position": params.L}
     attributes = {
         "model": case["model"],
@@ -338,8 +353,7 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, t: n
         "tip_position_m": float(tip["position"]),
         "n_modes": int(n),
         **beam_attributes(params),
-        "diverged": int(diverged),
-        "diverged_at_s": float(t_stop) if diverged else math.nan,
+        **found,
         "integrator_status": radau.STATUS_NAMES[status],
         "stopped_at_s": float(t_stop),
         "output_step": float(numerics["output_step"]),
@@ -370,7 +384,7 @@ def simulation_inputs(attrs: Mapping) -> dict:
 
     integers = ("max_steps", "step_warning", "quadrature_points")
     numerics = {key: int(get(key)) if key in integers else float(get(key))
-                for key in (*NUMERICS_KEYS, "quadrature_points")}
+                for key in (*NUMERICS_KEYS, *OPTIONAL_NUMERICS, "quadrature_points")}
     settings = attrs.get("convergence_check")
     return {
         "case": json.loads(get("case_config")),

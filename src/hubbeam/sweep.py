@@ -7,8 +7,9 @@ models, the maneuver kind and its fixed parameters, the tip mass, and spans two 
 kernel :func:`hubbeam.core.sweep.sweep_tip_extrema` (the integrator and equations of
 :func:`hubbeam.simulate.simulate`, keeping only the extrema of the tip deflection).
 :func:`run_sweep` returns a self-describing dataset over ``(model, <axis 1>, <axis 2>)``; a run
-that diverges (tip deflection beyond ``numerics.divergence_limit * L``, a non-finite state or a
-vanishing step) is a result, flagged by ``diverged`` with NaN extrema.
+that stops early (tip deflection beyond ``numerics.divergence_limit * L``, a non-finite state or a
+vanishing step) is a result with NaN extrema, classified by :mod:`hubbeam.validity` (variable
+``validity``: valid, large_deflection, left_range or diverged).
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import xarray as xr
 
-from hubbeam import eigen
+from hubbeam import eigen, limits, validity
 from hubbeam.core import radau
 from hubbeam.core import sweep as kernels
 from hubbeam.core.eom import MODEL_IDS
@@ -89,6 +90,8 @@ def sweep_settings(cfg: Mapping, name: str) -> dict:
         "numerics": {key: cfg["sweeps"]["numerics"][key]
                      for key in ("rtol", "atol", "output_step", "max_steps")},
         "divergence_limit": float(cfg["numerics"]["divergence_limit"]),
+        "small_deflection_limit": float(cfg["numerics"].get("small_deflection_limit",
+                                                            limits.SMALL_DEFLECTION_LIMIT)),
         "quadrature_points": int(cfg["numerics"]["quadrature_points"]),
         "critical_speed_search_max": float(cfg["eigen"]["critical_speed_search_max"]),
     }
@@ -170,9 +173,9 @@ def run_sweep(sweep: Mapping, params: BeamParameters, threads: int | None = None
         for share in shares:
             share.result()
     wall = time.perf_counter() - start
-    LOG.info("sweep %s: %d simulations in %.2f s on %d threads (%.2f ms each), %d diverged, "
+    LOG.info("sweep %s: %d simulations in %.2f s on %d threads (%.2f ms each), %d stopped early, "
              "%d failed, %d rhs calls", sweep["name"], n_points, wall, threads,
-             1e3 * wall / max(n_points, 1), np.isin(status, radau.DIVERGED_STATUSES).sum(),
+             1e3 * wall / max(n_points, 1), np.isin(status, (radau.LEFT_RANGE, *validity.BLOWN_UP)).sum(),
              (status == radau.TOO_MANY_STEPS).sum(), stats[:, radau.RHS_CALLS].sum())
     return build_dataset(sweep, params, results, status, stats)
 
@@ -185,17 +188,24 @@ def build_dataset(sweep: Mapping, params: BeamParameters, results: np.ndarray,
     dims = ("model",) + tuple(axes)
     shape = (len(sweep["models"]),) + tuple(values.size for values in axes.values())
     status = status.reshape(shape)
-    diverged = np.isin(status, radau.DIVERGED_STATUSES)
-    stopped = "NaN where the run stopped early (see diverged and status)"
+    critical = _critical_speeds(sweep, params, axes)
+    codes = _validity(sweep, params, status, results[:, kernels.PEAK].reshape(shape), critical, dims)
+    diverged = codes == validity.DIVERGED
+    stopped = "NaN where the run stopped early (see validity and status)"
     data_vars = {
         name: (dims, results[:, OUTPUTS[name][0]].reshape(shape),
                {"units": OUTPUTS[name][1], "long_name": OUTPUTS[name][2], "comment": stopped})
         for name in sweep["outputs"]
     }
+    data_vars["validity"] = (dims, codes.astype(np.int8), {
+        "units": "1", "long_name": "validity of the run (hubbeam.validity): within the small-"
+        "deflection range, beyond it, stopped outside the range of the models, or diverged "
+        "beyond the critical speed", "flag_values": np.arange(len(validity.CATEGORIES), dtype=np.int8),
+        "flag_meanings": " ".join(validity.CATEGORIES)})
     data_vars["diverged"] = (dims, diverged.astype(np.int8), {
-        "units": "1", "long_name": "run diverged (tip deflection beyond the divergence limit, "
+        "units": "1", "long_name": "run diverged (beyond the critical speed of its linearisation, "
         "non-finite state or vanishing step size)", "flag_values": np.array([0, 1], np.int8),
-        "flag_meanings": "completed diverged"})
+        "flag_meanings": "bounded diverged"})
     data_vars["status"] = (dims, status.astype(np.int8), {
         "units": "1", "long_name": "integrator status",
         "flag_values": np.arange(len(radau.STATUS_NAMES), dtype=np.int8),
@@ -207,7 +217,7 @@ def build_dataset(sweep: Mapping, params: BeamParameters, results: np.ndarray,
             ("n_rhs", radau.RHS_CALLS, "right-hand-side evaluations (incl. Jacobians)")):
         data_vars[name] = (dims, stats[:, column].reshape(shape).astype(np.int32),
                            {"units": "1", "long_name": long_name})
-    data_vars["critical_speed"] = _critical_speeds(sweep, params, axes)
+    data_vars["critical_speed"] = critical
     coords = {"model": ("model", list(sweep["models"]), {"long_name": "model (Section 3)"}),
               "eigen_model": ("eigen_model", list(eigen.MODELS),
                               {"long_name": "model of the eigen-analysis (Eq. 31)"})}
@@ -229,6 +239,9 @@ def build_dataset(sweep: Mapping, params: BeamParameters, results: np.ndarray,
         "n_modes": int(sweep["modes"]),
         "n_simulations": int(status.size),
         "n_diverged": int(diverged.sum()),
+        "n_left_range": int((codes == validity.LEFT_RANGE).sum()),
+        "n_large_deflection": int((codes == validity.LARGE_DEFLECTION).sum()),
+        "small_deflection_limit": float(sweep["small_deflection_limit"]),
         "n_failed": failed,
         **{key: float(getattr(params, field)) for field, key in CONFIG_KEYS.items()},
         "warnings": (f"{failed} runs exhausted the step budget max_steps = "
@@ -237,6 +250,32 @@ def build_dataset(sweep: Mapping, params: BeamParameters, results: np.ndarray,
     title = (f"hubbeam sweep {sweep['name']}: {', '.join(sweep['models'])}, "
              f"{json.dumps(sweep['maneuver'])} over {' x '.join(axes)}")
     return xr.Dataset(data_vars, coords=coords, attrs=global_attributes(title, extra=attributes))
+
+
+def _validity(sweep: Mapping, params: BeamParameters, status: np.ndarray, peak: np.ndarray,
+              critical: xr.Variable, dims: tuple) -> np.ndarray:
+    """The :mod:`hubbeam.validity` category of every run, over ``(model, axis 1, axis 2)``.
+
+    A run's linearised stiffness is lost when its hub speed ``wf`` (swept or fixed) exceeds the
+    critical speed of its model's linearisation (``critical``, over the swept tip parameters); a
+    maneuver without ``wf`` (a torque pulse) keeps no hub speed, and its stop counts as a
+    divergence exactly for a model whose linearisation has a critical speed (TLAM)."""
+    axes = axis_values(sweep)
+    critical = xr.DataArray(critical, coords={"eigen_model": list(eigen.MODELS),
+                                              **{key: axes[key] for key in critical.dims if key in axes}})
+    cells = xr.DataArray(np.zeros(status.shape), dims=dims,
+                         coords={"model": list(sweep["models"]), **axes})
+    limit = xr.concat([critical.sel(eigen_model=validity.linearisation(model), drop=True)
+                       for model in sweep["models"]], dim="model")
+    limit = (limit.assign_coords(model=list(sweep["models"])) + cells).transpose(*dims).values
+    if "wf" in axes:
+        speed = (cells + cells["wf"]).transpose(*dims).values
+    else:
+        speed = np.full(status.shape, sweep["maneuver"].get("wf", np.inf))
+    lost = speed > np.nan_to_num(limit, nan=np.inf)
+    ratio = peak / params.L
+    return np.vectorize(validity.classify, otypes=[np.int8])(
+        status, lost, ratio, sweep["small_deflection_limit"])
 
 
 def _critical_speeds(sweep: Mapping, params: BeamParameters, axes: Mapping):
@@ -263,7 +302,7 @@ def compile_kernel() -> float:
                                             "tf": {"start": 0.05, "stop": 0.05, "num": 1}},
              "t_after": 0.05, "modes": 1, "tip_mass": {"mass": 0.0, "position": 1.0},
              "numerics": {"rtol": 1e-6, "atol": 1e-8, "output_step": 0.05, "max_steps": 1000},
-             "divergence_limit": 1.0, "quadrature_points": 8, "outputs": [],
+             "divergence_limit": 1.0, "small_deflection_limit": 0.1, "quadrature_points": 8, "outputs": [],
              "critical_speed_search_max": 1.0}
     start = time.perf_counter()
     run_sweep(sweep, params, threads=1)

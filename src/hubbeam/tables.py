@@ -13,7 +13,7 @@ from __future__ import annotations
 import csv
 import math
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -182,17 +182,17 @@ TABLE1_ROWS = (
 _TEXT = lambda key, title, latex: Column(key, title, latex, None)  # noqa: E731
 
 
-def table1(beam: Mapping[str, float], tip_masses: Sequence[float]) -> Table:
-    """Table 1 from the ``beam`` section of the config and the tip masses the cases use."""
+def table1(beam: Mapping[str, float]) -> Table:
+    """Table 1 from the ``beam`` section of the config; the tip mass is the paper's
+    (:data:`hubbeam.paper.TABLE1_TIP_MASS`), whatever tip masses the configured cases add."""
     rows = []
     for key, prop, symbol, tex, unit, paper_key in TABLE1_ROWS:
         if key not in beam:
             raise KeyError(f"beam.{key} missing from the configuration (needed for Table 1)")
         rows.append({"property": prop, "symbol": Text(symbol, tex), "value": float(beam[key]),
                      "unit": unit, "paper": paper.TABLE1[paper_key]})
-    masses = sorted({float(m) for m in tip_masses if float(m) > 0})
     rows.append({"property": "Tip mass (at the beam tip)", "symbol": Text("m_t", "$m_t$"),
-                 "value": ", ".join(f"{m:g}" for m in masses) or "none", "unit": "kg",
+                 "value": paper.TABLE1_TIP_MASS, "unit": "kg",
                  "paper": paper.TABLE1_TIP_MASS})
     columns = (_TEXT("property", "Property", "Property"), _TEXT("symbol", "Symbol", "Symbol"),
                Column("value", "Value (this study)", "Value (this study)", 5),

@@ -104,10 +104,6 @@ def table_targets():
     return expand("results/tables/{key}.{ext}", key=table_keys(), ext=("csv", "md", "tex"))
 
 
-def used_tip_masses():
-    return sorted({case_config(case)["tip_mass"]["mass"] for case in cases()})
-
-
 def claim_cases():
     """The runs the claims read: every case of the paper's products."""
     return product_cases(PAPER_PRODUCTS)
@@ -145,9 +141,10 @@ def simulation_matrices(wildcards):
 
 def simulation_numerics():
     """The `numerics` settings a simulation reads (changing any other one does not rerun it)."""
-    from hubbeam.simulate import NUMERICS_KEYS
+    from hubbeam.simulate import NUMERICS_KEYS, OPTIONAL_NUMERICS
 
-    return {key: config["numerics"][key] for key in NUMERICS_KEYS}
+    return {key: config["numerics"].get(key, default) for key, default in
+            {**dict.fromkeys(NUMERICS_KEYS), **OPTIONAL_NUMERICS}.items()}
 
 
 # --- system matrices (rule in matrices.smk) ------------------------------------------------------

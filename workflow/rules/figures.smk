@@ -65,7 +65,6 @@ rule table1:
         tex="results/tables/table1.tex",
     params:
         beam=config["beam"],
-        tip_masses=used_tip_masses(),
         caption=product("table1").caption(),
     log:
         "logs/tables/table1.log",

@@ -3,7 +3,7 @@
 from hubbeam.io import staged
 from hubbeam.tables import table1, to_markdown, write_table
 
-table = table1(snakemake.params.beam, snakemake.params.tip_masses)
+table = table1(snakemake.params.beam)
 out = snakemake.output
 with staged(out.csv, out.md, out.tex) as (csv, _md, _tex):
     write_table(table, csv)

@@ -70,7 +70,7 @@ def integration_problem(model, kind, mp, C, sm):
 
 @kernel
 def tip_watch(free, sm):
-    """Weights ``w`` with ``w . y_free = f2(L) q2``, the tip deflection watched for divergence."""
+    """Weights ``w`` with ``w . y_free = f2(L) q2``, the tip deflection watched for leaving the range of the models."""
     n = sm.f2L.shape[0]
     w = np.zeros(free.shape[0])
     for i in range(free.shape[0]):
@@ -154,7 +154,7 @@ def integrate_free(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit
     TLAM, FOAM and SFOAM run on :data:`hubbeam.core.foam_rhs.FoamProblem` (constant modal mass
     inverted once), CFOAM on :data:`hubbeam.core.cfoam_rhs.CfoamProblem` (point-cloud sums
     contracted once). ``rtol`` and the scalar ``atol`` apply to every
-    free position and velocity (see ``radau5``); the run stops as diverged once
+    free position and velocity (see ``radau5``); the run stops (status ``left_range``) once
     ``|tip deflection| > tip_limit``. ``stats`` (int64, ``len(radau.STAT_NAMES)``) receives
     radau5's counters. Returns radau5's ``(status, t_stop)`` and the weights ``w`` with
     ``w . y_free = v(L)``.

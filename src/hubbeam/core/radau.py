@@ -48,17 +48,18 @@ import numpy as np
 from numba.extending import overload
 
 from hubbeam.core.jit import JIT_OPTIONS, borrowing_kernel, inline_kernel, kernel
+from hubbeam.core.step_control import INITIAL_STEP_FRACTION, MAX_FACTOR, MIN_FACTOR
 
 # Status codes returned by :func:`radau5`, the one home of a run's status (the names are stored
 # in the datasets as ``integrator_status`` and as the sweeps' flag meanings).
+# Whether a stopped run diverged or left the range of the models is decided from these codes by
+# ``hubbeam.validity``.
 SUCCESS = 0         # reached the end time
-DIVERGED = 1        # the watched quantity (tip deflection) exceeded its limit
+LEFT_RANGE = 1      # the watched quantity (tip deflection) exceeded its limit
 NON_FINITE = 2      # the state or the right-hand side became NaN or infinite
 STEP_UNDERFLOW = 3  # the step size fell below the resolution of the time
 TOO_MANY_STEPS = 4  # the budget of attempted steps was used up
-STATUS_NAMES = ("success", "diverged", "non_finite", "step_underflow", "too_many_steps")
-#: the statuses that mark a run as diverged (``too_many_steps`` only warns)
-DIVERGED_STATUSES = (DIVERGED, NON_FINITE, STEP_UNDERFLOW)
+STATUS_NAMES = ("success", "left_range", "non_finite", "step_underflow", "too_many_steps")
 
 # Slots of the integer statistics array.
 ACCEPTED = 0
@@ -76,8 +77,6 @@ JACOBIAN_REFRESH = 0.03    # recompute J after a step whose Newton contraction r
 KEEP_STEP_LOW = 1.0        # keep h (and the LU factors) when the proposed ratio is in [low, high]
 KEEP_STEP_HIGH = 1.2
 SAFETY = 0.9
-MIN_FACTOR = 0.2
-MAX_FACTOR = 8.0
 
 
 def _radau_constants():
@@ -602,10 +601,10 @@ def radau5(problem, y0, v0, t_out, t_stops, rtol, atol, watch, watch_limit, max_
         end of a maneuver); times outside ``(t_out[0], t_out[-1])`` are ignored.
     rtol : relative tolerance; atol : (2N,) absolute tolerances of ``(y, v)``. Every accepted
         step has an error estimate of weighted RMS norm <= 1 (see the module docstring).
-    watch, watch_limit : the run stops with status ``DIVERGED`` after the first accepted step
+    watch, watch_limit : the run stops with status ``LEFT_RANGE`` after the first accepted step
         with ``|watch . y| > watch_limit``.
     max_steps : budget of attempted steps (accepted, rejected and Newton failures).
-    h_init : first step size; ``<= 0`` picks ``1e-6 (t_out[-1] - t_out[0])``.
+    h_init : first step size; ``<= 0`` picks ``INITIAL_STEP_FRACTION (t_out[-1] - t_out[0])``.
     fixed_step : if True every step has size ``h_init`` (shortened only to land on a stop or the
         end, or halved after a Newton failure), uses a fresh Jacobian and is accepted without
         error control (for convergence studies).
@@ -613,7 +612,7 @@ def radau5(problem, y0, v0, t_out, t_stops, rtol, atol, watch, watch_limit, max_
     stats : (6,) int64 caller-allocated counters, see ``STAT_NAMES``.
 
     Returns ``(status, t_stop)``: a code of ``STATUS_NAMES`` and the time reached. Outputs are
-    written for every output time up to the last accepted step (for ``DIVERGED``, up to and
+    written for every output time up to the last accepted step (for ``LEFT_RANGE``, up to and
     including the step that crossed the limit, ``t_stop``).
     """
     return _march(problem, y0.copy(), v0.copy(), workspace(y0.shape[0]), t_out, t_stops, rtol,
@@ -650,7 +649,7 @@ def _march(problem, y, v, w, t_out, t_stops, rtol, atol, watch, watch_limit, max
         i_stop += 1
 
     tol_newton = newton_tolerance(rtol)
-    h = h_init if h_init > 0.0 else 1e-6 * span
+    h = h_init if h_init > 0.0 else INITIAL_STEP_FRACTION * span
     h_acc = h            # size of the last accepted step
     err_acc = 1e-2       # error norm of the last accepted step (Gustafsson's controller)
     eta = 1.0
@@ -755,7 +754,7 @@ def _march(problem, y, v, w, t_out, t_stops, rtol, atol, watch, watch_limit, max
             a[m] = a1[m]
             watched += watch[m] * y[m]
         if abs(watched) > watch_limit:
-            return DIVERGED, t
+            return LEFT_RANGE, t
         rejected = False
         jac_current = False
         need_jac = fixed_step or theta > JACOBIAN_REFRESH

@@ -2,7 +2,7 @@
 
 Every point of a sweep is one simulation from rest, as in
 :func:`hubbeam.core.integrate.simulate_kernel`: the same integration
-(:func:`hubbeam.core.integrate.integrate_free`) and the same divergence watch on the tip
+(:func:`hubbeam.core.integrate.integrate_free`) and the same watch on the tip
 deflection. Instead of every output of the simulation dataset, a point keeps
 only what a map shows, formed from the dense output of the free coordinates on a coarse uniform
 grid (plus the end of the maneuver ``t_mark``):
@@ -23,7 +23,7 @@ neighbouring grid points cost about the same) and releases the GIL, so ``T`` Pyt
 loop (``parallel=True``), which caches as well but took about 10 s more to compile (measured,
 README), a large part of the workflow's time budget. The per-point kernels are inlined into the
 loop, which saves one more compilation of the integrator they call. A run that stops early
-(diverged, non-finite state, vanishing step, step budget) has NaN extrema; its status and stop
+(left range, non-finite state, vanishing step, step budget) has NaN extrema; its status and stop
 time are kept.
 """
 

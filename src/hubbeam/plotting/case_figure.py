@@ -27,11 +27,23 @@ SERIES = {"tip": ("tip_transverse", axis_label("tip deflection $v(L)$", "m")),
 
 
 def mark_events(ax, ds: xr.Dataset, end: float) -> None:
-    """Mark the end of the maneuver and, for a diverged run, the divergence time."""
+    """Mark the end of the maneuver and, for a run stopped early, its stop: diverged, or left
+    the range of the models (:mod:`hubbeam.validity`)."""
     if end < float(ds["time"].values[-1]):
         mark_time(ax, end, f"maneuver end {end:g} s")
     if int(ds.attrs["diverged"]) == 1:
         mark_time(ax, float(ds.attrs["diverged_at_s"]), "diverged", color="#D55E00")
+    if int(ds.attrs["left_range"]) == 1:
+        mark_time(ax, float(ds.attrs["stopped_at_s"]), "left the models' range", color="#D55E00")
+
+
+def validity_note(ds: xr.Dataset) -> str:
+    """The title's note on a flagged run, e.g. ``" [large deflection: max |v(L)| = 0.54 L]"``."""
+    name = str(ds.attrs["validity"])
+    if name == "valid":
+        return ""
+    ratio = float(ds.attrs["max_deflection_ratio"])
+    return f" [{name.replace('_', ' ')}: max |v(L)| = {ratio:.2g} L]"
 
 
 def plot(case: str, ds: xr.Dataset):
@@ -56,5 +68,11 @@ def plot(case: str, ds: xr.Dataset):
     ax.set_ylabel(axis_label("energy change", "J"))
     ax.set_xlabel(axis_label("time $t$", "s"))
     panel_title(axes[0], 0, f"{case}: {ds.attrs['model']}, n = {int(ds.attrs['n_modes'])}, "
-                f"{maneuver['kind']}")
+                f"{maneuver['kind']}{validity_note(ds)}")
+    limit = float(ds.attrs["small_deflection_limit"]) * float(ds.attrs["length"])
+    peak = float(ds.attrs["max_deflection_ratio"]) * float(ds.attrs["length"])
+    if peak > limit:  # hatch the deflections beyond the small-deflection range the run reaches
+        for sign in (-1.0, 1.0):
+            axes[0].axhspan(sign * limit, sign * peak, facecolor="none", hatch="//",
+                            edgecolor="#D55E00", alpha=0.4, linewidth=0)
     return fig

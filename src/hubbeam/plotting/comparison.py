@@ -12,6 +12,7 @@ from collections.abc import Mapping
 
 import xarray as xr
 
+from hubbeam import validity
 from hubbeam.plotting.case_figure import SERIES
 from hubbeam.plotting.figures import limit_to_bounded
 from hubbeam.plotting.style import (
@@ -30,8 +31,8 @@ def plot(name: str, datasets: Mapping[str, xr.Dataset]):
     for k, (case, ds) in enumerate(datasets.items()):
         model = str(ds.attrs["model"])
         label = f"{case} ({model}, n = {int(ds.attrs['n_modes'])})"
-        if int(ds.attrs["diverged"]) == 1:
-            label += f", diverged at {float(ds.attrs['diverged_at_s']):.3g} s"
+        if ds.attrs["validity"] != "valid":
+            label += f", {validity.describe(ds.attrs)}"
         props = {"color": SEQUENCE_COLORS[k % len(SEQUENCE_COLORS)],
                  "linestyle": MODEL_STYLE.get(model, {}).get("linestyle", "-")}
         for index, (variable, ylabel) in enumerate(SERIES.values()):

@@ -82,6 +82,20 @@ def diverged_at(case: str, ds: xr.Dataset) -> float | None:
     return t
 
 
+def left_range_at(case: str, ds: xr.Dataset) -> float | None:
+    """Time (s) at which the run was stopped outside the range of the models with a bounded
+    response (:mod:`hubbeam.validity`), or None when it was not."""
+    return float(attr(case, ds, "stopped_at_s")) if int(attr(case, ds, "left_range")) == 1 else None
+
+
+def large_deflection(case: str, ds: xr.Dataset) -> str | None:
+    """``"max |v(L)| = 0.53 L"`` for a completed run beyond the small-deflection limit of the
+    models (``validity = large_deflection``), None otherwise."""
+    if attr(case, ds, "validity") != "large_deflection":
+        return None
+    return f"max |v(L)| = {float(attr(case, ds, 'max_deflection_ratio')):.2g} L"
+
+
 def curve_label(case: str, ds: xr.Dataset) -> str:
     """``"FOAM, n = 5"``: the model and its mode count, as every legend names them."""
     return f"{model(case, ds)}, n = {n_modes(case, ds)}"
@@ -140,7 +154,9 @@ def plot_series(ax, case: str, ds: xr.Dataset, name: str, *, label: str | None =
                 variant: int = 0, scale: float = 1.0, mode: int | None = None, **style):
     """Draw ``name`` (or its ``mode`` column) of ``case`` against time in the model's style.
 
-    A diverged run is drawn up to the divergence time (its data are NaN after it) and marked.
+    A diverged run, or one stopped outside the range of the models, is drawn up to its stop (its
+    data are NaN after it) and marked; a run beyond the small-deflection limit is named so in the
+    legend (:mod:`hubbeam.validity`).
     """
     da = variable(case, ds, name)
     if mode is not None:
@@ -151,6 +167,14 @@ def plot_series(ax, case: str, ds: xr.Dataset, name: str, *, label: str | None =
     if t_div is not None:
         mark_time(ax, t_div, f"{model(case, ds)} diverged at t = {t_div:.2f} s", color=props["color"])
         line.set_label(f"{line.get_label()} (diverged)")
+    t_left = left_range_at(case, ds)
+    if t_left is not None:
+        mark_time(ax, t_left, f"{model(case, ds)} left the models' range at t = {t_left:.2f} s",
+                  color=props["color"])
+        line.set_label(f"{line.get_label()} (left range)")
+    large = large_deflection(case, ds)
+    if large is not None:
+        line.set_label(f"{line.get_label()} (large deflection, {large})")
     return line
 
 
@@ -162,13 +186,14 @@ def mark_maneuver_end(ax, case: str, ds: xr.Dataset) -> None:
 
 
 def limit_to_bounded(ax, datasets: Mapping[str, xr.Dataset], name: str) -> None:
-    """Keep bounded runs readable next to diverged ones.
+    """Keep bounded runs readable next to runs stopped early (diverged or left the range).
 
-    When the axes hold both diverged and non-diverged runs, the y-range is the range of the
-    non-diverged runs widened by that range on either side; the diverged curve leaves the frame
-    and its divergence time is marked by :func:`plot_series`.
+    When the axes hold both stopped and completed runs, the y-range is the range of the
+    completed runs widened by that range on either side; the stopped curve leaves the frame and
+    its stop is marked by :func:`plot_series`.
     """
-    bounded = [ds[name].values for c, ds in datasets.items() if diverged_at(c, ds) is None]
+    bounded = [ds[name].values for c, ds in datasets.items()
+               if diverged_at(c, ds) is None and left_range_at(c, ds) is None]
     if len(bounded) == len(datasets) or not bounded:
         return
     low = min(float(np.nanmin(values)) for values in bounded)

@@ -4,9 +4,10 @@
 ``sweep_config`` attribute), from the sweep dataset only:
 
 * ``peak``: one panel per model, the peak transverse tip deflection over the two swept
-  parameters (logarithmic colour scale), diverged runs hatched;
+  parameters (logarithmic colour scale), the runs each validity category of
+  :mod:`hubbeam.validity` flags hatched (diverged, left the models' range, large deflection);
 * ``departure``: (a) the relative difference ``|peak_model - peak_reference| / peak_reference``
-  with the ``threshold`` contour, runs where ``model`` diverged hatched (they depart by
+  with the ``threshold`` contour, runs where ``model`` stopped early hatched (they depart by
   definition), (b) the reference model's peak with the same contour.
 
 Where ``wf`` is swept, TLAM's critical speed (``critical_speed`` of the dataset, from
@@ -25,12 +26,18 @@ from matplotlib.colors import LogNorm
 from matplotlib.patches import Patch
 from matplotlib.ticker import NullFormatter
 
+from hubbeam import validity
 from hubbeam.plotting.figures import FigureDataError
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
 
 PEAK = "peak_tip_deflection"
-DIVERGED_HATCH = "////"
 DIVERGED_COLOR = "0.8"
+#: hatch and legend text of the cells of each flagged validity category (hubbeam.validity)
+MARKS = {
+    "diverged": ("////", "diverged (beyond the critical speed)"),
+    "left_range": ("\\\\", "left the model's range ($|v(L)| >$ limit)"),
+    "large_deflection": ("..", "large deflection ($|v(L)| >$ small-deflection limit)"),
+}
 CRITICAL_COLOR = "#E69F00"
 DEPARTURE_COLOR = "cyan"
 #: axis labels of the swept parameters
@@ -41,7 +48,7 @@ AXIS_LABELS = {"wf": "Final hub speed $\\omega_f$", "tf": "Maneuver time $t_f$",
 
 def plot(sweep: xr.Dataset):
     """The figure of the sweep dataset ``sweep`` (see the module docstring)."""
-    for name in (PEAK, "diverged", "critical_speed"):
+    for name in (PEAK, "validity", "critical_speed"):
         if name not in sweep.variables:
             raise FigureDataError(f"sweep dataset has no variable {name!r} "
                                   f"(has: {', '.join(sorted(sweep.variables))})")
@@ -74,20 +81,23 @@ def _cell_edges(values: np.ndarray) -> np.ndarray:
     return np.concatenate([[first], values, [last]])
 
 
-def _hatch_diverged(ax, x, y, diverged: xr.DataArray) -> bool:
-    """Hatch the cells where the run diverged (their peak is NaN, so the grey axes background
-    shows there); True if there are any.
+def _hatch_flagged(ax, x, y, codes: xr.DataArray) -> list[str]:
+    """Hatch the cells of every flagged validity category (:data:`MARKS`; a stopped run's peak
+    is NaN, so the grey axes background shows there); the categories found.
 
-    The region is a filled contour at level 0.5 of the 0/1 mask padded by half a cell on each
+    Each region is a filled contour at level 0.5 of its 0/1 mask padded by half a cell on each
     side, so that its outline runs along the cell edges of the map.
     """
-    mask = _field(diverged)
-    if not mask.any():
-        return False
-    padded = np.pad(mask.astype(float), 1, mode="edge")
-    ax.contourf(_cell_edges(np.asarray(x)), _cell_edges(np.asarray(y)), padded,
-                levels=[0.5, 1.5], colors="none", hatches=[DIVERGED_HATCH])
-    return True
+    found = []
+    for name, (hatch, _) in MARKS.items():
+        mask = _field(codes == validity.CATEGORIES.index(name))
+        if not mask.any():
+            continue
+        padded = np.pad(mask.astype(float), 1, mode="edge")
+        ax.contourf(_cell_edges(np.asarray(x)), _cell_edges(np.asarray(y)), padded,
+                    levels=[0.5, 1.5], colors="none", hatches=[hatch])
+        found.append(name)
+    return found
 
 
 def log_ticks(vmin: float, vmax: float, most: int = 7) -> list[float]:
@@ -128,11 +138,12 @@ def _critical_speed(ax, sweep: xr.Dataset, x_name: str, y_name: str) -> bool:
     return True
 
 
-def _legend(ax, diverged: bool, critical: bool, extra=()) -> None:
+def _legend(ax, flagged: list[str], critical: bool, extra=()) -> None:
     handles = list(extra)
-    if diverged:
-        handles.append(Patch(facecolor=DIVERGED_COLOR, hatch=DIVERGED_HATCH, edgecolor="0.3",
-                             label="diverged ($|v(L)| >$ limit)"))
+    for name in flagged:
+        hatch, label = MARKS[name]
+        handles.append(Patch(facecolor=DIVERGED_COLOR if name != "large_deflection" else "none",
+                             hatch=hatch, edgecolor="0.3", label=label))
     if critical:
         handles.append(ax.plot([], [], color=CRITICAL_COLOR, linestyle="--", linewidth=1.5,
                                label="TLAM critical speed $\\Omega_c$")[0])
@@ -159,12 +170,14 @@ def _peak_maps(sweep: xr.Dataset, config: dict):
         ax.set_facecolor(DIVERGED_COLOR)
         mesh = ax.pcolormesh(x, y, _field(sweep[PEAK].sel(model=model)), norm=norm,
                              cmap="viridis", shading="nearest", rasterized=True)
-        diverged = _hatch_diverged(ax, x, y, sweep["diverged"].sel(model=model))
+        codes = sweep["validity"].sel(model=model)
+        flagged = _hatch_flagged(ax, x, y, codes)
         critical = _critical_speed(ax, sweep, x_name, y_name)
-        _legend(ax, diverged, critical)
-        count = int(sweep["diverged"].sel(model=model).sum())
-        panel_title(ax, k, f"{model} ({count} of {sweep[x_name].size * sweep[y_name].size} "
-                           "runs diverged)")
+        _legend(ax, flagged, critical)
+        counts = ", ".join(f"{int((codes == validity.CATEGORIES.index(name)).sum())} {name.replace('_', ' ')}"
+                           for name in ("diverged", "left_range") if name in flagged)
+        panel_title(ax, k, f"{model} ({sweep[x_name].size * sweep[y_name].size} runs"
+                           + (f"; {counts}" if counts else "") + ")")
         ax.set_xlabel(_label(x))
         if k == 0:
             ax.set_ylabel(_label(y))
@@ -176,12 +189,13 @@ def _peak_maps(sweep: xr.Dataset, config: dict):
 
 def relative_departure(sweep: xr.Dataset, model: str, reference: str) -> xr.DataArray:
     """``|peak_model - peak_reference| / peak_reference`` over the grid; ``inf`` where ``model``
-    diverged and ``reference`` did not, NaN where ``reference`` diverged."""
+    stopped early (diverged or left the range of the models) and ``reference`` did not, NaN where
+    ``reference`` stopped."""
     peak = sweep[PEAK]
     difference = abs(peak.sel(model=model) - peak.sel(model=reference)) / peak.sel(model=reference)
-    model_diverged = sweep["diverged"].sel(model=model) == 1
-    reference_ok = sweep["diverged"].sel(model=reference) == 0
-    return xr.where(model_diverged & reference_ok, np.inf, difference).where(reference_ok)
+    model_stopped = sweep["validity"].sel(model=model) >= validity.LEFT_RANGE
+    reference_ok = sweep["validity"].sel(model=reference) < validity.LEFT_RANGE
+    return xr.where(model_stopped & reference_ok, np.inf, difference).where(reference_ok)
 
 
 def _departure_map(sweep: xr.Dataset, config: dict, model: str, reference: str,
@@ -206,11 +220,11 @@ def _departure_map(sweep: xr.Dataset, config: dict, model: str, reference: str,
     contour_style = {"levels": [0.5], "colors": DEPARTURE_COLOR, "linewidths": 1.3}
     for axis in axes[0]:
         axis.contour(x, y, departs.astype(float), **contour_style)
-    diverged = _hatch_diverged(ax, x, y, sweep["diverged"].sel(model=model))
+    flagged = _hatch_flagged(ax, x, y, sweep["validity"].sel(model=model))
     critical = _critical_speed(ax, sweep, x_name, y_name)
     boundary = ax.plot([], [], color=DEPARTURE_COLOR,
                        label=f"{model} departs by {threshold:.0%}")[0]
-    _legend(ax, diverged, critical, extra=[boundary])
+    _legend(ax, flagged, critical, extra=[boundary])
     panel_title(ax, 0, f"{model} vs {reference}: > {threshold:.0%} apart on {share:.0%} of the map")
     ax.set_xlabel(_label(x))
     ax.set_ylabel(_label(y))
@@ -223,9 +237,9 @@ def _departure_map(sweep: xr.Dataset, config: dict, model: str, reference: str,
                          shading="nearest", rasterized=True)
     _colorbar(fig, mesh, ax, axis_label(f"{reference} peak $|v(L)|$", peak.attrs.get("units", "m")),
               location="bottom", shrink=0.9)
-    diverged = _hatch_diverged(ax, x, y, sweep["diverged"].sel(model=reference))
+    flagged = _hatch_flagged(ax, x, y, sweep["validity"].sel(model=reference))
     critical = _critical_speed(ax, sweep, x_name, y_name)
-    _legend(ax, diverged, critical, extra=[boundary])
+    _legend(ax, flagged, critical, extra=[boundary])
     panel_title(ax, 1, f"{reference}: peak tip deflection")
     ax.set_xlabel(_label(x))
     ax.grid(False)

@@ -2,7 +2,8 @@
 
 Every measure reads the simulation dataset only (variables and attributes of
 ``hubbeam.simulate.build_dataset``): the peak ``max |v(L)|`` and its time, the residual amplitude
-``max |v(L)|`` after the maneuver ends, whether the run diverged, and the result of the optional
+``max |v(L)|`` after the maneuver ends, its validity (:mod:`hubbeam.validity`: beyond the
+small-deflection range, left the range of the models, diverged), and the result of the optional
 convergence check (``numerics.convergence_check``).
 """
 
@@ -15,11 +16,12 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from hubbeam import measures
+from hubbeam import measures, validity
 
 #: columns of a summary row, in the order of the report's table and csv file
 COLUMNS = ("case", "model", "maneuver", "modes", "tip_mass_kg", "peak_tip_deflection_m",
-           "peak_time_s", "maneuver_end_s", "residual_amplitude_m", "diverged", "diverged_at_s",
+           "peak_time_s", "maneuver_end_s", "residual_amplitude_m", "validity", "max_deflection_ratio",
+           "diverged", "diverged_at_s",
            "convergence", "convergence_tolerance_diff_m", "convergence_modes_diff_m")
 
 
@@ -67,6 +69,8 @@ def case_summary(case: str, ds: xr.Dataset) -> dict:
         "peak_time_s": measures.peak_time(t, tip) if bounded else math.nan,
         "maneuver_end_s": end,
         "residual_amplitude_m": measures.residual_amplitude(t, tip, end),
+        "validity": validity.describe(attrs),
+        "max_deflection_ratio": float(attrs["max_deflection_ratio"]),
         "diverged": diverged,
         "diverged_at_s": float(attrs["diverged_at_s"]) if diverged else math.nan,
         "convergence": convergence_result(attrs),

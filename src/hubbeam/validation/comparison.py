@@ -53,7 +53,7 @@ def simulate_models(name: str, validation_case: Mapping, models: Sequence[str], 
                 "tip_axial_total": (ds["tip_axial"] + ds["tip_foreshortening"]).assign_attrs(
                     units="m", long_name="tip axial displacement w1(L) + wc(L)"),
                 "diverged": ((), int(ds.attrs["diverged"]),
-                             {"units": "1", "long_name": "1 if the run stopped as diverged"}),
+                             {"units": "1", "long_name": "1 if the run diverged (hubbeam.validity)"}),
                 "diverged_at_s": ((), float(ds.attrs["diverged_at_s"]),
                                   {"units": "s", "long_name": "time of divergence (NaN: none)"}),
                 "n_steps": ((), int(ds.attrs["n_steps"]),

@@ -13,7 +13,8 @@ from pathlib import Path
 
 from snakemake.utils import min_version
 
-from hubbeam.config import CASE_NAME_PATTERN, ConfigError, validate_config
+from hubbeam.config import ConfigError, validate_config
+from hubbeam.config_schema import CASE_NAME_PATTERN
 from hubbeam.products import PAPER_PRODUCTS, ProductError, check_product_cases
 from hubbeam.study import StudyError, claim_results_dir, is_study, results_dir
 from hubbeam.tabular import resolve_files

@@ -8,7 +8,8 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from hubbeam import limits
-from hubbeam.config import Problem, Section, load_config, read_schema
+from hubbeam.config import Section, load_config
+from hubbeam.config_schema import Problem, read_schema
 
 HERE = Path(__file__).resolve().parent
 BENCHMARK_CONFIG = HERE / "config.yaml"

@@ -13,7 +13,6 @@ import pytest
 import yaml
 
 from hubbeam.config import (
-    CASE_NAME_PATTERN,
     ConfigError,
     case_names,
     case_settings,
@@ -21,6 +20,7 @@ from hubbeam.config import (
     read_config_file,
     validate_config,
 )
+from hubbeam.config_schema import CASE_NAME_PATTERN
 from hubbeam.paper import TABLE1
 from hubbeam.parameters import BeamParameters, TipMass
 
@@ -444,16 +444,16 @@ def test_a_config_without_the_cases_of_a_figure_stops_with_one_clear_message(tmp
 
 def test_schema_takes_its_limits_from_the_limits_module():
     """The schema file states no bound of hubbeam.limits; the loaded schema has exactly those."""
-    from hubbeam import config, limits, simulate
+    from hubbeam import config_schema, limits, simulate
     from hubbeam.core import radau
 
-    raw = yaml.safe_load(config.SCHEMA_PATH.read_text(encoding="utf-8"))
-    for keys, bounds in config.SCHEMA_LIMITS.items():
-        raw_node, node = raw, config.SCHEMA
+    raw = yaml.safe_load(config_schema.SCHEMA_PATH.read_text(encoding="utf-8"))
+    for keys, bounds in config_schema.SCHEMA_LIMITS.items():
+        raw_node, node = raw, config_schema.SCHEMA
         for key in keys:
             raw_node, node = raw_node[key], node[key]
         stated = {"minimum", "maximum", "exclusiveMinimum"} & set(raw_node)
         assert not stated, f"{'.'.join(keys)} restates {stated} in the schema file"
         assert {key: node[key] for key in bounds} == bounds
-    assert config.SCHEMA["$defs"]["modes"]["maximum"] == limits.MAX_MODES == simulate.MAX_MODES
+    assert config_schema.SCHEMA["$defs"]["modes"]["maximum"] == limits.MAX_MODES == simulate.MAX_MODES
     assert limits.MIN_RTOL == 100 * radau.UROUND == simulate.MIN_RTOL

@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 
 from hubbeam import config_reference
-from hubbeam.config import SCHEMA
 from hubbeam.config_reference import MARKER, REGENERATE, reference, render, resolve
+from hubbeam.config_schema import SCHEMA
 
 
 def _properties(node: dict, defs: dict, path: str = ""):

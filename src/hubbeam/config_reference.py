@@ -23,7 +23,7 @@ import re
 import sys
 from collections.abc import Mapping
 
-from hubbeam.config import SCHEMA, SCHEMA_PATH
+from hubbeam.config_schema import SCHEMA, SCHEMA_PATH
 
 ROOT = SCHEMA_PATH.parents[2]
 TEMPLATE_PATH = ROOT / "docs" / "templates" / "configuration.md"

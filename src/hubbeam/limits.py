@@ -1,7 +1,7 @@
 """Limits of the numerical inputs, each defined once.
 
 The startup checks (:mod:`hubbeam.config`, which fills them into the JSON schema when it loads
-it, see ``config.SCHEMA_LIMITS``), the Python API (:mod:`hubbeam.simulate`) and the modules that
+it, see ``config_schema.SCHEMA_LIMITS``), the Python API (:mod:`hubbeam.simulate`) and the modules that
 build the matrices (:mod:`hubbeam.modes`, :mod:`hubbeam.quadrature`) all read them here. The
 run status codes live with the integrator that returns them (:mod:`hubbeam.core.radau`), as the
 jitted core imports nothing of the rest of the package. Importing this module is cheap (no numba).

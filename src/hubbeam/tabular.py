@@ -25,7 +25,8 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from hubbeam.config import ConfigError, Problem
+from hubbeam.config import ConfigError
+from hubbeam.config_schema import Problem
 
 #: columns of the beam's station table
 SECTION_COLUMNS = ("x", "rhoA", "EI", "EA")

@@ -41,7 +41,7 @@ import numpy as np
 import xarray as xr
 
 from hubbeam.beam import BeamSections
-from hubbeam.config import is_multiple
+from hubbeam.config_checks import is_multiple
 from hubbeam.core.maneuver import hub_motion
 
 INSTALL_HINT = "pip install -e .[validation]"

@@ -145,3 +145,45 @@ def test_a_tiny_study_builds_every_general_product_in_its_own_folder(tmp_path):
     archive = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(archive)
     assert archive.verify_archive(folder / "tiny-results.tar.gz", "tiny-results") == []
+
+
+@pytest.mark.workflow
+def test_a_study_of_files_only_runs_a_tabulated_beam_and_maneuver_with_damping(tmp_path):
+    """A study written only as files (no code): a tapered beam and a hub-speed profile from CSV,
+    a tip mass inside the span, modal damping. Its runs come out in its folder, they record the
+    tables they were given, and the energy balance holds with the damping's dissipation."""
+    studies = tmp_path / "studies"
+    studies.mkdir()
+    (studies / "beam.csv").write_text("x,rhoA,EI,EA\n0.0,0.3,80.0,7.0e6\n1.0,0.25,60.0,6.0e6\n"
+                                      "2.0,0.2,40.0,5.0e6\n")
+    (studies / "speed.csv").write_text("# a ramp up and a hold\ntime,speed\n0.0,0.0\n0.5,1.0\n"
+                                       "1.0,2.0\n1.5,2.0\n")
+    study = {key: TINY_STUDY[key] for key in ("numerics", "eigen")}
+    # a fine output grid: the work and the dissipation are integrated on it (Simpson's rule)
+    study["numerics"] = {**TINY_STUDY["numerics"], "output_step": 0.005}
+    study["study"] = {"name": "files"}
+    study["beam"] = {"length": 2.0, "hub_inertia": 1.0, "hub_radius": 0.1,
+                     "sections": {"file": "beam.csv"}}
+    study["cases"] = {"ramp": {"model": "FOAM", "maneuver": {"kind": "speed_table", "file": "speed.csv"},
+                               "t_end": 2.0, "tip_mass": {"mass": 0.05, "position": 1.5},
+                               "damping": {"kind": "modal", "axial": 0.01, "transverse": 0.05}}}
+    config = studies / "files.yaml"
+    config.write_text(yaml.safe_dump(study))
+    command = [sys.executable, "-m", "snakemake", "--snakefile", str(REPO / "Snakefile"),
+               "--directory", str(tmp_path), "--cores", "2", "--configfile", str(config)]
+    run = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, timeout=1500, check=False)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+
+    folder = tmp_path / "results" / "files"
+    assert sorted(p.name for p in (tmp_path / "results").iterdir()) == ["files"]
+    for product in ("report/report.html", "figures/case_ramp.png", "figures/campbell.png",
+                    "files-results.tar.gz"):
+        assert (folder / product).is_file(), product
+    with xr.open_dataset(folder / "simulations" / "ramp.nc", decode_times=False) as ds:
+        assert json.loads(ds.attrs["maneuver"])["speed"] == [0.0, 1.0, 2.0, 2.0]
+        assert list(ds.attrs["sections_EI"]) == [80.0, 60.0, 40.0]
+        assert ds.attrs["validity"] == "valid"
+        assert float(ds["theta_dot"].values[-1]) == pytest.approx(2.0, rel=1e-9)
+        energy, work, dissipated = (ds[name].values for name in ("energy", "work", "dissipated_energy"))
+    assert dissipated[-1] > 0.0
+    assert np.max(np.abs(energy - energy[0] - (work - dissipated))) < 1e-6 * np.max(np.abs(work))

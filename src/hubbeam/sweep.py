@@ -51,7 +51,7 @@ PARAMETERS = {
 TIP_PARAMETERS = ("tip_mass", "tip_position")
 #: simulations per chunk unless ``sweeps.chunk_size`` or the map's ``chunk_size`` says otherwise:
 #: about a minute on one core at the default sweep numerics (docs/performance.md)
-DEFAULT_CHUNK_SIZE = 50_000
+DEFAULT_CHUNK_SIZE = 32_000
 
 #: outputs a sweep may store: (column of the kernel's result array, units, long name)
 OUTPUTS = {

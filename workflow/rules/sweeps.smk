@@ -68,6 +68,7 @@ rule sweep:
 
 
 rule figure_sweep:
+    localrule: True
     input:
         sweep="results/sweeps/{sweep}.nc",
         style=FIGURE_STYLE,

@@ -152,6 +152,7 @@ rule validate_convergence:
 
 
 rule validation_report:
+    localrule: True
     input:
         comparison=f"{VALIDATION_DIR}/exudyn_comparison.csv",
         figure=f"{VALIDATION_DIR}/exudyn_comparison.png",

@@ -29,6 +29,7 @@ test-fast: $(STAMP)
 
 # The cluster comes down (by the PIDs `up` recorded) even when the tests fail.
 test-slurm: $(STAMP)
+	$(VENV_PYTHON) -m pip install --quiet --constraint requirements.lock --editable ".[test,cluster]"
 	profiles/slurm/local-cluster.sh up
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" HUBBEAM_TEST_SLURM=1 $(VENV_PYTHON) -m pytest -q -m slurm; \
 		status=$$?; profiles/slurm/local-cluster.sh down; exit $$status

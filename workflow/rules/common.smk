@@ -49,6 +49,15 @@ def script_code(script, *modules):
     return [os.path.relpath(path) for path in files]
 
 
+def simulation_kernel_done(wildcards):
+    """Input function of `simulate`: the marker of the compiled kernel of the case's family."""
+    from hubbeam.core.eom import MODEL_IDS
+    from hubbeam.core.integrate import model_family
+
+    family = model_family(MODEL_IDS[case_config(wildcards.case)["model"]])
+    return f"logs/simulations/kernel_{family}.done"
+
+
 def simulation_results():
     """One netCDF file per configured case."""
     return expand(f"{RESULTS}/simulations/{{case}}.nc", case=cases())

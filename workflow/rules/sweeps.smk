@@ -22,7 +22,7 @@ rule large_sweeps:
 rule sweep_kernel:
     input:
         code=script_code("sweep_compile.py"),
-        simulation_kernel="logs/simulations/kernel.done",
+        simulation_kernels=expand("logs/simulations/kernel_{family}.done", family=("foam", "cfoam")),
     output:
         "logs/sweeps/kernel.done",
     log:

@@ -52,8 +52,8 @@ include: "workflow/rules/common.smk"
 
 # Every rule file, after common.smk in alphabetical order: what a file uses at parse time must be
 # defined in common.smk or in a file sorted before it. A study has the generic rules (matrices,
-# simulations) and its own (study.smk); the paper has every other file.
-GENERIC_RULE_FILES = ("matrices.smk", "simulate.smk")
+# simulations, the optional `validate` target) and its own (study.smk); the paper every other file.
+GENERIC_RULE_FILES = ("matrices.smk", "simulate.smk", "validate.smk")
 RULE_FILES = sorted(Path(workflow.basedir, "workflow", "rules").glob("*.smk"))
 for rule_file in RULE_FILES:
     wanted = rule_file.name in GENERIC_RULE_FILES or (rule_file.name == "study.smk") == STUDY

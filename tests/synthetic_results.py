@@ -231,7 +231,8 @@ def write_validation(directory: Path) -> dict[str, Path]:
     """Small validation result files in the producers' formats, with known content.
 
     Keys: ``published``, ``tip_mass``, ``curves``, ``published_figure`` (rule validate_published)
-    and ``comparison``, ``mode_study``, ``convergence``, ``exudyn_figure`` (``snakemake validate``).
+    and ``comparison``, ``mode_study``, ``convergence``, ``exudyn_figure``, ``ritz_fe``,
+    ``pybmodes`` (``snakemake validate``).
     """
     import pandas as pd
 
@@ -256,7 +257,9 @@ def write_validation(directory: Path) -> dict[str, Path]:
              "comparison": directory / "exudyn_comparison.csv",
              "mode_study": directory / "exudyn_mode_study.csv",
              "convergence": directory / "exudyn_convergence.csv",
-             "exudyn_figure": directory / "exudyn_comparison.png"}
+             "exudyn_figure": directory / "exudyn_comparison.png",
+             "ritz_fe": directory / "nonuniform_ritz_fe.csv",
+             "pybmodes": directory / "nonuniform_pybmodes.csv"}
     pd.DataFrame(rows).to_csv(paths["published"], index=False)
     tip = []
     for mu, printed, root, change in ((0.0, "1.87510", 1.875104, 0.0), (1.0, "1.24792", 1.247918, 1e-7)):
@@ -305,6 +308,23 @@ def write_validation(directory: Path) -> dict[str, Path]:
                 "peak_m": 0.217, "residual_m": 7.9e-4, "newton_iterations": 1000 * (index + 1),
                 "cpu_time_s": 2.0 * (index + 1)})
     pd.DataFrame(convergence).to_csv(paths["convergence"], index=False)
+    # non-uniform checks: |ritz / fe - 1| = error * (speed + 1) / 3 * mode / 2, largest at the
+    # last speed (2) and mode (2): the error itself, 4e-3 / 2e-5 (bare) and 1e-2 / 3e-4 (tip mass)
+    ritz_fe = []
+    for case, mass, errors in (("bare", 0.0, {5: 4e-3, 20: 2e-5}), ("tip_mass", 4.5, {5: 1e-2, 20: 3e-4})):
+        for direction in ("flapwise", "inplane"):
+            for speed in (0.0, 1.0, 2.0):
+                for mode in (1, 2):
+                    for n, error in errors.items():
+                        rel = error * (speed + 1.0) / 3.0 * mode / 2.0 * (1 if direction == "inplane" else 0.5)
+                        ritz_fe.append({"direction": direction, "speed_rad_s": speed, "mode": mode,
+                                        "n_modes": n, "ritz_hz": mode * (1.0 + rel), "fe_hz": float(mode),
+                                        "rel_diff": rel, "case": case, "tip_mass_kg": mass})
+    pd.DataFrame(ritz_fe).to_csv(paths["ritz_fe"], index=False)
+    pd.DataFrame([{"direction": "flapwise", "speed_rad_s": speed, "mode": 1, "pybmodes_hz": 1.0,
+                   "order": order, "rel_diff_ritz": ritz, "rel_diff_fe": fe}
+                  for speed, order, ritz, fe in ((0.0, 1.99, -1e-8, -3e-9), (1.0, 1.9, 2e-6, -5e-7))]
+                 ).to_csv(paths["pybmodes"], index=False)
     for key in ("published_figure", "exudyn_figure"):
         paths[key].write_bytes(b"\x89PNG stand-in")
     return paths

@@ -261,7 +261,7 @@ def test_the_archive_describes_itself_as_a_workflow_run_crate(tiny_workflow, tmp
         if name.endswith(".nc"):
             with netCDF4.Dataset(crate_dir / name) as nc:
                 assert entity["description"] == f"{nc.title} (netCDF)"
-    assert graph["results/figures/fig05.png"]["description"].startswith("Fig. 5. TLAM against FOAM")
+    assert graph["results/figures/fig05.png"]["description"] == "Fig. 5: TLAM against FOAM (PNG)"
 
 
 RO_CRATE_CONTEXT_URL = "https://w3id.org/ro/crate/1.1/context"
@@ -273,13 +273,17 @@ def offline_validator_cache(cache_home: Path) -> Path:
     that ``validate --offline`` resolves the crate's ``@context`` without a network."""
     import requests
     import requests_cache
+    import urllib3
 
     session = requests_cache.CachedSession(str(cache_home / "rocrate-validator" / "http_cache"),
                                            backend="sqlite", allowable_methods=("GET",))
+    data = RO_CRATE_CONTEXT.read_bytes()
+    headers = {"Content-Type": "application/ld+json"}
     response = requests.Response()
-    response.status_code, response.url = 200, RO_CRATE_CONTEXT_URL
-    response.headers["Content-Type"] = "application/ld+json"
-    response._content = RO_CRATE_CONTEXT.read_bytes()
+    response.status_code, response.url, response._content = 200, RO_CRATE_CONTEXT_URL, data
+    response.headers = requests.structures.CaseInsensitiveDict(headers)
+    response.raw = urllib3.HTTPResponse(body=io.BytesIO(data), headers=headers, status=200,
+                                        preload_content=False, request_url=RO_CRATE_CONTEXT_URL)
     response.request = requests.Request("GET", RO_CRATE_CONTEXT_URL).prepare()
     session.cache.save_response(response)
     return cache_home

@@ -155,3 +155,8 @@ def test_benchmark_settings_are_checked(repo_root, tmp_path):
     with pytest.raises(ConfigError, match=r"benchmark\.python_rhs_case: got 'nowhere'; allowed: a name of "
                        r"benchmark\.cases"):
         load_settings([study], path)
+    settings["benchmark"]["python_rhs_case"] = settings["benchmark"]["scipy_cases"][0]
+    settings["benchmark"]["reference_rtol"] = 1e-15  # below hubbeam.limits.MIN_RTOL
+    path.write_text(yaml.safe_dump(settings))
+    with pytest.raises(ConfigError, match=r"benchmark\.reference_rtol: got 1e-15.*a number >= 2\.22"):
+        load_settings([study], path)

@@ -112,7 +112,6 @@ BAD_VALUES = [
                                "a number >= 2.220446049250313e-14 and < 1", "100 machine epsilons"]),
     ("numerics.rtol", 1e-15, ["got 1e-15", "a number >= 2.220446049250313e-14"]),
     ("sweeps.numerics.rtol", 0.0, ["got 0.0", "a number >= 2.220446049250313e-14"]),
-    ("benchmark.reference_rtol", 1e-15, ["got 1e-15", "a number >= 2.220446049250313e-14"]),
     ("numerics.rtol", 1.0, ["got 1.0", "< 1"]),
     ("numerics.modes", 0, ["got 0", "an integer >= 1 and <= 20"]),
     ("numerics.modes", 21, ["got 21", "an integer >= 1 and <= 20"]),

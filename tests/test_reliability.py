@@ -1,4 +1,4 @@
-"""Reliability (issue 6): bad input, interrupted runs, diverged runs, determinism, guard rails.
+"""Reliability: bad input, interrupted runs, diverged runs, determinism, guard rails.
 
 What other test files already prove is not repeated here:
 

@@ -27,7 +27,7 @@ from hubbeam.io import ResultFileError, open_result
 from hubbeam.products import PAPER_PRODUCTS
 from hubbeam.report import reproduction_markdown
 from hubbeam.tables import Column, Table, table1, table2, table3, to_latex, to_markdown, write_table
-from hubbeam.validation.report import ValidationInputError, exudyn_markdown, published_section
+from hubbeam.validation.report import ValidationInputError, published_section, validation_markdown
 
 #: residual vibration after the torque pulse: FOAM (amplitude, omega, phase at t_f) and an SFOAM
 #: that leads it by 0.45 rad with a 24 % smaller amplitude (the paper's statement, as input)
@@ -318,8 +318,11 @@ def test_a_missing_or_incomplete_validation_file_is_a_clear_error(validation_fil
     with pytest.raises(ValidationInputError, match=r"tip_mass_comparison.csv: missing column\(s\) agrees"):
         published(dict(validation_files, tip_mass=broken), tmp_path)
     with pytest.raises(ResultFileError, match=r"exudyn_comparison.csv does not exist.*snakemake validate"):
-        exudyn_markdown(tmp_path / "exudyn_comparison.csv", validation_files["mode_study"],
-                        validation_files["convergence"], validation_files["exudyn_figure"], tmp_path)
+        validation_markdown(tmp_path, validation_files["ritz_fe"], exudyn={
+            "comparison": tmp_path / "exudyn_comparison.csv", "mode_study": validation_files["mode_study"],
+            "convergence": validation_files["convergence"], "figure": validation_files["exudyn_figure"]})
+    with pytest.raises(ResultFileError, match=r"nonuniform_ritz_fe.csv does not exist.*snakemake validate"):
+        validation_markdown(tmp_path, tmp_path / "nonuniform_ritz_fe.csv")
 
 
 def test_exudyn_report_states_the_key_findings_computed_from_the_tables(validation_files, tmp_path):
@@ -328,7 +331,8 @@ def test_exudyn_report_states_the_key_findings_computed_from_the_tables(validati
     (tmp_path / "report").mkdir()
     run_script("report_validation.py", input={
         "comparison": str(validation_files["comparison"]), "figure": str(validation_files["exudyn_figure"]),
-        "mode_study": str(validation_files["mode_study"]), "convergence": str(validation_files["convergence"])},
+        "mode_study": str(validation_files["mode_study"]), "convergence": str(validation_files["convergence"]),
+        "ritz_fe": str(validation_files["ritz_fe"]), "pybmodes": str(validation_files["pybmodes"])},
         output=out)
     md = Path(out["markdown"]).read_text()
     # FOAM: 2e-5 / 0.15 and 1e-4 / 0.30 of the peak; residual ratios 1.001 and 0.998
@@ -344,4 +348,17 @@ def test_exudyn_report_states_the_key_findings_computed_from_the_tables(validati
     assert re.search(r"\| spin_b \| TLAM \| - \| - \| - \| 0.3 \| - \| 0.002 \| 27.60 \|", md)
     assert "| 16 | yes | 1e-07 |" in md
     page = Path(out["html"]).read_text()
-    assert "<title>hubbeam validation against Exudyn</title>" in page and 'src="data:image/png;base64,' in page
+    assert "<title>hubbeam validation against independent models</title>" in page
+    assert 'src="data:image/png;base64,' in page
+    # the non-uniform checks: the largest |ritz / fe - 1| per case and mode count, pyBModes's bounds
+    assert "| bare | 0 | 0.004 | 2e-05 |" in md and "| tip_mass | 4.5 | 0.01 | 0.0003 |" in md
+    assert "with 20 modes at most 0.0003" in md
+    assert "(observed orders 1.9 to 1.99;" in md
+    assert "within 2e-06 and with our finite elements within 5e-07 (relative, 2 frequencies" in md
+
+
+def test_validation_report_without_exudyn_or_pybmodes_has_the_ritz_check_only(validation_files, tmp_path):
+    md = validation_markdown(tmp_path, validation_files["ritz_fe"])
+    assert "Geometrically exact reference" not in md and "exudyn_comparison.csv" not in md
+    assert "## Non-uniform beam" in md and "| bare | 0 | 0.004 | 2e-05 |" in md
+    assert "**pyBModes** is not run: the beam is clamped on the hub axis" in md

@@ -152,3 +152,60 @@ def test_convergence_table_compares_each_study_with_its_finest_run():
                                2e-4)
     assert table.loc[("elements", 16), "production"] == 1
     assert ("newton_tolerance", 1e-10) not in table.index  # a study needs two runs
+
+
+# -- the validation of a study: planned under the study's own folder -----------------------------
+
+@requires_exudyn
+@pytest.mark.workflow
+def test_validate_plans_a_studys_exudyn_jobs_in_its_own_folder(tmp_path):
+    """`snakemake -n validate` with a study that has a `validation` section plans the Exudyn
+    jobs and the non-uniform checks under results/<name>/ and logs/<name>/ only: never the
+    paper's results/validation/ nor its published-table check."""
+    import copy
+    import re
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    import yaml
+    from test_study import TINY_STUDY
+
+    pytest.importorskip("pybmodes")
+    repo = Path(__file__).resolve().parents[1]
+    study = copy.deepcopy(TINY_STUDY)
+    study["validation"] = {
+        "exudyn": {"elements": 4, "time_step": 5.0e-3, "spectral_radius": 0.9,
+                   "newton_tolerance": 1.0e-10},
+        "models": ["FOAM", "TLAM"],
+        "mode_study": [1, 2],
+        "cases": {"v_spin": {"maneuver": {"kind": "prescribed", "wf": 2.0, "tf": 1.0}, "t_end": 1.5}},
+        "convergence": {"case": "v_spin", "elements": [2, 4], "time_steps": [1.0e-2, 5.0e-3],
+                        "newton_tolerances": [1.0e-8, 1.0e-10]},
+    }
+    config = tmp_path / "tiny.yaml"
+    config.write_text(yaml.safe_dump(study))
+    command = [sys.executable, "-m", "snakemake", "--snakefile", str(repo / "Snakefile"),
+               "--directory", str(tmp_path), "--cores", "1", "--configfile", str(config),
+               "-n", "validate"]
+    run = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, timeout=600,
+                         check=False)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    jobs = re.findall(r"^rule (\w+):", run.stdout, flags=re.MULTILINE)
+    assert sorted(set(jobs)) == sorted({
+        "validate", "validate_exudyn", "validate_models", "validate_case", "validate_comparison",
+        "validate_modes", "validate_convergence", "validate_nonuniform", "validation_report"})
+    paths = [path.strip() for line in re.findall(r"^\s+(?:output|log): (.*)$", run.stdout,
+                                                 flags=re.MULTILINE)
+             for path in line.split(",")]
+    assert "results/tiny/validation/runs/exudyn_v_spin.nc" in paths
+    assert "results/tiny/validation/nonuniform_pybmodes.csv" in paths  # the beam is off the axis
+    assert "results/tiny/report/validation_exudyn.html" in paths
+    assert paths and all(path.startswith(("results/tiny/", "logs/tiny/")) for path in paths), paths
+
+
+def test_a_sectioned_beam_is_refused_by_the_exudyn_model_naming_the_key():
+    from hubbeam.validation.nonuniform import tapered_beam
+
+    with pytest.raises(ValueError, match=r"beam.sections: the Exudyn reference models a uniform beam"):
+        exudyn_model.build_model(tapered_beam(TABLE1))

@@ -420,7 +420,7 @@ def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
     """A beam is uniform (all of UNIFORM_BEAM_KEYS) or given by stations from 0 to L, not both."""
     if "sections" not in beam:
         return [Problem(f"beam.{key}", f"missing (required for a uniform beam, i.e. without "
-                        f"beam.sections); allowed: {_allowed(['beam', key])}")
+                        f"beam.sections); allowed: {_allowed(['beam', key], SCHEMA)}")
                 for key in UNIFORM_BEAM_KEYS if key not in beam]
     problems = [Problem(f"beam.{key}", f"got {_show(beam[key])}; not allowed together with "
                         "beam.sections (allowed: either the uniform keys or sections)")
@@ -445,7 +445,7 @@ def _study_problems(cfg: Mapping, eigen: Mapping, cases: Mapping) -> list[Proble
         if "table2_speed" in eigen or not eigen:
             return []
         return [Problem("eigen.table2_speed", "missing (required for the paper's Table 2, i.e. "
-                        f"without a study section); allowed: {_allowed(['eigen', 'table2_speed'])}")]
+                        f"without a study section); allowed: {_allowed(['eigen', 'table2_speed'], SCHEMA)}")]
     study = _section(cfg, "study")
     problems = []
     if study.get("name") in PAPER_FOLDERS:

@@ -12,8 +12,9 @@ Crate profile 0.5 (with Process Run Crate 0.5 and Workflow RO-Crate 1.0) and des
 - the run, one ``CreateAction``: the workflow as ``instrument``, the configuration it ran with as
   ``object``, every result file as ``result``, ``startTime`` and ``endTime``;
 - every file with ``encodingFormat`` (media type), ``sha256``, ``contentSize`` and a one-line
-  ``description``: a netCDF file's ``title`` attribute, a figure's or report's caption (first
-  sentence of ``workflow/report/<key>.rst``), a table's number, a workflow file's docstring.
+  ``description``: a netCDF file's ``title`` attribute, a product's title in the registry
+  (``hubbeam.products``), else the first sentence of its caption file ``workflow/report/<key>.rst``,
+  a workflow file's docstring.
 
 The run's times are those of its products: ``startTime`` is the modification time of the oldest
 result file, ``endTime`` that of the newest. Snakemake does not tell a job when the workflow
@@ -36,6 +37,7 @@ from rocrate.model.contextentity import ContextEntity
 from rocrate.rocrate import ROCrate
 
 from hubbeam import __version__
+from hubbeam.products import PAPER_PRODUCTS
 from hubbeam.provenance import WORKFLOW_DISTRIBUTIONS, git_commit, iso_utc, timestamp, versions
 
 METADATA_NAME = "ro-crate-metadata.json"
@@ -198,12 +200,12 @@ def describe(member: Member, by_name: Mapping[str, Member], config_name: str) ->
             return f"Caption of {path.stem} in the Snakemake report"
         docstring = _docstring(member.data.decode())
         return f"{first_sentence(docstring)} ({kind})" if docstring else f"Workflow file {path} ({kind})"
+    product = PAPER_PRODUCTS.get(path.stem)
+    if product is not None:
+        return f"{product.title} ({kind})"
     caption = by_name.get(f"{WORKFLOW_DIR}report/{_caption_key(path)}.rst")
     if caption is not None:
         return f"{first_sentence(caption.data.decode())} ({kind})"
-    table = re.fullmatch(r"table(\d+)", path.stem)
-    if table:
-        return f"Table {table[1]} of the paper ({kind})"
     return f"{path.stem.replace('_', ' ').capitalize()} ({kind})"
 
 

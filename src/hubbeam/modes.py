@@ -1,4 +1,4 @@
-"""Admissible functions of the assumed-mode discretisation (Eq. 11; REPRODUCTION_NOTES 6 and 7).
+"""Admissible functions of the assumed-mode discretisation (Eq. 11; reproduction notes 6 and 7).
 
 * Transverse deflection ``w2 = f2(x) q2``: clamped-free Euler-Bernoulli eigenfunctions
   ``cosh(b x) - cos(b x) - s_i (sinh(b x) - sin(b x))`` with ``b = beta_i`` and ``beta_i L`` the

@@ -2,7 +2,7 @@
 
 Nothing in the model reads these values: they are what tables, tests of the input data and the
 reproduction report set our computed results against. Table 2's caption is swapped with Table 3's
-in the journal (REPRODUCTION_NOTES note 3): the values below are the first five vibration
+in the journal (reproduction note 3): the values below are the first five vibration
 frequencies, in Hz; TLAM and FOAM at a constant hub speed of 1 rad/s.
 """
 

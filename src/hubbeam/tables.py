@@ -3,9 +3,9 @@
 - Table 1: the physical parameters of the configuration, beside the printed ones.
 - Table 2: the first five vibration frequencies (Hz); its csv is written by the eigen rule
   (``hubbeam.eigen.table2``), this module only renders it. The journal swaps the captions of
-  Tables 2 and 3 (REPRODUCTION_NOTES 3); the captions here are the corrected ones.
+  Tables 2 and 3 (reproduction note 3); the captions here are the corrected ones.
 - Table 3: the largest |Q_theta| (Eq. 32) under the torque pulse of Eq. 44 for each tau_max,
-  computed from the FOAM torque runs, beside the printed values (REPRODUCTION_NOTES 9).
+  computed from the FOAM torque runs, beside the printed values (reproduction note 9).
 """
 
 from __future__ import annotations

@@ -12,7 +12,7 @@ from snakemake.exceptions import WorkflowError
 
 from hubbeam.config import case_names, case_settings
 from hubbeam.sourcedeps import script_dependencies
-from hubbeam.study import logs_dir, results_dir
+from hubbeam.study import is_study, logs_dir, results_dir
 
 PACKAGE_DIR = Path(workflow.basedir, "src", "hubbeam")
 SCRIPTS_DIR = Path(workflow.basedir, "workflow", "scripts")
@@ -210,27 +210,32 @@ def eigen_results():
 
 
 # --- independent validation (rules in validate.smk, docs/validation.md) --------------------------
-# The published-table check is part of `all` (whenever the config has a `validation` section) and
-# of the reproduction report; the Exudyn comparison only of the `validate` target, with its own
-# report results/report/validation_exudyn.md/.html.
+# The published-table check (paper only: it validates the paper's beam model against literature
+# tables) is part of `all` whenever the config has `validation.published`, and of the reproduction
+# report. The optional target `validate` builds, under RESULTS/validation/, the Exudyn comparison
+# (when the config has a `validation` section) and the non-uniform checks (always), with their
+# report RESULTS/report/validation_exudyn.md/.html.
 
-VALIDATION_DIR = "results/validation"
+VALIDATION_DIR = f"{RESULTS}/validation"
+VALIDATION_LOGS = f"{LOGS}/validation"
+#: the optional modules `validate` imports: pyBModes always, Exudyn for the `validation` section
+VALIDATION_MODULES = ("pybmodes", "exudyn")
 
 
 def validation_config():
     """The `validation` section of the config, or a WorkflowError saying it is missing."""
     if "validation" not in config:
         raise WorkflowError(
-            "the independent validation needs the `validation` section of config/config.yaml "
-            "(see docs/validation.md); the configuration in use has none"
+            "the Exudyn comparison needs the `validation` section of the config (see "
+            "docs/validation.md); the configuration in use has none"
         )
     return config["validation"]
 
 
 def published_validation_inputs():
     """The products of `validate_published` the reproduction report reads, by input name (none
-    when the config has no `validation` section)."""
-    if "validation" not in config:
+    for a study or when the config has no `validation.published`)."""
+    if is_study(config) or "published" not in config.get("validation", {}):
         return {}
     return {
         "published": f"{VALIDATION_DIR}/published_comparison.csv",
@@ -241,7 +246,7 @@ def published_validation_inputs():
 
 
 def published_validation_results():
-    """Every product of `validate_published` (none without a `validation` section)."""
+    """Every product of `validate_published` (none without `validation.published`)."""
     inputs = published_validation_inputs()
     return sorted(inputs.values()) + ([f"{VALIDATION_DIR}/rotating_frequencies.pdf"] if inputs else [])
 
@@ -288,28 +293,59 @@ def convergence_case(wildcards):
     )
 
 
+def nonuniform_results():
+    """The tables of the non-uniform checks (rule validate_nonuniform) by input name: Ritz
+    against our finite elements always, pyBModes for a beam off the hub axis (it needs rA > 0)."""
+    results = {"ritz_fe": f"{VALIDATION_DIR}/nonuniform_ritz_fe.csv"}
+    if config["beam"]["hub_radius"] > 0.0:
+        results["pybmodes"] = f"{VALIDATION_DIR}/nonuniform_pybmodes.csv"
+    return results
+
+
+def exudyn_report_inputs():
+    """The Exudyn products the validation report reads, by input name (none without a
+    `validation` section)."""
+    if "validation" not in config:
+        return {}
+    return {
+        "comparison": f"{VALIDATION_DIR}/exudyn_comparison.csv",
+        "figure": f"{VALIDATION_DIR}/exudyn_comparison.png",
+        "mode_study": f"{VALIDATION_DIR}/exudyn_mode_study.csv",
+        "convergence": f"{VALIDATION_DIR}/exudyn_convergence.csv",
+    }
+
+
+def validation_report_results():
+    return [f"{RESULTS}/report/validation_exudyn.md", f"{RESULTS}/report/validation_exudyn.html"]
+
+
 def validation_targets(wildcards):
-    """Inputs of `validate`; stops with an install hint when Exudyn is not importable."""
+    """Inputs of `validate`; stops with an install hint when an optional module it needs is not
+    importable."""
     import importlib.util
 
-    if importlib.util.find_spec("exudyn") is None:
+    needed = VALIDATION_MODULES if "validation" in config else VALIDATION_MODULES[:1]
+    missing = [module for module in needed if importlib.util.find_spec(module) is None]
+    if missing:
         raise WorkflowError(
-            "`snakemake validate` needs the optional dependency exudyn, which is not installed "
-            "in this environment: install the extra with `pip install -e .[validation]` (from "
-            "the repository root), then rerun `snakemake validate`"
+            f"`snakemake validate` needs the optional dependencies {', '.join(needed)}; not "
+            f"installed in this environment: {', '.join(missing)}. Install the extra with "
+            "`pip install -e .[validation]` (from the repository root), then rerun "
+            "`snakemake validate`"
         )
+    exudyn = []
+    if "validation" in config:
+        exudyn = [
+            f"{VALIDATION_DIR}/exudyn_comparison.pdf",
+            f"{VALIDATION_DIR}/exudyn_convergence.nc",
+            *exudyn_report_inputs().values(),
+            *validation_case_files(wildcards),
+        ]
     return (
         published_validation_results()
-        + [
-            f"{VALIDATION_DIR}/exudyn_comparison.csv",
-            f"{VALIDATION_DIR}/exudyn_comparison.pdf",
-            f"{VALIDATION_DIR}/exudyn_convergence.csv",
-            f"{VALIDATION_DIR}/exudyn_convergence.nc",
-            f"{VALIDATION_DIR}/exudyn_mode_study.csv",
-            "results/report/validation_exudyn.md",
-            "results/report/validation_exudyn.html",
-        ]
-        + validation_case_files(wildcards)
+        + exudyn
+        + list(nonuniform_results().values())
+        + validation_report_results()
     )
 
 

@@ -1,17 +1,22 @@
-"""Independent validation (issue 8, docs/validation.md); helpers in common.smk.
+"""Independent validation (docs/validation.md); helpers in common.smk.
 
-Builds in results/validation/:
+Builds in RESULTS/validation/ (results/validation/ for the paper, results/<name>/validation/ for
+a study):
 * published_comparison.csv, tip_mass_comparison.csv, rotating_eigen.nc, rotating_frequencies.pdf/png:
   the constant-speed linearisation of FOAM against published rotating-cantilever frequencies
-  (rule `validate_published`, seconds, no Exudyn: part of `all` and of the reproduction report);
+  (rule `validate_published`, seconds, no Exudyn; the paper only: part of `all` and of the
+  reproduction report);
 * exudyn_<case>.nc, exudyn_comparison.csv, exudyn_comparison.pdf/png: FOAM, CFOAM and TLAM tip
   deflections against the Exudyn ANCF reference (runs/ holds the separate runs);
 * exudyn_mode_study.csv: the model-reference differences against the number of assumed modes;
 * exudyn_convergence.csv, exudyn_convergence.nc: convergence of the reference;
-and results/report/validation_exudyn.md/.html, the report of the Exudyn comparison.
-Everything Exudyn is built only by the `validate` target (`snakemake validate`, not part of
-`all`); it needs the optional dependency (`pip install -e .[validation]`) and without it stops
-before running anything, saying so.
+* nonuniform_ritz_fe.csv, nonuniform_pybmodes.csv: frequencies of a non-uniform beam (the
+  config's own when it has sections, else the tapered version of its uniform beam) from the Ritz
+  model, our finite elements and pyBModes (`hubbeam.validation.nonuniform`);
+and RESULTS/report/validation_exudyn.md/.html, the report of these checks. Everything but the
+published check is built only by the `validate` target (`snakemake validate`, not part of `all`);
+it needs the optional dependencies (`pip install -e .[validation]`) and without them stops before
+running anything, saying so. The Exudyn part needs the config's `validation` section.
 """
 
 
@@ -40,7 +45,7 @@ rule validate_published:
         published=validation_section("published"),
         n_quad=config["numerics"]["quadrature_points"],
     log:
-        "logs/validation/published.log",
+        f"{VALIDATION_LOGS}/published.log",
     script:
         "../scripts/validate_published.py"
 
@@ -58,7 +63,7 @@ rule validate_exudyn:
         exudyn=validation_section("exudyn"),
         output_step=config["numerics"]["output_step"],
     log:
-        "logs/validation/exudyn_{vcase}.log",
+        f"{VALIDATION_LOGS}/exudyn_{{vcase}}.log",
     script:
         "../scripts/validate_exudyn.py"
 
@@ -76,7 +81,7 @@ rule validate_models:
         models=validation_section("models"),
         numerics=config["numerics"],
     log:
-        "logs/validation/models_{vcase}.log",
+        f"{VALIDATION_LOGS}/models_{{vcase}}.log",
     script:
         "../scripts/validate_models.py"
 
@@ -91,7 +96,7 @@ rule validate_case:
     wildcard_constraints:
         vcase=CASE_NAME_PATTERN,
     log:
-        "logs/validation/case_{vcase}.log",
+        f"{VALIDATION_LOGS}/case_{{vcase}}.log",
     script:
         "../scripts/validate_case.py"
 
@@ -110,7 +115,7 @@ rule validate_comparison:
             category="Validation",
         ),
     log:
-        "logs/validation/comparison.log",
+        f"{VALIDATION_LOGS}/comparison.log",
     script:
         "../scripts/validate_comparison.py"
 
@@ -128,7 +133,7 @@ rule validate_modes:
         modes=validation_section("mode_study"),
         numerics=config["numerics"],
     log:
-        "logs/validation/modes.log",
+        f"{VALIDATION_LOGS}/modes.log",
     script:
         "../scripts/validate_modes.py"
 
@@ -146,27 +151,39 @@ rule validate_convergence:
         convergence=validation_section("convergence"),
         output_step=config["numerics"]["output_step"],
     log:
-        "logs/validation/convergence.log",
+        f"{VALIDATION_LOGS}/convergence.log",
     script:
         "../scripts/validate_convergence.py"
+
+
+rule validate_nonuniform:
+    input:
+        code=script_code("validate_nonuniform.py"),
+    output:
+        **{name: ensure(path, non_empty=True) for name, path in nonuniform_results().items()},
+    params:
+        beam=config["beam"],
+        n_quad=config["numerics"]["quadrature_points"],
+    log:
+        f"{VALIDATION_LOGS}/nonuniform.log",
+    script:
+        "../scripts/validate_nonuniform.py"
 
 
 rule validation_report:
     localrule: True
     input:
-        comparison=f"{VALIDATION_DIR}/exudyn_comparison.csv",
-        figure=f"{VALIDATION_DIR}/exudyn_comparison.png",
-        mode_study=f"{VALIDATION_DIR}/exudyn_mode_study.csv",
-        convergence=f"{VALIDATION_DIR}/exudyn_convergence.csv",
+        **exudyn_report_inputs(),
+        **nonuniform_results(),
         code=script_code("report_validation.py"),
     output:
-        markdown=ensure("results/report/validation_exudyn.md", non_empty=True),
+        markdown=ensure(f"{RESULTS}/report/validation_exudyn.md", non_empty=True),
         html=report(
-            ensure("results/report/validation_exudyn.html", non_empty=True),
+            ensure(f"{RESULTS}/report/validation_exudyn.html", non_empty=True),
             caption="../report/validation_exudyn.rst",
             category="Validation",
         ),
     log:
-        "logs/report/validation_exudyn.log",
+        f"{LOGS}/report/validation_exudyn.log",
     script:
         "../scripts/report_validation.py"

@@ -2,14 +2,15 @@
 
 import xarray as xr
 
+from hubbeam.beam import beam_from_config
 from hubbeam.io import staged, write_netcdf
-from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.parameters import TipMass
 from hubbeam.provenance import global_attributes
 from hubbeam.validation.comparison import convergence_table
 from hubbeam.validation.exudyn_model import ExudynNumerics, spin_up
 
 p = snakemake.params
-params = BeamParameters.from_config({"beam": p.beam})
+params = beam_from_config(p.beam)
 tip = TipMass(**p.case["tip_mass"]) if "tip_mass" in p.case else None
 maneuver = p.case["maneuver"]
 studies = {"elements": "elements", "time_steps": "time_step",

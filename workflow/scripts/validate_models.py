@@ -1,13 +1,13 @@
 """Snakemake shim: tip outputs of the hubbeam models for one validation case."""
 
+from hubbeam.beam import beam_from_config
 from hubbeam.io import write_netcdf
-from hubbeam.parameters import BeamParameters
 from hubbeam.provenance import global_attributes
 from hubbeam.validation.comparison import simulate_models
 
 p = snakemake.params
 name = snakemake.wildcards.vcase
-ds = simulate_models(name, p.case, p.models, BeamParameters.from_config({"beam": p.beam}),
+ds = simulate_models(name, p.case, p.models, beam_from_config(p.beam),
                      p.numerics)
 ds.attrs.pop("case_config")
 ds.attrs = global_attributes(f"hubbeam models {', '.join(p.models)}, validation case {name}",

@@ -4,12 +4,12 @@ from pathlib import Path
 
 import pandas as pd
 
+from hubbeam.beam import beam_from_config
 from hubbeam.io import open_result, staged
-from hubbeam.parameters import BeamParameters
 from hubbeam.validation.comparison import mode_study
 
 p = snakemake.params
-params = BeamParameters.from_config({"beam": p.beam})
+params = beam_from_config(p.beam)
 tables = []
 for path in snakemake.input.references:
     name = Path(path).stem.removeprefix("exudyn_")

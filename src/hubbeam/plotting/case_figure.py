@@ -20,23 +20,10 @@ from hubbeam.plotting.style import (
 )
 from hubbeam.study.summary import dataset_maneuver, maneuver_end
 
-#: the torque variable of a simulation dataset: ``hub_torque`` where present, else ``torque``
-TORQUE_NAMES = ("hub_torque", "torque")
-
-
-def torque_name(ds: xr.Dataset) -> str:
-    """The name of the hub-torque variable of ``ds``."""
-    for name in TORQUE_NAMES:
-        if name in ds.data_vars:
-            return name
-    raise ValueError(f"simulation dataset has no hub torque (none of {', '.join(TORQUE_NAMES)})")
-
-
-def series(ds: xr.Dataset) -> dict[str, tuple[str, str]]:
-    """Quantity drawn per panel -> (variable, label with units)."""
-    return {"tip": ("tip_transverse", axis_label("tip deflection $v(L)$", "m")),
-            "speed": ("theta_dot", axis_label(r"hub speed $\dot\theta$", "rad s-1")),
-            "torque": (torque_name(ds), axis_label(r"hub torque $\tau$", "N m"))}
+#: quantity drawn per panel -> (variable of the simulation dataset, label with units)
+SERIES = {"tip": ("tip_transverse", axis_label("tip deflection $v(L)$", "m")),
+          "speed": ("theta_dot", axis_label(r"hub speed $\dot\theta$", "rad s-1")),
+          "torque": ("hub_torque", axis_label(r"hub torque $\tau$", "N m"))}
 
 
 def mark_events(ax, ds: xr.Dataset, end: float) -> None:
@@ -55,7 +42,7 @@ def plot(case: str, ds: xr.Dataset):
     t = ds["time"].values
     style = model_style(str(ds.attrs["model"]))
     end = maneuver_end(maneuver)
-    for index, (name, label) in enumerate(series(ds).values()):
+    for index, (name, label) in enumerate(SERIES.values()):
         axes[index].plot(t, ds[name].values, **style)
         axes[index].set_ylabel(label)
         mark_events(axes[index], ds, end)

@@ -12,7 +12,7 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.case_figure import series
+from hubbeam.plotting.case_figure import SERIES
 from hubbeam.plotting.figures import limit_to_bounded
 from hubbeam.plotting.style import (
     MODEL_STYLE,
@@ -34,11 +34,11 @@ def plot(name: str, datasets: Mapping[str, xr.Dataset]):
             label += f", diverged at {float(ds.attrs['diverged_at_s']):.3g} s"
         props = {"color": SEQUENCE_COLORS[k % len(SEQUENCE_COLORS)],
                  "linestyle": MODEL_STYLE.get(model, {}).get("linestyle", "-")}
-        for index, (variable, ylabel) in enumerate(series(ds).values()):
+        for index, (variable, ylabel) in enumerate(SERIES.values()):
             axes[index].plot(ds["time"].values, ds[variable].values, label=label if index == 0 else None,
                              **props)
             axes[index].set_ylabel(ylabel)
-    for ax, (variable, _) in zip(axes, series(next(iter(datasets.values()))).values()):
+    for ax, (variable, _) in zip(axes, SERIES.values()):
         limit_to_bounded(ax, datasets, variable)
     axes[-1].set_xlabel(axis_label("time $t$", "s"))
     panel_title(axes[0], 0, f"comparison {name}")

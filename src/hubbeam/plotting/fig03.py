@@ -1,7 +1,7 @@
 """Fig. 3: the CFOAM high-order contributions along the CFOAM trajectory (w_f = 3 rad/s, 1 mode).
 
 Each panel shows one difference CFOAM minus FOAM evaluated on the CFOAM trajectory
-(REPRODUCTION_NOTES 5): the rotary inertia ``dM_thth`` (the Delta term of Eq. 25), the
+(reproduction note 5): the rotary inertia ``dM_thth`` (the Delta term of Eq. 25), the
 generalised force of the theta equation ``dQ_theta`` (Eqs. 32, 37, with the acceleration terms of
 the mass-matrix difference moved to the right-hand side) and the generalised forces of the axial and
 transverse equations ``dQ_q1``, ``dQ_q2`` (Eqs. 33-34, 38-39).

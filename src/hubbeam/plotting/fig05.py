@@ -1,7 +1,7 @@
 """Fig. 5: TLAM against FOAM below (2.8 rad/s) and above (3.5 rad/s) TLAM's critical speed.
 
 Rows: transverse tip deflection v(L) = f2(L) q2, pure axial tip deformation w1(L) = f1(L) q1
-(REPRODUCTION_NOTES 11: not w1 + wc). One column per final speed w_f; panels are labelled row by
+(reproduction note 11: not w1 + wc). One column per final speed w_f; panels are labelled row by
 row, (a), (b) transverse, (c), (d) axial for two speeds. A diverged run is drawn up to its
 divergence time, marked, and allowed to leave the frame so the bounded runs stay readable.
 """

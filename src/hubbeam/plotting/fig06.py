@@ -1,7 +1,7 @@
 """Fig. 6: FOAM spin-up to w_f = 5 rad/s, t_f = 30 s.
 
 (a) the transverse modal coordinates q2_i of the run with the most modes; the modes are normalised
-to unit modal mass of the bare beam (REPRODUCTION_NOTES 7), so q2_i is in kg^1/2 m.
+to unit modal mass of the bare beam (reproduction note 7), so q2_i is in kg^1/2 m.
 (b) the pure axial tip deformation w1(L) for every mode count given (n = 1, 3, 5).
 """
 

@@ -1,7 +1,7 @@
 """Fig. 7: the inertia torque Q_theta (Eq. 32) under the torque pulse of Eq. 44 (note 8), FOAM.
 
 (a) Q_theta(t) for the largest tau_max given (the paper: 400 N m); (b) Q_theta / tau_max in percent
-for every torque amplitude, the quantity behind Table 3 and REPRODUCTION_NOTES 9.
+for every torque amplitude, the quantity behind Table 3 and reproduction note 9.
 """
 
 from __future__ import annotations

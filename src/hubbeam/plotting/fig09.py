@@ -1,6 +1,6 @@
 """Fig. 9: the dominant (lowest) eigenvalue of K22 against tip-mass position and hub speed.
 
-The paper does not say at which angular velocity its curves are drawn (REPRODUCTION_NOTES 10).
+The paper does not say at which angular velocity its curves are drawn (reproduction note 10).
 Panels (a), (b) show the lowest eigenvalue of TLAM's ``K22 = K2 - Omega^2 M2`` (tip-mass term
 included, Section 4.4) over position ``l`` and speed ``Omega`` for each tip mass, with the critical
 speed ``Omega_c(l)`` (where it crosses zero) drawn on top and the paper's values at ``l = L``

@@ -40,6 +40,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import xarray as xr
 
+from hubbeam.beam import BeamSections
 from hubbeam.config import is_multiple
 from hubbeam.core.maneuver import hub_motion
 
@@ -123,6 +124,10 @@ def build_model(params, tip=None, maneuver=None, elements: int = 16) -> HubBeamM
     ``params`` :class:`hubbeam.parameters.BeamParameters`; ``tip`` :class:`TipMass` or None;
     ``maneuver`` ``(wf, tf)`` of Eq. (43), or None for a hub held at ``theta = 0``.
     """
+    if isinstance(params, BeamSections):
+        raise ValueError("beam.sections: the Exudyn reference models a uniform beam (one "
+                         "ObjectANCFCable2D cross-section); allowed with a `validation` section: "
+                         "the uniform beam keys density, area, youngs_modulus, second_moment")
     exu = require_exudyn()
     from exudyn.itemInterface import (
         CoordinateConstraint,

@@ -25,6 +25,7 @@ import pandas as pd
 
 from hubbeam.beam import BeamSections
 from hubbeam.matrices import assemble
+from hubbeam.parameters import TipMass
 from hubbeam.validation import fe_beam, rotating_eigen
 
 #: our FE direction -> the Ritz direction of rotating_eigen (the q2 problem without q1)
@@ -37,7 +38,13 @@ PYBMODES_MESHES = (25, 50, 100)
 _OTHER_DIRECTION_STIFFNESS = 1.0e4
 
 
-def tapered_beam(base, tip_ratio: float = 0.5) -> BeamSections:
+#: ratio of tip to root section of :func:`tapered_beam` by default
+TAPER_RATIO = 0.5
+#: elements of our FE model in the comparisons
+FE_ELEMENTS = 160
+
+
+def tapered_beam(base, tip_ratio: float = TAPER_RATIO) -> BeamSections:
     """A linearly tapered version of the uniform beam ``base``: the width of the section falls
     linearly from its root value to ``tip_ratio`` times it at the tip, so ``rho A``, ``E I`` and
     ``E A`` (all proportional to the width) are linear from ``base``'s values to ``tip_ratio``
@@ -58,7 +65,7 @@ def ritz_frequencies(params, speeds, direction: str, tip=None, n_modes: int = 20
 
 
 def ritz_vs_fe(params, speeds, tip=None, modes=(5, 10, 20), n_frequencies: int = 4,
-               n_elements: int = 160) -> pd.DataFrame:
+               n_elements: int = FE_ELEMENTS) -> pd.DataFrame:
     """Ritz frequencies with ``modes`` assumed modes against our FE model, both directions.
 
     Columns ``direction, speed_rad_s, mode, n_modes, ritz_hz, fe_hz, rel_diff`` (``ritz / fe -
@@ -147,7 +154,7 @@ def pybmodes_frequencies(params, speeds, direction: str, n_frequencies: int = 4,
 
 
 def pybmodes_comparison(params, speeds, n_frequencies: int = 4, ritz_modes: int = 20,
-                        n_elements: int = 160) -> pd.DataFrame:
+                        n_elements: int = FE_ELEMENTS) -> pd.DataFrame:
     """Extrapolated pyBModes frequencies against our Ritz and FE models, bare beam, both directions.
 
     Columns of :func:`pybmodes_frequencies` plus ``ritz_hz``, ``fe_hz``, ``rel_diff_ritz`` and
@@ -164,3 +171,48 @@ def pybmodes_comparison(params, speeds, n_frequencies: int = 4, ritz_modes: int 
         table["rel_diff_fe"] = table["fe_hz"] / table["pybmodes_hz"] - 1
         tables.append(table)
     return pd.concat(tables, ignore_index=True)
+
+
+#: tip mass of the checks with a tip mass: this fraction of the beam's mass, at the tip
+TIP_MASS_RATIO = 0.5
+#: hub speeds of the checks, in units of the beam's first flapwise frequency at rest
+SPEED_RATIOS = (0.0, 2.0, 4.0)
+#: assumed-mode counts of the Ritz model in the checks
+RITZ_MODES = (5, 10, 20)
+
+
+def validation_beam(params):
+    """The non-uniform beam the checks of ``snakemake validate`` use: ``params`` itself when it
+    is a section table, else its :func:`tapered_beam`."""
+    return params if isinstance(params, BeamSections) else tapered_beam(params)
+
+
+def check_speeds(params) -> np.ndarray:
+    """Hub speeds (rad s-1) of the checks: :data:`SPEED_RATIOS` times the first flapwise frequency
+    at rest of ``params`` (our finite elements), so that every beam is checked from rest to well
+    above its first frequency."""
+    first = fe_beam.frequencies(params, [0.0], "flapwise", None, n_frequencies=1)[0, 0]
+    return np.asarray(SPEED_RATIOS) * first
+
+
+def nonuniform_tables(params, pybmodes: bool = True) -> dict[str, pd.DataFrame]:
+    """The tables of the non-uniform checks of :func:`validation_beam` ``(params)``: the
+    frequencies at constant hub speed of the Ritz model (Eq. 31 with the tip-mass terms) against
+    the independent solutions.
+
+    ``ritz_fe``: :func:`ritz_vs_fe` for the bare beam and with a tip mass of
+    :data:`TIP_MASS_RATIO` times the beam's mass at the tip (column ``case``: ``bare`` or
+    ``tip_mass``; ``tip_mass_kg``). ``pybmodes`` (when ``pybmodes``; pyBModes needs ``rA > 0``):
+    :func:`pybmodes_comparison` for the bare beam, since pyBModes's tip mass lacks the centrifugal
+    tension (module docstring).
+    """
+    beam = validation_beam(params)
+    speeds = check_speeds(beam)
+    tip = TipMass(mass=TIP_MASS_RATIO * beam.beam_mass, position=beam.L)
+    tables = [ritz_vs_fe(beam, speeds, None, RITZ_MODES).assign(case="bare", tip_mass_kg=0.0),
+              ritz_vs_fe(beam, speeds, tip, RITZ_MODES).assign(case="tip_mass",
+                                                               tip_mass_kg=tip.mass)]
+    result = {"ritz_fe": pd.concat(tables, ignore_index=True)}
+    if pybmodes:
+        result["pybmodes"] = pybmodes_comparison(beam, speeds, ritz_modes=RITZ_MODES[-1])
+    return result

@@ -5,9 +5,12 @@
   cantilevers (Wright et al. 1982; Hodges and Rutkowski 1981; Hamza-Cherif and Houmat 2004) and
   the tip-mass frequency equation, from the files of rule ``validate_published``
   (``published_comparison.csv``, ``tip_mass_comparison.csv``, ``rotating_eigen.nc`` and the figure).
-* :func:`exudyn_markdown` -- the report of the comparison with the Exudyn ANCF reference
-  (``results/report/validation_exudyn.md``), from the files of ``snakemake validate``
-  (``exudyn_comparison.csv``, ``exudyn_mode_study.csv``, ``exudyn_convergence.csv``, the figure).
+* :func:`validation_markdown` -- the report of ``snakemake validate``
+  (``results/[<study>/]report/validation_exudyn.md``): the comparison with the Exudyn ANCF
+  reference (``exudyn_comparison.csv``, ``exudyn_mode_study.csv``, ``exudyn_convergence.csv``, the
+  figure) when the config has a ``validation`` section, and the frequencies of a non-uniform beam
+  from the Ritz model, our finite elements and pyBModes (``nonuniform_ritz_fe.csv``,
+  ``nonuniform_pybmodes.csv``).
 
 Every number of the text (counts, ratios, the evidence for how a table's last digit was
 obtained, the key findings of docs/validation.md) is computed here from those files; none is
@@ -33,7 +36,7 @@ import pandas as pd
 from hubbeam import __version__
 from hubbeam.document import render
 from hubbeam.io import ResultFileError, open_result
-from hubbeam.validation import published
+from hubbeam.validation import nonuniform, published
 from hubbeam.validation.rotating_eigen import allowed_interval
 
 READINGS = ("rounded", "truncated")
@@ -46,6 +49,10 @@ COMPARISON_COLUMNS = ("case", "model", "wf", "tf", "tip_mass_kg", "n_modes", "ma
                       "max_abs_difference_rel_peak", "peak_m", "peak_reference_m", "residual_m",
                       "residual_reference_m", "residual_ratio", "diverged", "diverged_at_s")
 MODE_STUDY_COLUMNS = ("case", "model", "n_modes", "max_abs_difference_m")
+NONUNIFORM_COLUMNS = ("direction", "speed_rad_s", "mode", "n_modes", "ritz_hz", "fe_hz", "rel_diff",
+                      "case", "tip_mass_kg")
+PYBMODES_COLUMNS = ("direction", "speed_rad_s", "mode", "pybmodes_hz", "order", "rel_diff_ritz",
+                    "rel_diff_fe")
 CONVERGENCE_COLUMNS = ("study", "value", "elements", "time_step_s", "newton_tolerance", "production",
                        "max_abs_difference_to_finest_m", "max_abs_difference_to_next_finer_m",
                        "newton_iterations", "cpu_time_s")
@@ -345,8 +352,8 @@ def _convergence_tables(convergence: pd.DataFrame) -> list[str]:
     return out
 
 
-def exudyn_markdown(comparison_csv, mode_study_csv, convergence_csv, figure, report_dir) -> str:
-    """The report of the Exudyn comparison, ``results/report/validation_exudyn.md``."""
+def _exudyn_context(comparison_csv, mode_study_csv, convergence_csv, figure, report_dir) -> dict:
+    """The template variables of the Exudyn part of the validation report."""
     comparison = read_result_table(comparison_csv, COMPARISON_COLUMNS, BUILD_EXUDYN)
     mode_study = read_result_table(mode_study_csv, MODE_STUDY_COLUMNS, BUILD_EXUDYN)
     convergence = read_result_table(convergence_csv, CONVERGENCE_COLUMNS, BUILD_EXUDYN)
@@ -371,11 +378,53 @@ def exudyn_markdown(comparison_csv, mode_study_csv, convergence_csv, figure, rep
     for (case, model), rows in mode_study.groupby(["case", "model"], sort=False):
         values = dict(zip(rows["n_modes"], rows["max_abs_difference_m"]))
         mode_rows.append(f"| {case} | {model} | " + " | ".join(_g(values.get(n, math.nan)) for n in counts) + " |")
-    return render(
-        "validation_exudyn.md.j2", version=__version__, settings=settings,
+    return dict(
+        settings=settings,
         models=list(comparison["model"].unique()), modes=_range(comparison["n_modes"].values, digits=3),
         cases=[f"{row['case']} ({_case_label(row)}, t_f = {row['tf']:g} s)" for _, row in cases.iterrows()],
         findings=exudyn_findings(comparison, mode_study, convergence), comparison_rows=comparison_rows,
         figure=_link(figure, report_dir), mode_rows=mode_rows,
         convergence_rows=_convergence_tables(convergence))
 
+
+# --- non-uniform beams ----------------------------------------------------------------------------
+
+def _nonuniform_context(ritz_fe_csv, pybmodes_csv=None) -> dict:
+    """The template variables of the non-uniform checks: per case (bare beam, tip mass) and mode
+    count the largest |Ritz / FE - 1| over directions, speeds and the compared modes; per model
+    the largest |ours / pyBModes - 1| and the observed orders of pyBModes's meshes."""
+    ritz_fe = read_result_table(ritz_fe_csv, NONUNIFORM_COLUMNS, BUILD_EXUDYN)
+    worst = (ritz_fe.assign(error=ritz_fe["rel_diff"].abs())
+             .pivot_table(index="case", columns="n_modes", values="error", aggfunc="max"))
+    counts = list(worst.columns)
+    masses = ritz_fe.groupby("case")["tip_mass_kg"].first()
+    ritz_rows = ["| case | tip mass (kg) | " + " | ".join(f"n = {n}" for n in counts) + " |",
+                 "|---|---:|" + "---:|" * len(counts)]
+    for case, row in worst.iterrows():
+        ritz_rows.append(f"| {case} | {masses[case]:.4g} | "
+                         + " | ".join(_g(row[n], 2) for n in counts) + " |")
+    context = dict(ritz_rows=ritz_rows, speeds=_range(ritz_fe["speed_rad_s"].unique(), digits=3),
+                   frequencies=int(ritz_fe["mode"].max()), ritz_best=_g(worst[counts[-1]].max(), 2),
+                   ritz_modes=int(counts[-1]), speed_ratios=[f"{r:g}" for r in nonuniform.SPEED_RATIOS],
+                   taper=f"{nonuniform.TAPER_RATIO:g}", tip_ratio=f"{nonuniform.TIP_MASS_RATIO:g}",
+                   fe_elements=nonuniform.FE_ELEMENTS, pybmodes=None)
+    if pybmodes_csv is not None:
+        table = read_result_table(pybmodes_csv, PYBMODES_COLUMNS, BUILD_EXUDYN)
+        context["pybmodes"] = dict(
+            ritz=_g(table["rel_diff_ritz"].abs().max(), 2), fe=_g(table["rel_diff_fe"].abs().max(), 2),
+            order=_range(table["order"].values, digits=3), rows=len(table),
+            meshes=list(nonuniform.PYBMODES_MESHES))
+    return context
+
+
+def validation_markdown(report_dir, ritz_fe_csv, pybmodes_csv=None, exudyn=None) -> str:
+    """The validation report ``RESULTS/report/validation_exudyn.md``: the non-uniform checks
+    (``nonuniform_ritz_fe.csv``, ``nonuniform_pybmodes.csv`` when pyBModes ran) and, given
+    ``exudyn`` = ``{"comparison", "mode_study", "convergence", "figure"}`` (paths), the
+    comparison with the Exudyn reference."""
+    exudyn_context = None
+    if exudyn is not None:
+        exudyn_context = _exudyn_context(exudyn["comparison"], exudyn["mode_study"],
+                                         exudyn["convergence"], exudyn["figure"], report_dir)
+    return render("validation_exudyn.md.j2", version=__version__, exudyn=exudyn_context,
+                  nonuniform=_nonuniform_context(ritz_fe_csv, pybmodes_csv))

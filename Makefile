@@ -3,6 +3,8 @@
 #   make test        set up .venv (if needed) and run the test suite (with the import contracts and ruff)
 #   make test-fast   the same without the tests that run Snakemake or kill processes, or are slow
 #                    (-m "not workflow and not slow", see tests/conftest.py)
+#   make test-slurm  bring up the one-node SLURM cluster (profiles/slurm/local-cluster.sh, as root),
+#                    run the workflow on it (pytest -m slurm, tests/test_slurm.py), bring it down
 #   make benchmark   set up .venv (if needed) and time hubbeam against scipy (benchmarks/, results/benchmarks)
 #   make lock        (maintainers) re-resolve pyproject.toml's dependencies into requirements.lock
 # Setup installs hubbeam (editable, with its `test` extra; `validation` is opt-in, see README) constrained to the
@@ -14,7 +16,7 @@ VENV := .venv
 VENV_PYTHON := $(VENV)/bin/python
 STAMP := $(VENV)/.hubbeam-installed
 
-.PHONY: reproduce test test-fast benchmark setup lock
+.PHONY: reproduce test test-fast test-slurm benchmark setup lock
 
 reproduce: $(STAMP)
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/snakemake
@@ -24,6 +26,13 @@ test: $(STAMP)
 
 test-fast: $(STAMP)
 	$(VENV_PYTHON) -m pytest -q -m "not workflow and not slow"
+
+# The cluster comes down (by the PIDs `up` recorded) even when the tests fail.
+test-slurm: $(STAMP)
+	$(VENV_PYTHON) -m pip install --quiet --constraint requirements.lock --editable ".[test,cluster]"
+	profiles/slurm/local-cluster.sh up
+	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" HUBBEAM_TEST_SLURM=1 $(VENV_PYTHON) -m pytest -q -m slurm; \
+		status=$$?; profiles/slurm/local-cluster.sh down; exit $$status
 
 benchmark: $(STAMP)
 	$(VENV_PYTHON) -m benchmarks

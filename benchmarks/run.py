@@ -21,7 +21,8 @@ median of warm runs (compiled beforehand). The methods:
 
 * ``hubbeam radau5``: hubbeam's Radau IIA kernel with dense output of the states
   (:func:`hubbeam.core.integrate.integrate_free`), and ``hubbeam simulate_kernel``: the same
-  integration plus every output of a simulation dataset, at the tolerance found for the former;
+  integration plus every output of a simulation dataset, at the tolerance found for the former
+  (``outputs_ratio``: its wall time over the former's);
 * ``scipy <method>``: ``scipy.integrate.solve_ivp`` with the same equations, the jitted
   first-order right-hand side (:mod:`hubbeam.core.first_order`) as ``fun`` (a fast RHS with
   scipy's stepping) and, for ``benchmark.jacobian_methods``, the jitted forward-difference
@@ -98,7 +99,8 @@ def run(config_files: Sequence[str], benchmark_file: os.PathLike | str, output: 
             rows.append(python_rhs_row(bench, case_rows, reference, settings, cap, log))
     written = {}
     columns = ["method", "settings", "wall_s", "compile_s", "rhs_calls", "max_err_m", "case",
-               "model", "modes", "t_end_s", "rtol", "repeats", "passed", "note", "ladder"]
+               "model", "modes", "t_end_s", "rtol", "repeats", "passed", "outputs_ratio", "note",
+               "ladder"]
     compile_rows = []
     if compilation:
         compile_rows = compilation_rows(config_files, resolved[settings["python_rhs_case"]])

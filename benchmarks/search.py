@@ -90,13 +90,15 @@ def benchmark_case(bench: BenchmarkCase, methods: Sequence[Method], settings: Ma
                    log=print) -> tuple[list, dict, np.ndarray]:
     """Rows of ``integrators.csv`` for one case, the reference's record and its tip deflection.
 
-    ``HUBBEAM_FULL`` is timed at the tolerance found for ``HUBBEAM`` (listed before it)."""
+    ``HUBBEAM_FULL`` is timed at the tolerance found for ``HUBBEAM`` (listed before it); its
+    ``outputs_ratio`` is its wall time over ``HUBBEAM``'s: the cost of every dataset output."""
     ladder, ratio = settings["tolerances"], settings["atol_ratio"]
     reference, info = reference_solution(bench, settings["reference_rtol"], ratio,
                                          REFERENCE_CAP_FACTOR * cap)
     log(f"[{bench.name}] reference: {json.dumps(info)}")
     rows = []
     hubbeam_rtol = None
+    hubbeam_wall = math.nan
     for method in methods:
         if method.solver == HUBBEAM_FULL:
             if hubbeam_rtol is None:
@@ -123,8 +125,13 @@ def benchmark_case(bench: BenchmarkCase, methods: Sequence[Method], settings: Ma
             "max_err_m": error, "passed": search.rtol is not None and error <= settings[
                 "error_target"], "note": search.note,
             "ladder": "; ".join(f"{r:.0e}:{e:.1e}m/{w:.3g}s" for r, e, w in search.tried)})
+        if method.solver == HUBBEAM:
+            hubbeam_wall = wall
+        elif method.solver == HUBBEAM_FULL:
+            rows[-1]["outputs_ratio"] = wall / hubbeam_wall
         log(f"[{bench.name}] {method.label}: {rows[-1]['settings']}, wall {wall:.4g} s (x{count}), "
-            f"err {error:.2e} m {search.note}")
+            f"err {error:.2e} m {search.note}"
+            + (f", {rows[-1]['outputs_ratio']:.2f} x {HUBBEAM}" if "outputs_ratio" in rows[-1] else ""))
     return rows, info, reference
 
 

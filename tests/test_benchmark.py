@@ -128,6 +128,10 @@ def test_command_line_writes_the_tables(_study_config, tmp_path):
     assert set(table.method) - set(python_rows.method) == {
         "hubbeam radau5", "hubbeam simulate_kernel", "scipy RK45", "scipy Radau",
         "scipy Radau (jitted Jacobian)"}
+    by_method = table.set_index("method")
+    assert by_method.loc["hubbeam simulate_kernel", "outputs_ratio"] == pytest.approx(
+        by_method.loc["hubbeam simulate_kernel", "wall_s"] / by_method.loc["hubbeam radau5", "wall_s"])
+    assert by_method.drop(index="hubbeam simulate_kernel").outputs_ratio.isna().all()
     passed = table[table.passed]
     assert (passed.max_err_m <= 1e-6).all() and (passed.wall_s > 0).all()
     assert (passed.rhs_calls > 0).all()

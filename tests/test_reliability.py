@@ -282,7 +282,7 @@ def script_runs(synthetic, out: Path, config: dict):
          ("table1.csv", "table1.md", "table1.tex", "table2.csv", "table2.md", "table2.tex",
           "table3.csv", "table3.md", "table3.tex", "critical_speeds.csv")}
     return [
-        ("compile_simulation_kernel.py", {}, {"done": str(out / "kernel.done")}, {}),
+        ("compile_simulation_kernel.py", {}, {"done": str(out / "kernel_foam.done")}, {"family": "foam"}),
         ("assemble_matrices.py", {}, {"nc": str(out / "matrices" / "mt0p5_l8.nc")},
          {"beam": config["beam"], "configuration": tip, "n_quad": 16}),
         ("simulate_case.py", {"matrices": str(out / "matrices" / "mt0p5_l8.nc")},

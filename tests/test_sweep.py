@@ -6,9 +6,11 @@
   self-describing and survives a netCDF round trip;
 * a diverged run (TLAM beyond its critical speed) is flagged, with NaN extrema, not an error, and
   TLAM diverges exactly where the final speed exceeds the eigen-analysis' critical speed;
-* the threaded kernel gives the same numbers on any number of threads;
+* the threaded kernel gives the same numbers on any number of threads; a map gathered from its
+  chunks (through their files) is identical to the map run in one go;
 * the extremum of the cubic Hermite interpolant and the output grid are exact;
-* config validation names the key of an inconsistent sweep; both figure kinds are drawn.
+* config validation names the key of an inconsistent sweep; both figure kinds are drawn, and the
+  slices of a map over three axes.
 """
 
 import copy
@@ -26,7 +28,16 @@ from hubbeam.core.sweep import hermite_abs_max, output_grid
 from hubbeam.io import open_result, write_netcdf
 from hubbeam.parameters import BeamParameters
 from hubbeam.simulate import simulate
-from hubbeam.sweep import _points, axis_values, run_sweep, sweep_names, sweep_settings
+from hubbeam.sweep import (
+    _points,
+    axis_values,
+    gather_chunks,
+    n_chunks,
+    run_chunk,
+    run_sweep,
+    sweep_names,
+    sweep_settings,
+)
 
 #: relative accuracy of the peak tip deflection that the maps are meant to have
 MAP_ACCURACY = 1e-4
@@ -201,6 +212,41 @@ def test_thread_count_does_not_change_the_numbers(with_tip_mass, params):
             np.testing.assert_array_equal(again[name].values, ds[name].values)
 
 
+@pytest.fixture(scope="module")
+def cube(_study_config, params):
+    """The three-axis map on a 3 x 2 x 2 grid, in one go."""
+    sweep = small_sweep(_study_config, "tlam_vs_foam_3d", wf=[1.0, 2.0, 3.0], tf=[4.0, 8.0],
+                        tip_mass=[0.0, 0.5])
+    sweep["t_after"] = 3.0
+    sweep["chunk_size"] = 5
+    return sweep, run_sweep(sweep, params)
+
+
+def test_a_map_gathered_from_chunk_files_equals_the_single_run(cube, params, tmp_path):
+    sweep, whole = cube
+    assert n_chunks(sweep) == 5  # 24 simulations: four chunks of 5, one of 4
+    files = [write_netcdf(run_chunk(sweep, params, index, threads=1), tmp_path / f"{index}.nc")
+             for index in range(n_chunks(sweep))]
+    chunks = [open_result(path) for path in reversed(files)]  # any order
+    gathered = gather_chunks(sweep, params, chunks)
+    xr.testing.assert_identical(gathered.drop_attrs(deep=False), whole.drop_attrs(deep=False))
+    assert {k: v for k, v in gathered.attrs.items() if k != "history"} == {
+        k: v for k, v in whole.attrs.items() if k != "history"}
+    assert whole.peak_tip_deflection.dims == ("model", "wf", "tf", "tip_mass")
+    with pytest.raises(ValueError, match=r"chunks \[0, 1, 2, 3\]; allowed: each of 0 to 4 once"):
+        gather_chunks(sweep, params, chunks[1:])
+    with pytest.raises(ValueError, match="chunk 0 was run with other sweep settings"):
+        gather_chunks(dict(sweep, t_after=4.0), params, chunks)
+    with pytest.raises(IndexError, match="chunk 5; allowed: 0 to 4"):
+        run_chunk(sweep, params, 5)
+
+
+def test_the_million_run_map_is_chunked(_study_config):
+    sweep = sweep_settings(_study_config, "tlam_vs_foam_3d")
+    assert len(sweep["models"]) * math.prod(g["num"] for g in sweep["grid"].values()) >= 10**6
+    assert not sweep["in_all"] and n_chunks(sweep) > 1
+
+
 def test_hermite_extremum_and_output_grid():
     rng = np.random.default_rng(7)
     s = np.linspace(0.0, 1.0, 200_001)
@@ -236,12 +282,17 @@ def test_inconsistent_sweep_is_rejected_naming_the_key(_study_config, change, ke
     assert key in str(error.value)
 
 
-def test_both_figure_kinds_are_drawn(spinup, with_tip_mass, tmp_path):
+def test_both_figure_kinds_are_drawn(spinup, with_tip_mass, cube, tmp_path):
     from hubbeam.plotting import draw
     from hubbeam.plotting.sweep_maps import plot, relative_departure
 
     for name, (_, ds) in {"peak": spinup, "departure": with_tip_mass}.items():
         pdf, png = draw(plot, tmp_path / f"{name}.pdf", ds)
+        assert pdf.stat().st_size > 0 and png.stat().st_size > 0
+    sweep, ds = cube
+    for figure in (sweep["figure"], {"kind": "peak", "slices": 2}):
+        ds = ds.assign_attrs(sweep_config=json.dumps(dict(sweep, figure=figure)))
+        pdf, png = draw(plot, tmp_path / f"cube_{figure['kind']}.pdf", ds)
         assert pdf.stat().st_size > 0 and png.stat().st_size > 0
     _, ds = with_tip_mass
     departure = relative_departure(ds, "TLAM", "FOAM")

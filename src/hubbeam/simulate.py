@@ -394,26 +394,33 @@ def simulation_inputs(attrs: Mapping) -> dict:
     }
 
 
-def compile_kernels() -> float:
-    """Compile (or load from numba's cache) the simulation kernel; return the seconds it took.
+def compile_kernels(family: str | None = None) -> float:
+    """Compile (or load from numba's cache) the simulation kernel of ``family`` (a key of
+    :data:`hubbeam.core.integrate.FAMILY_KERNELS`; default: every family); return the seconds it
+    took.
 
-    One kernel serves every model, maneuver and mode count, so a workflow calls this once before
-    it starts parallel simulations (they then all load the cached machine code).
+    One kernel per family serves every model of it, maneuver and mode count, so a workflow calls
+    this once per family before it starts parallel simulations (they then all load the cached
+    machine code); the families compile independently, in parallel processes if wanted.
     """
+    models = {"foam": "FOAM", "cfoam": "CFOAM"}
+    if family is not None and family not in models:
+        raise ValueError(f"family: got {family!r}; allowed: {', '.join(models)}")
     params = BeamParameters(L=1.0, rho=1.0, A=1.0, E=1.0, I=1.0, Jh=1.0, rA=0.1)
-    case = {"name": "compile_kernels", "model": "FOAM", "modes": 1, "t_end": 0.1,
-            "maneuver": {"kind": "prescribed", "wf": 0.1, "tf": 0.05},
-            "tip_mass": {"mass": 0.0, "position": 1.0}}
     numerics = {"rtol": 1e-6, "atol": 1e-8, "output_step": 0.05, "max_steps": 1000,
                 "step_warning": 1000, "divergence_limit": 1.0, "quadrature_points": 8}
     start = time.perf_counter()
-    sm = case_matrices(case, params, numerics)
-    kind, mp = maneuver_parameters(case["maneuver"])
-    t = output_times(case["t_end"], numerics["output_step"])
-    out = np.empty((t.size, n_output_columns(1)))
-    stats = np.zeros(len(radau.STAT_NAMES), np.int64)
-    simulate_kernel(MODEL_IDS["FOAM"], kind, mp, damping_matrices(None, sm), sm, t,
-                    step_stops(case, t), 1e-6, 1e-8, 1.0, 1000, out, stats)
+    for name in [family] if family else list(models):
+        case = {"name": "compile_kernels", "model": models[name], "modes": 1, "t_end": 0.1,
+                "maneuver": {"kind": "prescribed", "wf": 0.1, "tf": 0.05},
+                "tip_mass": {"mass": 0.0, "position": 1.0}}
+        sm = case_matrices(case, params, numerics)
+        kind, mp = maneuver_parameters(case["maneuver"])
+        t = output_times(case["t_end"], numerics["output_step"])
+        out = np.empty((t.size, n_output_columns(1)))
+        stats = np.zeros(len(radau.STAT_NAMES), np.int64)
+        simulate_kernel(MODEL_IDS[models[name]], kind, mp, damping_matrices(None, sm), sm, t,
+                        step_stops(case, t), 1e-6, 1e-8, 1.0, 1000, out, stats)
     return time.perf_counter() - start
 
 

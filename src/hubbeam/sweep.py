@@ -1,15 +1,20 @@
-"""Parameter sweeps: maps of the peak tip deflection over two maneuver or tip-mass parameters.
+"""Parameter sweeps: maps of the peak tip deflection over maneuver or tip-mass parameters.
 
 A sweep (``sweeps.maps.<name>`` of the config, resolved by :func:`sweep_settings`) fixes the
-models, the maneuver kind and its fixed parameters, the tip mass, and spans two swept parameters
-(``wf``, ``tf``, ``tau_max``, ``tip_mass``, ``tip_position``) on uniform grids. Every
+models, the maneuver kind and its fixed parameters, the tip mass, and spans two or more swept
+parameters (``wf``, ``tf``, ``tau_max``, ``tip_mass``, ``tip_position``) on uniform grids. Every
 (model, grid point) is one simulation from rest over ``[0, tf + t_after]``, run by the parallel
 kernel :func:`hubbeam.core.sweep.sweep_tip_extrema` (the integrator and equations of
 :func:`hubbeam.simulate.simulate`, keeping only the extrema of the tip deflection).
-:func:`run_sweep` returns a self-describing dataset over ``(model, <axis 1>, <axis 2>)``; a run
-that stops early (tip deflection beyond ``numerics.divergence_limit * L``, a non-finite state or a
-vanishing step) is a result with NaN extrema, classified by :mod:`hubbeam.validity` (variable
-``validity``: valid, large_deflection, left_range or diverged).
+:func:`run_sweep` returns a self-describing dataset over ``(model, <axis 1>, <axis 2>, ...)``; a
+run that stops early (tip deflection beyond ``numerics.divergence_limit * L``, a non-finite state
+or a vanishing step) is a result with NaN extrema, classified by :mod:`hubbeam.validity`
+(variable ``validity``: valid, large_deflection, left_range or diverged).
+
+A map is also computed in chunks of ``chunk_size`` consecutive points (in the C order of
+``(model, axes...)``): :func:`run_chunk` simulates one chunk into a small dataset of raw per-point
+arrays, :func:`gather_chunks` joins them into the map. Every point is simulated alone, so the
+gathered map is bit-identical to :func:`run_sweep`'s, whatever the chunk size.
 """
 
 from __future__ import annotations
@@ -45,6 +50,9 @@ PARAMETERS = {
     "tip_position": ("m", "tip-mass position l from the clamped root"),
 }
 TIP_PARAMETERS = ("tip_mass", "tip_position")
+#: simulations per chunk unless ``sweeps.chunk_size`` or the map's ``chunk_size`` says otherwise:
+#: about a minute on one core at the default sweep numerics (docs/performance.md)
+DEFAULT_CHUNK_SIZE = 32_000
 
 #: outputs a sweep may store: (column of the kernel's result array, units, long name)
 OUTPUTS = {
@@ -87,6 +95,9 @@ def sweep_settings(cfg: Mapping, name: str) -> dict:
                      "position": float(tip.get("position", cfg["beam"]["length"]))},
         "outputs": list(spec["outputs"]),
         "figure": dict(spec["figure"]),
+        "in_all": bool(spec.get("in_all", True)),
+        "chunk_size": int(spec.get("chunk_size",
+                                   cfg["sweeps"].get("chunk_size", DEFAULT_CHUNK_SIZE))),
         "numerics": {key: cfg["sweeps"]["numerics"][key]
                      for key in ("rtol", "atol", "output_step", "max_steps")},
         "divergence_limit": float(cfg["numerics"]["divergence_limit"]),
@@ -103,7 +114,7 @@ def axis_values(sweep: Mapping) -> dict[str, np.ndarray]:
 
 
 def _points(sweep: Mapping):
-    """Per-point inputs of the kernel, points ordered as ``(model, axis 1, axis 2)`` in C order.
+    """Per-point inputs of the kernel, points ordered as ``(model, axes...)`` in C order.
 
     Returns ``models, mp, matrix_index, t_end, t_mark`` and the distinct tip masses as a list
     of ``TipMass`` (``matrix_index`` points into it).
@@ -149,21 +160,47 @@ def default_threads() -> int:
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
 
 
-def run_sweep(sweep: Mapping, params: BeamParameters, threads: int | None = None) -> xr.Dataset:
-    """Simulate every point of the resolved ``sweep`` on ``threads`` threads (default: every
-    CPU this process may use) and return the sweep dataset. The numbers do not depend on the
-    thread count."""
+def n_points(sweep: Mapping) -> int:
+    """Simulations of the sweep: models times grid points."""
+    return len(sweep["models"]) * int(np.prod([sweep["grid"][key]["num"] for key in sweep["axes"]]))
+
+
+def n_chunks(sweep: Mapping) -> int:
+    """Chunks of ``sweep["chunk_size"]`` consecutive points that cover the sweep."""
+    return -(-n_points(sweep) // sweep["chunk_size"])
+
+
+def chunk_points(sweep: Mapping, index: int) -> range:
+    """The points (C order of ``(model, axes...)``) of chunk ``index``."""
+    if not 0 <= index < n_chunks(sweep):
+        raise IndexError(f"sweep {sweep['name']}: chunk {index}; allowed: 0 to "
+                         f"{n_chunks(sweep) - 1}")
+    size = sweep["chunk_size"]
+    return range(index * size, min((index + 1) * size, n_points(sweep)))
+
+
+def run_points(sweep: Mapping, params: BeamParameters, points: range | None = None,
+               threads: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Simulate the ``points`` of the resolved ``sweep`` (default: all) on ``threads`` threads
+    (default: every CPU this process may use); return the kernel's per-point ``results``,
+    ``status`` and ``stats`` arrays. The numbers do not depend on the thread count or on which
+    other points run alongside."""
     models, mp, matrix_index, t_end, t_mark, tips = _points(sweep)
-    stack = matrix_stack([assemble(params, tip, sweep["modes"], sweep["quadrature_points"])
-                          for tip in tips])
+    points = range(models.size) if points is None else points
+    selected = slice(points.start, points.stop)
+    used, local_index = np.unique(matrix_index[selected], return_inverse=True)
+    stack = matrix_stack([assemble(params, tips[k], sweep["modes"], sweep["quadrature_points"])
+                          for k in used])
     numerics = sweep["numerics"]
-    n_points = models.size
-    threads = max(1, min(int(threads or default_threads()), n_points))
-    results = np.full((n_points, len(kernels.RESULT_COLUMNS)), np.nan)
-    status = np.zeros(n_points, np.int64)
-    stats = np.zeros((n_points, kernels.N_STATS), np.int64)
-    arguments = (models, MANEUVERS[sweep["maneuver"]["kind"]][0], mp, matrix_index, t_end,
-                 t_mark, stack, float(numerics["output_step"]), float(numerics["rtol"]),
+    count = len(points)
+    threads = max(1, min(int(threads or default_threads()), count))
+    results = np.full((count, len(kernels.RESULT_COLUMNS)), np.nan)
+    status = np.zeros(count, np.int64)
+    stats = np.zeros((count, kernels.N_STATS), np.int64)
+    arguments = (np.ascontiguousarray(models[selected]), MANEUVERS[sweep["maneuver"]["kind"]][0],
+                 np.ascontiguousarray(mp[selected]), np.ascontiguousarray(local_index.ravel()),
+                 np.ascontiguousarray(t_end[selected]), np.ascontiguousarray(t_mark[selected]),
+                 stack, float(numerics["output_step"]), float(numerics["rtol"]),
                  float(numerics["atol"]), sweep["divergence_limit"] * params.L,
                  int(numerics["max_steps"]), results, status, stats)
     start = time.perf_counter()
@@ -173,17 +210,59 @@ def run_sweep(sweep: Mapping, params: BeamParameters, threads: int | None = None
         for share in shares:
             share.result()
     wall = time.perf_counter() - start
-    LOG.info("sweep %s: %d simulations in %.2f s on %d threads (%.2f ms each), %d stopped early, "
-             "%d failed, %d rhs calls", sweep["name"], n_points, wall, threads,
-             1e3 * wall / max(n_points, 1), np.isin(status, (radau.LEFT_RANGE, *validity.BLOWN_UP)).sum(),
-             (status == radau.TOO_MANY_STEPS).sum(), stats[:, radau.RHS_CALLS].sum())
-    return build_dataset(sweep, params, results, status, stats)
+    LOG.info("sweep %s, points %d to %d: %d simulations in %.2f s on %d threads (%.2f ms each), "
+             "%d stopped early, %d failed, %d rhs calls", sweep["name"], points.start, points.stop - 1,
+             count, wall, threads, 1e3 * wall / max(count, 1),
+             np.isin(status, (radau.LEFT_RANGE, *validity.BLOWN_UP)).sum(),
+             (status == radau.TOO_MANY_STEPS).sum(),
+             stats[:, radau.RHS_CALLS].sum())
+    return results, status, stats
+
+
+def run_sweep(sweep: Mapping, params: BeamParameters, threads: int | None = None) -> xr.Dataset:
+    """Simulate every point of the resolved ``sweep`` in one go (:func:`run_points`) and return
+    the sweep dataset."""
+    return build_dataset(sweep, params, *run_points(sweep, params, threads=threads))
+
+
+def run_chunk(sweep: Mapping, params: BeamParameters, index: int,
+              threads: int | None = None) -> xr.Dataset:
+    """Chunk ``index`` of the sweep (:func:`chunk_points`): the kernel's raw arrays over its
+    points, for :func:`gather_chunks`."""
+    points = chunk_points(sweep, index)
+    results, status, stats = run_points(sweep, params, points, threads)
+    return xr.Dataset(
+        {"results": (("point", "result_column"), results),
+         "status": ("point", status),
+         "stats": (("point", "stat"), stats)},
+        coords={"point": ("point", np.arange(points.start, points.stop)),
+                "result_column": list(kernels.RESULT_COLUMNS), "stat": list(radau.STAT_NAMES)},
+        attrs={"sweep_name": sweep["name"], "chunk": index, "n_chunks": n_chunks(sweep),
+               "sweep_config": json.dumps(dict(sweep), sort_keys=True)})
+
+
+def gather_chunks(sweep: Mapping, params: BeamParameters, chunks: list[xr.Dataset]) -> xr.Dataset:
+    """The sweep dataset from every chunk of :func:`run_chunk` (any order); the chunks must be
+    of this very sweep and cover it exactly once."""
+    config = json.dumps(dict(sweep), sort_keys=True)
+    chunks = sorted(chunks, key=lambda chunk: int(chunk.attrs["chunk"]))
+    found = [int(chunk.attrs["chunk"]) for chunk in chunks]
+    if found != list(range(n_chunks(sweep))):
+        raise ValueError(f"sweep {sweep['name']}: chunks {found}; allowed: each of 0 to "
+                         f"{n_chunks(sweep) - 1} once")
+    for chunk in chunks:
+        if chunk.attrs["sweep_config"] != config:
+            raise ValueError(f"sweep {sweep['name']}: chunk {int(chunk.attrs['chunk'])} was run "
+                             "with other sweep settings; allowed: chunks of the same settings")
+    return build_dataset(sweep, params,
+                         *(np.concatenate([chunk[name].values for chunk in chunks])
+                           for name in ("results", "status", "stats")))
 
 
 def build_dataset(sweep: Mapping, params: BeamParameters, results: np.ndarray,
                   status: np.ndarray, stats: np.ndarray) -> xr.Dataset:
     """The labelled sweep dataset from the kernel's per-point arrays (points in C order of
-    ``(model, axis 1, axis 2)``)."""
+    ``(model, axes...)``)."""
     axes = axis_values(sweep)
     dims = ("model",) + tuple(axes)
     shape = (len(sweep["models"]),) + tuple(values.size for values in axes.values())
@@ -305,5 +384,5 @@ def compile_kernel() -> float:
              "divergence_limit": 1.0, "small_deflection_limit": 0.1, "quadrature_points": 8, "outputs": [],
              "critical_speed_search_max": 1.0}
     start = time.perf_counter()
-    run_sweep(sweep, params, threads=1)
+    run_points(sweep, params, threads=1)
     return time.perf_counter() - start

@@ -49,6 +49,22 @@ def script_code(script, *modules):
     return [os.path.relpath(path) for path in files]
 
 
+def simulation_kernel_done(wildcards):
+    """Input function of `simulate`: the marker of the compiled kernel of the case's family."""
+    from hubbeam.core.eom import MODEL_IDS
+    from hubbeam.core.integrate import model_family
+
+    family = model_family(MODEL_IDS[case_config(wildcards.case)["model"]])
+    return f"logs/simulations/kernel_{family}.done"
+
+
+def simulation_kernels_done(wildcards):
+    """Input function of jobs that simulate any model: the markers of every family's kernel."""
+    from hubbeam.core.integrate import FAMILY_KERNELS
+
+    return expand("logs/simulations/kernel_{family}.done", family=sorted(FAMILY_KERNELS))
+
+
 def simulation_results():
     """One netCDF file per configured case."""
     return expand(f"{RESULTS}/simulations/{{case}}.nc", case=cases())
@@ -356,10 +372,22 @@ def sweep_params(wildcards):
     return sweep_settings(config, wildcards.sweep)
 
 
-def sweep_targets():
-    """Every sweep's netCDF result and its figure (PDF and PNG)."""
-    return expand("results/sweeps/{sweep}.nc", sweep=sweeps()) + expand(
-        "results/figures/sweep_{sweep}.{ext}", sweep=sweeps(), ext=("pdf", "png")
+def sweep_chunks(wildcards):
+    """Input function of `sweep`: the chunk files of the job's `{sweep}` wildcard."""
+    from hubbeam.sweep import n_chunks
+
+    count = n_chunks(sweep_params(wildcards))
+    return expand(f"results/sweeps/chunks/{wildcards.sweep}/{{chunk}}.nc", chunk=range(count))
+
+
+def sweep_targets(in_all=True):
+    """The netCDF result and the figure (PDF and PNG) of every sweep whose `in_all` is `in_all`
+    (the maps of `all`, or the large ones of `large_sweeps`)."""
+    from hubbeam.sweep import sweep_settings
+
+    names = [name for name in sweeps() if sweep_settings(config, name)["in_all"] == in_all]
+    return expand("results/sweeps/{sweep}.nc", sweep=names) + expand(
+        "results/figures/sweep_{sweep}.{ext}", sweep=names, ext=("pdf", "png")
     )
 
 

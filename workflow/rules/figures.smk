@@ -10,6 +10,7 @@ for _key, _product in of_kind(PAPER_PRODUCTS, SIMULATION_FIGURE).items():
     rule:
         name:
             f"figure_{_key}"
+        localrule: True
         input:
             datasets=product_datasets(_key),
             style=FIGURE_STYLE,
@@ -36,6 +37,7 @@ for _key, _product in of_kind(PAPER_PRODUCTS, EIGEN_FIGURE).items():
     rule:
         name:
             f"figure_{_key}"
+        localrule: True
         input:
             **_product.files,
             style=FIGURE_STYLE,
@@ -57,6 +59,7 @@ for _key, _product in of_kind(PAPER_PRODUCTS, EIGEN_FIGURE).items():
 
 
 rule table1:
+    localrule: True
     input:
         code=script_code("table_1.py"),
     output:
@@ -73,6 +76,7 @@ rule table1:
 
 
 rule table2_render:
+    localrule: True
     input:
         **product("table2").files,
         code=script_code("table_2.py"),
@@ -89,6 +93,7 @@ rule table2_render:
 
 
 rule table3:
+    localrule: True
     input:
         datasets=product_datasets("table3"),
         code=script_code("table_3.py"),

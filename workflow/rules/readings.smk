@@ -16,7 +16,7 @@ rule reading:
         table2="results/tables/table2.csv",
         critical_speeds="results/tables/critical_speeds.csv",
         claims="results/report/claims.csv",
-        kernel="logs/simulations/kernel.done",
+        kernel=simulation_kernels_done,
         code=script_code("readings_reading.py"),
     output:
         ensure("results/readings/claims/{reading}.csv", non_empty=True),

@@ -5,6 +5,7 @@ report: "../report/workflow.rst"
 
 
 rule claims:
+    localrule: True
     input:
         datasets=expand("results/simulations/{case}.nc", case=claim_cases()),
         table2="results/tables/table2.csv",
@@ -25,6 +26,7 @@ rule claims:
 
 
 rule reproduction_report:
+    localrule: True
     input:
         claims="results/report/claims.csv",
         figures=[path for path in figure_targets() if path.endswith(".png")],
@@ -52,6 +54,7 @@ rule reproduction_report:
 
 
 rule archive:
+    localrule: True
     input:
         archive_inputs,
     output:

@@ -5,8 +5,10 @@ The system matrices come from `<RESULTS>/matrices/<configuration>.nc` (their lea
 the beam parameters, the resolved case, the integrator settings and the optional convergence check
 (`numerics.convergence_check`, None when absent) come through `params:`, so that editing a case
 reruns exactly that case (helpers `simulation_matrices` and `simulation_numerics` in common.smk). The package sources a simulation runs are inputs, so that editing a kernel reruns
-every simulation. `simulation_kernel` compiles the jitted kernel once into numba's on-disk cache
-before the (parallel) simulations load it.
+every simulation. `simulation_kernel` compiles the jitted kernel of one family of models (`foam`:
+TLAM, FOAM, SFOAM; `cfoam`: CFOAM) into numba's on-disk cache; the two families compile in
+parallel jobs, and a simulation waits only for its own family's kernel (`simulation_kernel_done`
+in common.smk), so that FOAM-type runs start while CFOAM's kernel still compiles.
 """
 
 
@@ -15,9 +17,13 @@ rule simulation_kernel:
     input:
         code=script_code("compile_simulation_kernel.py"),
     output:
-        "logs/simulations/kernel.done",
+        "logs/simulations/kernel_{family}.done",
+    params:
+        family="{family}",
+    wildcard_constraints:
+        family="foam|cfoam",
     log:
-        "logs/simulations/kernel.log",
+        "logs/simulations/kernel_{family}.log",
     script:
         "../scripts/compile_simulation_kernel.py"
 
@@ -25,7 +31,7 @@ rule simulation_kernel:
 rule simulate:
     input:
         matrices=simulation_matrices,
-        kernel="logs/simulations/kernel.done",
+        kernel=simulation_kernel_done,
         code=script_code("simulate_case.py"),
     output:
         ensure(f"{RESULTS}/simulations/{{case}}.nc", non_empty=True),

@@ -86,6 +86,7 @@ rule study_eigen:
 
 
 rule study_case_figure:
+    localrule: True
     input:
         simulation=f"{RESULTS}/simulations/{{case}}.nc",
         code=script_code("study_figure.py", *STUDY_FIGURE_MODULES),
@@ -102,6 +103,7 @@ rule study_case_figure:
 
 
 rule study_comparison_figure:
+    localrule: True
     input:
         unpack(comparison_inputs),
         code=script_code("study_figure.py", *STUDY_FIGURE_MODULES),
@@ -118,6 +120,7 @@ rule study_comparison_figure:
 
 
 rule study_eigen_figure:
+    localrule: True
     input:
         unpack(lambda wildcards: STUDY_EIGEN_FIGURES[wildcards.eigen_figure][1]),
         code=script_code("figure_eigen.py", *STUDY_EIGEN_MODULES),
@@ -133,6 +136,7 @@ rule study_eigen_figure:
 
 
 rule study_report:
+    localrule: True
     input:
         simulations=simulation_results(),
         figures=list(study_figures("png").values()),
@@ -153,6 +157,7 @@ rule study_report:
 
 
 rule study_archive:
+    localrule: True
     input:
         study_products(),
     output:

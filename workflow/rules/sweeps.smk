@@ -1,19 +1,28 @@
 """Parameter sweeps beyond the paper (`sweeps` of the config): maps of the peak tip deflection.
 
-One job per map runs every simulation of the map in one parallel numba kernel (hubbeam.sweep)
-on all the cores Snakemake gives it, and writes `results/sweeps/<name>.nc`; `figure_sweep`
-draws `results/figures/sweep_<name>.pdf/.png` from that file only. `sweep_kernel` compiles the
-kernel into numba's on-disk cache once, after `simulation_kernel` has cached the integrator it
-shares, so that no two jobs compile the same code at the same time. Helpers (`sweeps`,
-`sweep_params`, `sweep_targets`) are in common.smk.
+A map is split into chunks of `chunk_size` simulations (hubbeam.sweep.chunk_points): one
+`sweep_chunk` job per chunk runs them in the parallel numba kernel on its threads (one by default,
+a chunk being sized for about a minute on one core) and writes the temporary
+`results/sweeps/chunks/<name>/<i>.nc`; `sweep` gathers the chunks into `results/sweeps/<name>.nc`
+(bit-identical to a single run of the whole map); `figure_sweep` draws
+`results/figures/sweep_<name>.pdf/.png` from that file only. Maps marked `in_all: false` (too
+large for every run) are built by `large_sweeps`. `sweep_kernel` compiles the kernel into numba's
+on-disk cache once, after `simulation_kernel` has cached the integrator it shares, so that no two
+jobs compile the same code at the same time. Helpers (`sweeps`, `sweep_params`, `sweep_chunks`,
+`sweep_targets`) are in common.smk.
 """
 
+
+rule large_sweeps:
+    input:
+        sweep_targets(in_all=False),
+    localrule: True
 
 
 rule sweep_kernel:
     input:
         code=script_code("sweep_compile.py"),
-        simulation_kernel="logs/simulations/kernel.done",
+        simulation_kernels=expand("logs/simulations/kernel_{family}.done", family=("foam", "cfoam")),
     output:
         "logs/sweeps/kernel.done",
     log:
@@ -22,10 +31,28 @@ rule sweep_kernel:
         "../scripts/sweep_compile.py"
 
 
-rule sweep:
+rule sweep_chunk:
     input:
         kernel="logs/sweeps/kernel.done",
-        code=script_code("sweep_run.py"),
+        code=script_code("sweep_chunk.py"),
+    output:
+        temp(ensure("results/sweeps/chunks/{sweep}/{chunk}.nc", non_empty=True)),
+    params:
+        beam=config["beam"],
+        sweep=sweep_params,
+    wildcard_constraints:
+        sweep="|".join(sweeps()) or "no-sweeps",
+        chunk=r"\d+",
+    log:
+        "logs/sweeps/chunks/{sweep}/{chunk}.log",
+    script:
+        "../scripts/sweep_chunk.py"
+
+
+rule sweep:
+    input:
+        chunks=sweep_chunks,
+        code=script_code("sweep_gather.py"),
     output:
         ensure("results/sweeps/{sweep}.nc", non_empty=True),
     params:
@@ -33,14 +60,15 @@ rule sweep:
         sweep=sweep_params,
     wildcard_constraints:
         sweep="|".join(sweeps()) or "no-sweeps",
-    threads: workflow.cores
+    localrule: True
     log:
         "logs/sweeps/{sweep}.log",
     script:
-        "../scripts/sweep_run.py"
+        "../scripts/sweep_gather.py"
 
 
 rule figure_sweep:
+    localrule: True
     input:
         sweep="results/sweeps/{sweep}.nc",
         style=FIGURE_STYLE,

@@ -171,6 +171,7 @@ rule validate_nonuniform:
 
 
 rule validation_report:
+    localrule: True
     input:
         **exudyn_report_inputs(),
         **nonuniform_results(),

@@ -1,9 +1,13 @@
-"""The whole hub-beam simulation in one kernel: Radau IIA over the equations of motion.
+"""The whole hub-beam simulation in one kernel per family of models: Radau IIA over the
+equations of motion.
 
 :func:`simulate_kernel` integrates the free coordinates of ``y = (theta, q1, q2)`` (theta is
 dropped for a prescribed maneuver, q1 for SFOAM; see ``eom.free_dofs``) from rest with
 :func:`hubbeam.core.radau.radau5`, then evaluates every output of the simulation dataset on the
-uniform output grid from the interpolated states. Nothing returns to Python per step.
+uniform output grid from the interpolated states. Nothing returns to Python per step. TLAM,
+FOAM and SFOAM share one compiled kernel, CFOAM has its own (:data:`FAMILY_KERNELS`): each holds
+one specialisation of the integrator, and two processes compile them in half the time one
+process takes for both.
 
 The integrator runs on right-hand sides built for speed (:mod:`hubbeam.core.foam_rhs`,
 :mod:`hubbeam.core.cfoam_rhs`); the outputs come from the full mass matrix and force of Eq. (24):
@@ -145,6 +149,19 @@ def fill_outputs(model, kind, mp, C, sm, free, t_out, y_out, v_out, out):
 
 
 @inline_kernel
+def _integrate(problem, free, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps, y_out, v_out,
+               stats):
+    """radau5 on ``problem`` (a ``FoamProblem`` or a ``CfoamProblem``) from rest; see
+    :func:`integrate_free`."""
+    nf = free.shape[0]
+    watch = tip_watch(free, sm)
+    atol_z = np.full(2 * nf, atol)
+    status, t_stop = radau5(problem, np.zeros(nf), np.zeros(nf), t_out, t_stops, rtol, atol_z,
+                            watch, tip_limit, max_steps, 0.0, False, y_out, v_out, stats)
+    return status, t_stop, watch
+
+
+@inline_kernel
 def integrate_free(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps, y_out,
                    v_out, stats):
     """Simulate from rest (``y = 0``, ``y' = 0``) and write the free positions and velocities
@@ -160,24 +177,56 @@ def integrate_free(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit
     ``w . y_free = v(L)``.
     """
     free = free_dofs(model, kind, sm.K1.shape[0])
-    nf = free.shape[0]
-    watch = tip_watch(free, sm)
-    atol_z = np.full(2 * nf, atol)
     if model == CFOAM:
-        status, t_stop = radau5(cfoam_problem(kind, mp, C, sm), np.zeros(nf), np.zeros(nf),
-                                t_out, t_stops, rtol, atol_z, watch, tip_limit, max_steps, 0.0,
-                                False, y_out, v_out, stats)
-    else:
-        status, t_stop = radau5(foam_problem(model, kind, mp, C, sm), np.zeros(nf), np.zeros(nf),
-                                t_out, t_stops, rtol, atol_z, watch, tip_limit, max_steps, 0.0,
-                                False, y_out, v_out, stats)
-    return status, t_stop, watch
+        return _integrate(cfoam_problem(kind, mp, C, sm), free, sm, t_out, t_stops, rtol, atol,
+                          tip_limit, max_steps, y_out, v_out, stats)
+    return _integrate(foam_problem(model, kind, mp, C, sm), free, sm, t_out, t_stops, rtol, atol,
+                      tip_limit, max_steps, y_out, v_out, stats)
+
+
+@inline_kernel
+def _simulate(problem, ct, model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit,
+              max_steps, out, stats):
+    """:func:`simulate_kernel` on ``problem`` with the CFOAM tensors ``ct`` of the outputs."""
+    free = free_dofs(model, kind, sm.K1.shape[0])
+    y_out = np.empty((t_out.shape[0], free.shape[0]))
+    v_out = np.empty_like(y_out)
+    status, t_stop, _ = _integrate(problem, free, sm, t_out, t_stops, rtol, atol, tip_limit,
+                                   max_steps, y_out, v_out, stats)
+    _fill_rows(model, kind, mp, C, sm, ct, free, t_out, y_out, v_out, out)
+    return status, t_stop
 
 
 @kernel
+def simulate_foam_family(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit,
+                         max_steps, out, stats):
+    """:func:`simulate_kernel` of TLAM, FOAM and SFOAM (``FoamProblem``)."""
+    return _simulate(foam_problem(model, kind, mp, C, sm), no_tensors(), model, kind, mp, C, sm,
+                     t_out, t_stops, rtol, atol, tip_limit, max_steps, out, stats)
+
+
+@kernel
+def simulate_cfoam_family(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit,
+                          max_steps, out, stats):
+    """:func:`simulate_kernel` of CFOAM (``CfoamProblem``, outputs from the tensors)."""
+    return _simulate(cfoam_problem(kind, mp, C, sm), cfoam_tensors(sm), model, kind, mp, C, sm,
+                     t_out, t_stops, rtol, atol, tip_limit, max_steps, out, stats)
+
+
+#: the compiled kernel of each family of models: one radau5 specialisation each, so that two
+#: processes compile them at the same time (the workflow's simulation_kernel_<family> jobs)
+FAMILY_KERNELS = {"foam": simulate_foam_family, "cfoam": simulate_cfoam_family}
+
+
+def model_family(model):
+    """The family (key of :data:`FAMILY_KERNELS`) of the model id ``model``."""
+    return "cfoam" if model == CFOAM else "foam"
+
+
 def simulate_kernel(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps,
                     out, stats):
-    """Simulate from rest over ``t_out`` (:func:`integrate_free`) and fill ``out``.
+    """Simulate from rest over ``t_out`` (:func:`integrate_free`) and fill ``out``
+    (:func:`fill_outputs`), in the compiled kernel of the model's family.
 
     ``model``, ``kind``: ids of ``eom`` and ``maneuver``; ``mp``: maneuver parameters; ``C``:
     damping matrices (2, n, n); ``sm``:
@@ -187,10 +236,5 @@ def simulate_kernel(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limi
     stop are NaN. ``stats`` (int64, ``len(radau.STAT_NAMES)``) receives radau5's counters.
     Returns radau5's ``(status, t_stop)``.
     """
-    free = free_dofs(model, kind, sm.K1.shape[0])
-    y_out = np.empty((t_out.shape[0], free.shape[0]))
-    v_out = np.empty_like(y_out)
-    status, t_stop, _ = integrate_free(model, kind, mp, C, sm, t_out, t_stops, rtol, atol,
-                                       tip_limit, max_steps, y_out, v_out, stats)
-    fill_outputs(model, kind, mp, C, sm, free, t_out, y_out, v_out, out)
-    return status, t_stop
+    return FAMILY_KERNELS[model_family(model)](model, kind, mp, C, sm, t_out, t_stops, rtol, atol,
+                                               tip_limit, max_steps, out, stats)

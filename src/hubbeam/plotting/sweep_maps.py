@@ -10,6 +10,10 @@
   with the ``threshold`` contour, runs where ``model`` stopped early hatched (they depart by
   definition), (b) the reference model's peak with the same contour.
 
+A map of three axes shows the first two in one panel per value of the third, ``figure.slices``
+of them evenly spread over its grid (one row per model for ``peak``; the relative difference with
+the ``threshold`` contour for ``departure``), all on one colour scale.
+
 Where ``wf`` is swept, TLAM's critical speed (``critical_speed`` of the dataset, from
 :func:`hubbeam.eigen.critical_speed_sweep`) is drawn: a line at ``wf = Omega_c``, or the curve
 ``Omega_c(m_t)`` / ``Omega_c(l)`` when the tip mass or its position is the other axis.
@@ -54,6 +58,8 @@ def plot(sweep: xr.Dataset):
                                   f"(has: {', '.join(sorted(sweep.variables))})")
     config = json.loads(sweep.attrs["sweep_config"])
     figure = config["figure"]
+    if len(config["axes"]) == 3:
+        return _slices(sweep, config)
     if figure["kind"] == "peak":
         return _peak_maps(sweep, config)
     return _departure_map(sweep, config, figure["model"], figure["reference"],
@@ -61,7 +67,7 @@ def plot(sweep: xr.Dataset):
 
 
 def _axes_of(sweep: xr.Dataset, config: dict):
-    x_name, y_name = config["axes"]
+    x_name, y_name = config["axes"][:2]
     return x_name, y_name, sweep[x_name], sweep[y_name]
 
 
@@ -243,4 +249,64 @@ def _departure_map(sweep: xr.Dataset, config: dict, model: str, reference: str,
     panel_title(ax, 1, f"{reference}: peak tip deflection")
     ax.set_xlabel(_label(x))
     ax.grid(False)
+    return fig
+
+
+def _slices(sweep: xr.Dataset, config: dict):
+    """A map of three axes: panels of the first two at ``figure.slices`` values of the third."""
+    x_name, y_name, x, y = _axes_of(sweep, config)
+    figure = config["figure"]
+    third = config["axes"][2]
+    count = min(int(figure.get("slices", 4)), sweep[third].size)
+    picks = np.unique(np.round(np.linspace(0, sweep[third].size - 1, count)).astype(int))
+    departure = figure["kind"] == "departure"
+    rows = [figure["model"]] if departure else list(sweep["model"].values)
+    if departure:
+        field = relative_departure(sweep, figure["model"], figure["reference"])
+        values = field.values[np.isfinite(field.values) & (field.values > 0)]
+        if values.size == 0:
+            raise FigureDataError("sweep dataset: no grid point where both models completed "
+                                  "with different peaks; nothing to map")
+        norm = LogNorm(vmin=max(float(values.min()), 1e-4),
+                       vmax=max(float(values.max()), 10 * float(figure["threshold"])))
+        label, cmap = (f"|{figure['model']} - {figure['reference']}| / {figure['reference']} "
+                       "of the peak $|v(L)|$"), "magma"
+    else:
+        norm = _peak_norm(sweep[PEAK].values)
+        label, cmap = axis_label("Peak $|v(L)|$", sweep[PEAK].attrs.get("units", "m")), "viridis"
+    fig, axes = new_figure(len(rows), picks.size, width=2.6 * picks.size + 0.8,
+                           height=2.6 * len(rows) + 0.9, sharex=True, sharey=True)
+    mesh = None
+    for row, model in enumerate(rows):
+        for column, index in enumerate(picks):
+            ax = axes[row, column]
+            ax.set_facecolor(DIVERGED_COLOR)
+            at = {third: index}
+            if departure:
+                values = field.isel(at)
+                mesh = ax.pcolormesh(x, y, _field(values.where(np.isfinite(values))), norm=norm,
+                                     cmap=cmap, shading="nearest", rasterized=True)
+                departs = _field((values > float(figure["threshold"])) | np.isinf(values))
+                ax.contour(x, y, departs.astype(float), levels=[0.5], colors=DEPARTURE_COLOR,
+                           linewidths=1.3)
+            else:
+                mesh = ax.pcolormesh(x, y, _field(sweep[PEAK].sel(model=model).isel(at)),
+                                     norm=norm, cmap=cmap, shading="nearest", rasterized=True)
+            flagged = _hatch_flagged(ax, x, y, sweep["validity"].sel(model=model).isel(at))
+            critical = _critical_speed(ax, sweep.isel(at), x_name, y_name)
+            if row == 0 and column == 0:
+                extra = ([ax.plot([], [], color=DEPARTURE_COLOR,
+                                  label=f"departs by {float(figure['threshold']):.0%}")[0]]
+                         if departure else [])
+                _legend(ax, flagged, critical, extra=extra)
+            coordinate = sweep[third]
+            panel_title(ax, row * picks.size + column,
+                        f"{model}, {AXIS_LABELS.get(third, third)} = "
+                        f"{float(coordinate[index]):.3g} {coordinate.attrs.get('units', '')}")
+            if row == len(rows) - 1:
+                ax.set_xlabel(_label(x))
+            if column == 0:
+                ax.set_ylabel(_label(y))
+            ax.grid(False)
+    _colorbar(fig, mesh, axes.ravel().tolist(), label)
     return fig

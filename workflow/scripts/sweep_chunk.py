@@ -1,13 +1,13 @@
-"""Snakemake shim: run one parameter sweep on the job's threads and write its netCDF atomically."""
+"""Snakemake shim: simulate one chunk of a parameter sweep on the job's threads (rule sweep_chunk)."""
 
 import logging
 
 from hubbeam.io import write_netcdf
 from hubbeam.parameters import BeamParameters
-from hubbeam.sweep import run_sweep
+from hubbeam.sweep import run_chunk
 
 logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
                     format="%(asctime)s %(name)s %(levelname)s %(message)s")
 params = BeamParameters.from_config({"beam": snakemake.params.beam})
-ds = run_sweep(snakemake.params.sweep, params, threads=snakemake.threads)
-write_netcdf(ds, snakemake.output[0])
+write_netcdf(run_chunk(snakemake.params.sweep, params, int(snakemake.wildcards.chunk),
+                       threads=snakemake.threads), snakemake.output[0])

@@ -8,6 +8,7 @@ the printed formulas (Eqs. 43, 44) or from independent computations, never from 
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import subprocess
 import sys
@@ -243,3 +244,21 @@ def test_matrix_holds_each_reading_s_values_and_nothing_else():
     assert int(ds["verdict"].sel(claim="table3_tau50", reading="b")) == -1
     assert int(ds["verdict"].sel(claim="table3_tau400", reading="b")) == VERDICT_FLAGS.index("differs")
     assert list(ds["why"].values) == ["first", "second"]
+
+
+def test_a_claim_the_runs_cannot_give_is_recorded_not_computable_only_when_asked():
+    """Strict evaluation (the paper's claims) raises; a reading's evaluation records the claim
+    with NaN and the verdict 'not computable' and goes on with the others."""
+    def missing(_results):
+        raise claim_defs.ClaimInputError("fewer than 4 samples after t_f")
+
+    base = claim_defs.claims()[0]
+    broken = dataclasses.replace(base, compute=missing)
+    nan = dataclasses.replace(base, compute=lambda _results: math.nan)
+    with pytest.raises(claim_defs.ClaimInputError):
+        claim_defs.evaluate(None, [broken])
+    with pytest.raises(claim_defs.ClaimInputError):
+        claim_defs.evaluate(None, [nan])
+    rows = claim_defs.evaluate(None, [broken, nan], strict=False)
+    assert [row["verdict"] for row in rows] == [claim_defs.NOT_COMPUTABLE] * 2
+    assert all(math.isnan(row["computed"]) for row in rows)

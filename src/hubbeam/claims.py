@@ -358,13 +358,28 @@ def claims() -> list[Claim]:
     return _table2_claims() + _critical_claims() + _simulation_claims()
 
 
-def evaluate(results: Results, selected: list[Claim] | None = None) -> list[dict]:
-    """One row per claim; a claim whose input is missing raises (no empty computed value)."""
+#: verdict of a claim whose value the runs cannot give (only with ``strict=False``)
+NOT_COMPUTABLE = "not computable"
+
+
+def evaluate(results: Results, selected: list[Claim] | None = None, strict: bool = True) -> list[dict]:
+    """One row per claim; a claim whose input is missing, or whose value is not finite, raises
+    :class:`ClaimInputError` (no empty computed value), or with ``strict=False`` gets the computed
+    value NaN and the verdict :data:`NOT_COMPUTABLE` (an alternative reading whose runs end too
+    early for a measure, say)."""
     rows = []
     for claim in selected or claims():
-        computed = float(claim.compute(results))
-        if not math.isfinite(computed):
-            raise ClaimInputError(f"claim {claim.id}: computed value is {computed} ({claim.source})")
+        try:
+            computed = float(claim.compute(results))
+            if not math.isfinite(computed):
+                raise ClaimInputError(f"claim {claim.id}: computed value is {computed} ({claim.source})")
+        except ClaimInputError:
+            if strict:
+                raise
+            rows.append({"id": claim.id, "claim": claim.claim, "unit": claim.unit, "paper": claim.paper,
+                         "computed": math.nan, "rel_diff": math.nan, "tolerance": claim.tolerance,
+                         "verdict": NOT_COMPUTABLE, "source": claim.source})
+            continue
         rel = (computed - claim.paper) / abs(claim.paper) if claim.paper else math.nan
         if claim.kind == "relative":
             verdict = "agrees" if abs(rel) <= claim.tolerance else "differs"

@@ -54,7 +54,8 @@ def _distance(row: Mapping) -> float:
     rel = row.get("rel_diff")
     if rel is not None and math.isfinite(rel):
         return abs(rel)
-    return abs(row["computed"] - row["paper"])
+    distance = abs(row["computed"] - row["paper"])
+    return distance if math.isfinite(distance) else math.inf
 
 
 @dataclass(frozen=True)

@@ -92,9 +92,9 @@ def _axial_with_foreshortening(results):
 
 
 def _late_residual(case, ds, delay):
-    """Largest ``|v(L)|`` over ``t > tf + delay``."""
+    """Largest ``|v(L)|`` over ``t > tf + delay``; NaN when the run ends before that."""
     t, y = claim_defs.residual(case, ds)
-    return measures.peak(y[t > maneuver_value(case, ds, "tf") + delay])
+    return measures.residual_amplitude(t, y, maneuver_value(case, ds, "tf") + delay)
 
 
 def _ratio_after_settling(results):
@@ -281,7 +281,7 @@ def evaluate_reading(cfg: Mapping, name: str, simulations: Mapping, table2_csv,
     kind, value = change_of(reading)
     if kind == "measure":
         selected = [dataclasses.replace(claim, compute=MEASURES[value][claim.id]) for claim in selected]
-    return claim_defs.evaluate(results, selected), runs
+    return claim_defs.evaluate(results, selected, strict=False), runs
 
 
 # --- the matrix claim x reading -------------------------------------------------------------------
@@ -322,7 +322,7 @@ def matrix(rows: list[dict], readings: Mapping[str, Mapping]) -> xr.Dataset:
         paper[i], default[i], units[i] = row["paper"], row["default"], row["unit"]
     dims = ("claim", "reading")
     flags = {"flag_values": np.arange(len(VERDICT_FLAGS), dtype=np.int8),
-             "flag_meanings": " ".join(VERDICT_FLAGS), "_FillValue": np.int8(-1)}
+             "flag_meanings": " ".join(flag.replace(" ", "_") for flag in VERDICT_FLAGS), "_FillValue": np.int8(-1)}
     return xr.Dataset(
         {"computed": (dims, computed, {"long_name": "claim value computed under the reading"}),
          "rel_diff": (dims, rel, {"long_name": "(computed - paper) / |paper|", "units": "1"}),
@@ -338,4 +338,4 @@ def matrix(rows: list[dict], readings: Mapping[str, Mapping]) -> xr.Dataset:
 
 
 #: verdict flags of the matrix (index = flag value)
-VERDICT_FLAGS = ("agrees", "differs", "qualitative")
+VERDICT_FLAGS = ("agrees", "differs", "qualitative", claim_defs.NOT_COMPUTABLE)

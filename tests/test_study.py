@@ -107,18 +107,24 @@ TINY_STUDY = {
 }
 
 
+def run_study(root: Path, study: dict) -> Path:
+    """Run ``study`` (written to root/studies/<name>.yaml) with Snakemake in ``root``; its folder,
+    checked to be the only one under root/results."""
+    name = study["study"]["name"]
+    config = root / "studies" / f"{name}.yaml"
+    config.write_text(yaml.safe_dump(study))
+    command = [sys.executable, "-m", "snakemake", "--snakefile", str(REPO / "Snakefile"),
+               "--directory", str(root), "--cores", "2", "--configfile", str(config)]
+    run = subprocess.run(command, cwd=root, capture_output=True, text=True, timeout=1500, check=False)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    assert sorted(p.name for p in (root / "results").iterdir()) == [name]  # nothing else
+    return root / "results" / name
+
+
 @pytest.mark.workflow
 def test_a_tiny_study_builds_every_general_product_in_its_own_folder(tmp_path):
-    config = tmp_path / "studies" / "tiny.yaml"
-    config.parent.mkdir()
-    config.write_text(yaml.safe_dump(TINY_STUDY))
-    command = [sys.executable, "-m", "snakemake", "--snakefile", str(REPO / "Snakefile"),
-               "--directory", str(tmp_path), "--cores", "2", "--configfile", str(config)]
-    run = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, timeout=1500, check=False)
-    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
-
-    folder = tmp_path / "results" / "tiny"
-    assert sorted(p.name for p in (tmp_path / "results").iterdir()) == ["tiny"]  # nothing else
+    (tmp_path / "studies").mkdir()
+    folder = run_study(tmp_path, TINY_STUDY)
     cases = sorted(TINY_STUDY["cases"])
     expected = [f"simulations/{case}.nc" for case in cases] + ["matrices/mt0.nc", "matrices/mt0p1_l2.nc"]
     expected += ["eigen/campbell.nc", "eigen/critical_speeds.nc"]
@@ -167,15 +173,7 @@ def test_a_study_of_files_only_runs_a_tabulated_beam_and_maneuver_with_damping(t
     study["cases"] = {"ramp": {"model": "FOAM", "maneuver": {"kind": "speed_table", "file": "speed.csv"},
                                "t_end": 2.0, "tip_mass": {"mass": 0.05, "position": 1.5},
                                "damping": {"kind": "modal", "axial": 0.01, "transverse": 0.05}}}
-    config = studies / "files.yaml"
-    config.write_text(yaml.safe_dump(study))
-    command = [sys.executable, "-m", "snakemake", "--snakefile", str(REPO / "Snakefile"),
-               "--directory", str(tmp_path), "--cores", "2", "--configfile", str(config)]
-    run = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, timeout=1500, check=False)
-    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
-
-    folder = tmp_path / "results" / "files"
-    assert sorted(p.name for p in (tmp_path / "results").iterdir()) == ["files"]
+    folder = run_study(tmp_path, study)
     for product in ("report/report.html", "figures/case_ramp.png", "figures/campbell.png",
                     "files-results.tar.gz"):
         assert (folder / product).is_file(), product

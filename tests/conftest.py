@@ -36,13 +36,22 @@ def _names(code: CodeType) -> set[str]:
     return names
 
 
+def _runs_the_workflow(function) -> bool:
+    names = _names(inspect.unwrap(function).__code__)
+    return bool(names & KILL_NAMES) or any("snakemake" in name for name in names)
+
+
 def runs_the_workflow(item: pytest.Item) -> bool:
-    """Whether the test ``item`` runs Snakemake or kills a process (see the module docstring)."""
+    """Whether the test ``item``, or a fixture it uses, runs Snakemake or kills a process (see
+    the module docstring)."""
     function = getattr(item, "function", None)
     if function is None:
         return False
-    names = _names(inspect.unwrap(function).__code__)
-    return bool(names & KILL_NAMES) or any("snakemake" in name for name in names)
+    fixtures = getattr(item, "_fixtureinfo", None)
+    definitions = fixtures.name2fixturedefs.values() if fixtures is not None else ()
+    return _runs_the_workflow(function) or any(
+        _runs_the_workflow(definition.func) for defs in definitions for definition in defs
+        if definition.baseid.startswith("tests"))
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

@@ -4,6 +4,7 @@ independent finite-element model (hubbeam.validation.fe_beam) and by analytic li
 import numpy as np
 import pytest
 import scipy.integrate
+from test_matrices import assert_converged_in_quadrature_points
 
 from hubbeam.beam import (
     BeamSections,
@@ -16,7 +17,7 @@ from hubbeam.matrices import assemble
 from hubbeam.modes import clamped_free_roots
 from hubbeam.paper import TABLE1
 from hubbeam.parameters import BeamParameters, TipMass
-from hubbeam.quadrature import beam_rule, effective_points, segment_points
+from hubbeam.quadrature import beam_rule, segment_points
 from hubbeam.validation import fe_beam
 from hubbeam.validation.nonuniform import ritz_vs_fe, tapered_beam
 
@@ -134,10 +135,7 @@ def test_composite_rule_counts_and_exactness():
 @pytest.mark.parametrize("n_modes", [5, 20])
 @pytest.mark.parametrize("tip", [None, TipMass(mass=0.5, position=5.3)])
 def test_kinked_beam_matrices_converged_in_quadrature_points(n_modes, tip):
-    coarse = assemble(KINKED, tip, n_modes)
-    fine = assemble(KINKED, tip, n_modes, n_quad=3 * effective_points(64, n_modes))
-    for name in MATRIX_FIELDS:
-        assert relative_difference(getattr(coarse, name), getattr(fine, name)) < 1e-12, name
+    assert_converged_in_quadrature_points(KINKED, tip, n_modes)
 
 
 def test_normalisation_of_a_non_uniform_beam():

@@ -150,14 +150,6 @@ def cfoam_tensors(sm):
     return CfoamTensors(float(sm.Jh), Jb, vecs, mats, A, T, np.empty((4, m)))
 
 
-@kernel
-def no_tensors():
-    """A :data:`CfoamTensors` without entries: the argument of code typed on CfoamTensors when
-    it runs a model other than CFOAM (see ``hubbeam.core.integrate.fill_outputs``)."""
-    return CfoamTensors(0.0, 0.0, np.zeros((2, 0)), np.zeros((8, 0, 0)), np.zeros((2, 0, 0, 0)),
-                        np.zeros((2, 0, 0)), np.zeros((4, 0)))
-
-
 @borrowing_kernel
 def cfoam_system(y, v, tau, ct, M, F):
     """Mass matrix ``M(y)`` and force ``F(y, y')`` of CFOAM from the tensors ``ct``.

@@ -405,14 +405,20 @@ def accelerations(model, kind, mp, C, t, y, v, sm, free, a_out):
 
 
 @borrowing_kernel
+def strain_energy(y, sm):
+    """The strain energy U = (q1^T K1 q1 + q2^T K2 q2) / 2 of Eq. (22)."""
+    n = sm.K1.shape[0]
+    return 0.5 * (_quad(sm.K1, y, y, n, 1, 1) + _quad(sm.K2, y, y, n, 1 + n, 1 + n))
+
+
+@borrowing_kernel
 def outputs(kind, tau, y, v, sm, free, a_out, ws):
     """Accelerations and ``(torque, Q_theta, energy, angular_momentum)`` of a state whose mass
     matrix and force are already in ``ws.M``, ``ws.F`` (applied torque ``tau``, constrained
     entries of ``y, v, a_out`` imposed): one mass matrix for all of them."""
-    n = sm.M1.shape[0]
     N = y.shape[0]
     torque, q_theta = solve_free(kind, tau, free, a_out, ws)
-    e = 0.5 * (_quad(sm.K1, y, y, n, 1, 1) + _quad(sm.K2, y, y, n, 1 + n, 1 + n))
+    e = strain_energy(y, sm)
     p = 0.0
     for i in range(N):
         mv = 0.0
@@ -428,11 +434,10 @@ def outputs(kind, tau, y, v, sm, free, a_out, ws):
 def energy(model, y, v, sm):
     """Total mechanical energy T + U, with T = y'^T M(y) y' / 2 and U of Eq. (22)."""
     N = y.shape[0]
-    n = (N - 1) // 2
     M = np.empty((N, N))
     F = np.empty(N)
     mass_matrix_and_force(model, y, v, 0.0, sm, M, F)
-    e = 0.5 * (_quad(sm.K1, y, y, n, 1, 1) + _quad(sm.K2, y, y, n, 1 + n, 1 + n))
+    e = strain_energy(y, sm)
     for i in range(N):
         for j in range(N):
             e += 0.5 * v[i] * M[i, j] * v[j]

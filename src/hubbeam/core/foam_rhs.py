@@ -24,6 +24,9 @@ torque table, PD feedback) the hub row ``m00 theta_ddot + c . e'' = tau + Q_thet
     m00 = J0 + e^T G e + 2 g . e,     Q_theta = -2 thd (e^T G e' + g . e'),
 
 with ``J0 = Jh + Jb``, ``G = diag(M1, M2 - D)`` and ``g = (V1, 0)`` (SFOAM: ``Q_theta`` deleted).
+The same hub row gives the outputs of a state (:func:`foam_outputs`): the angular momentum
+``p_theta = m00 thd + c . e'``, the kinetic energy ``(m00 thd^2 + 2 thd c . e' + e'^T Me e') / 2``
+and, for a prescribed hub, the torque it requires, ``m00 theta_ddot + c . e'' - Q_theta``.
 These are the equations :func:`hubbeam.core.eom.accelerations` solves with the full mass matrix;
 the tests hold the two to rounding error. CFOAM, whose elastic mass blocks depend on ``q2``,
 has its own (:mod:`hubbeam.core.cfoam_rhs`).
@@ -38,12 +41,12 @@ from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
 from hubbeam.core.radau import register_rhs
 
-#: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1, P3`` and ``b`` stacks
-#: ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
+#: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1, P3, Me`` and ``b``
+#: stacks ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
 #: ``scalars = (J0, q_theta_factor)``; ``kind`` and ``mp`` the maneuver; ``work`` holds ``u, r``.
 FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work")
 
-P0, P1, P2, G, C1, P3 = range(6)
+P0, P1, P2, G, C1, P3, ME = range(7)
 B0, B1, G_VEC, C0 = range(4)
 
 
@@ -66,7 +69,7 @@ def foam_problem(model, kind, mp, C, sm):
     elastic = free[free > 0] - 1
     ne = elastic.shape[0]
     full_P = (-mass_inv @ stiffness, mass_inv @ G_full, mass_inv @ R_full, G_full, -R_full,
-              -mass_inv @ damping)
+              -mass_inv @ damping, mass)
     full_b = (mass_inv @ np.concatenate((sm.V1, zero)),
               mass_inv @ np.concatenate((zero, -sm.V2)),
               np.concatenate((sm.V1, zero)), np.concatenate((zero, sm.V2)))
@@ -82,6 +85,31 @@ def foam_problem(model, kind, mp, C, sm):
     q_theta_factor = 0.0 if model == SFOAM else 1.0
     scalars = np.array([sm.Jh + sm.Jb, q_theta_factor])
     return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)))
+
+
+@borrowing_kernel
+def _hub_row(y, v, o, thd, x1, o1, x2, o2, problem):
+    """The hub row of Eq. (24) at the free elastic coordinates ``e = y[o:]``, ``e' = v[o:]``:
+    ``(m00, Q_theta, c . x1[o1:], c . x2[o2:])`` with ``m00`` (Eq. 25), ``c = C0 + C1 e``
+    (Eqs. 26-27) and ``Q_theta`` (Eq. 32; zero for SFOAM) as in the module docstring."""
+    P = problem.P
+    b = problem.b
+    ne = y.shape[0] - o
+    m00 = problem.scalars[0]
+    gee = 0.0  # e^T G e' + g . e'
+    c_1 = 0.0
+    c_2 = 0.0
+    for i in range(ne):
+        ge = b[G_VEC, i]
+        ci = b[C0, i]
+        for j in range(ne):
+            ge += P[G, i, j] * y[o + j]
+            ci += P[C1, i, j] * y[o + j]
+        m00 += (ge + b[G_VEC, i]) * y[o + i]
+        gee += ge * v[o + i]
+        c_1 += ci * x1[o1 + i]
+        c_2 += ci * x2[o2 + i]
+    return m00, -2.0 * thd * gee * problem.scalars[1], c_1, c_2
 
 
 @borrowing_kernel
@@ -111,26 +139,43 @@ def foam_rhs(t, y, v, a, problem):
         r[i] = ri
     if o == 1:
         # hub row (Eqs. 25-27, 32) with e'' eliminated
-        m00 = problem.scalars[0]
-        gee = 0.0  # e^T G e' + g . e'
-        c_u = 0.0
-        c_r = 0.0
-        for i in range(ne):
-            ge = b[G_VEC, i]
-            ci = b[C0, i]
-            for j in range(ne):
-                ge += P[G, i, j] * y[1 + j]
-                ci += P[C1, i, j] * y[1 + j]
-            m00 += (ge + b[G_VEC, i]) * y[1 + i]
-            gee += ge * v[1 + i]
-            c_u += ci * u[i]
-            c_r += ci * r[i]
-        q_theta = -2.0 * thd * gee * problem.scalars[1]
+        m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, 0, r, 0, problem)
         tau = hub_torque(problem.kind, t, y[0], thd, problem.mp)
         thdd = (tau + q_theta - c_u) / (m00 + c_r)
         a[0] = thdd
     for i in range(ne):
         a[o + i] = u[i] + thdd * r[i]
+
+
+@borrowing_kernel
+def foam_outputs(t, y, v, a, problem):
+    """Accelerations ``a`` of the free coordinates (:func:`foam_rhs`) and
+    ``(torque, Q_theta, kinetic energy, angular momentum)`` of the state ``(y, v)`` (free
+    coordinates, as in :func:`foam_rhs`), from the hub row of Eq. (24) (Eqs. 25-27, 32; see the
+    module docstring). ``torque`` is the applied torque of a free hub, or the one a prescribed
+    hub requires."""
+    foam_rhs(t, y, v, a, problem)
+    P = problem.P
+    o = 0 if prescribed(problem.kind) else 1
+    ne = y.shape[0] - o
+    if o == 0:
+        thd, thdd = prescribed_motion(problem.kind, t, problem.mp)[1:]
+        tau = 0.0
+    else:
+        thd = v[0]
+        thdd = a[0]
+        tau = hub_torque(problem.kind, t, y[0], thd, problem.mp)
+    m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, o, a, o, problem)
+    eMe = 0.0  # e'^T Me e'
+    for i in range(ne):
+        mv = 0.0
+        for j in range(ne):
+            mv += P[ME, i, j] * v[o + j]
+        eMe += v[o + i] * mv
+    if o == 0:
+        tau = m00 * thdd + c_a - q_theta
+    kinetic = 0.5 * (m00 * thd * thd + 2.0 * thd * c_v + eMe)
+    return tau, q_theta, kinetic, m00 * thd + c_v
 
 
 register_rhs(FoamProblem, foam_rhs)

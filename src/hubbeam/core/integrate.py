@@ -10,9 +10,11 @@ one specialisation of the integrator, and two processes compile them in half the
 process takes for both.
 
 The integrator runs on right-hand sides built for speed (:mod:`hubbeam.core.foam_rhs`,
-:mod:`hubbeam.core.cfoam_rhs`); the outputs come from the full mass matrix and force of Eq. (24):
-the general equations of :mod:`hubbeam.core.eom` for TLAM, FOAM and SFOAM, CFOAM's pre-contracted
-tensors (:mod:`hubbeam.core.cfoam_tensors`), which the tests hold equal to the point cloud.
+:mod:`hubbeam.core.cfoam_rhs`), and the outputs come from the same equations: for TLAM, FOAM and
+SFOAM the hub row of Eq. (24) with the constant modal mass (``foam_rhs.foam_outputs``), for CFOAM
+the full mass matrix and force from its pre-contracted tensors
+(:mod:`hubbeam.core.cfoam_tensors`). The tests hold both to the general equations of
+:mod:`hubbeam.core.eom`.
 ``kind, mp`` is the maneuver (:mod:`hubbeam.core.maneuver`), ``C`` the damping matrices
 ``[C1, C2]`` of the elastic coordinates (:func:`hubbeam.core.eom.add_damping`; zeros: undamped).
 """
@@ -20,21 +22,21 @@ tensors (:mod:`hubbeam.core.cfoam_tensors`), which the tests hold equal to the p
 import numpy as np
 
 from hubbeam.core.cfoam_rhs import cfoam_problem
-from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors, no_tensors
+from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
 from hubbeam.core.eom import (
     CFOAM,
     add_damping,
     dissipation_rate,
-    foam_system,
     free_dofs,
     high_order_terms,
     impose_constraints,
     outputs,
+    strain_energy,
     tip_outputs,
     workspace,
 )
-from hubbeam.core.foam_rhs import foam_problem
-from hubbeam.core.jit import inline_kernel, kernel
+from hubbeam.core.foam_rhs import foam_outputs, foam_problem
+from hubbeam.core.jit import borrowing_kernel, inline_kernel, kernel
 from hubbeam.core.radau import radau5
 
 #: Columns of the output array: these, then ``q1[0..n-1]``, ``q2[0..n-1]``, then the CFOAM
@@ -83,55 +85,103 @@ def tip_watch(free, sm):
     return w
 
 
+@borrowing_kernel
+def _unpack_row(free, y_row, v_row, y, v):
+    """Full-length ``y, v`` from one row of free positions and velocities (the rest zero)."""
+    for i in range(y.shape[0]):
+        y[i] = 0.0
+        v[i] = 0.0
+    for i in range(free.shape[0]):
+        y[free[i]] = y_row[i]
+        v[free[i]] = v_row[i]
+
+
+@inline_kernel
+def _write_row(out_row, y, v, a, torque, q_theta, e, p, C, damped, sm):
+    """The columns of :data:`SCALAR_OUTPUTS` and ``q1``, ``q2`` of one output time; ``e`` is the
+    total energy and ``p`` the angular momentum of the state; ``damped``: ``C`` has a nonzero
+    entry (otherwise the dissipation is exactly zero and is not summed)."""
+    transverse, axial, foreshortening = tip_outputs(y, sm)
+    out_row[0] = y[0]
+    out_row[1] = v[0]
+    out_row[2] = a[0]
+    out_row[3] = torque
+    out_row[4] = q_theta
+    out_row[5] = transverse
+    out_row[6] = axial
+    out_row[7] = foreshortening
+    out_row[8] = e
+    out_row[9] = p
+    out_row[10] = dissipation_rate(C, v) if damped else 0.0
+    for i in range(y.shape[0] - 1):
+        out_row[N_SCALAR + i] = y[1 + i]
+
+
+# The row loops borrow their work arrays (rows y, v, a and the free accelerations) from the
+# caller: compiled without numba's reference counting, passing ``sm`` and the problem to the
+# per-row kernels costs nothing (with it, the counts took a third of the loop).
+@borrowing_kernel
+def _foam_rows(problem, model, kind, mp, C, damped, sm, free, t_out, y_out, v_out, out, work):
+    y = work[0]
+    v = work[1]
+    a = work[2]
+    af = work[3, :free.shape[0]]
+    for k in range(t_out.shape[0]):
+        if not np.isfinite(y_out[k, 0]):
+            out[k, :] = np.nan
+            continue
+        out[k, N_SCALAR + y.shape[0] - 1:] = np.nan  # the CFOAM-only columns
+        _unpack_row(free, y_out[k], v_out[k], y, v)
+        impose_constraints(model, kind, mp, t_out[k], y, v, a)
+        torque, q_theta, kinetic, p = foam_outputs(t_out[k], y_out[k], v_out[k], af, problem)
+        for i in range(free.shape[0]):
+            a[free[i]] = af[i]
+        _write_row(out[k], y, v, a, torque, q_theta, kinetic + strain_energy(y, sm), p, C,
+                   damped, sm)
+
+
 @kernel
-def _fill_rows(model, kind, mp, C, sm, ct, free, t_out, y_out, v_out, out):
-    """:func:`fill_outputs` with the CFOAM tensors ``ct`` (:func:`no_tensors` for other models)."""
+def _fill_rows_foam(problem, model, kind, mp, C, sm, free, t_out, y_out, v_out, out):
+    """:func:`fill_outputs` of TLAM, FOAM or SFOAM from its ``FoamProblem``: the accelerations
+    and the hub row from the constant modal mass (``foam_rhs.foam_outputs``), no mass matrix."""
+    work = np.zeros((4, 1 + 2 * sm.K1.shape[0]))
+    _foam_rows(problem, model, kind, mp, C, np.any(C != 0.0), sm, free, t_out, y_out, v_out,
+               out, work)
+
+
+@borrowing_kernel
+def _cfoam_rows(ct, kind, mp, C, damped, sm, free, t_out, y_out, v_out, out, work, ws, Mf):
     n = sm.K1.shape[0]
     N = 1 + 2 * n
-    y = np.zeros(N)
-    v = np.zeros(N)
-    a = np.zeros(N)
-    dQ = np.zeros(N)
-    Mf = np.empty((N, N))
-    Ff = np.empty(N)
-    ws = workspace(sm, free)
-    nf = free.shape[0]
+    y = work[0]
+    v = work[1]
+    a = work[2]
+    dQ = work[3]
+    Ff = work[4]
     for k in range(t_out.shape[0]):
-        for j in range(out.shape[1]):
-            out[k, j] = np.nan
         if not np.isfinite(y_out[k, 0]):
+            out[k, :] = np.nan
             continue
-        for i in range(N):
-            y[i] = 0.0
-            v[i] = 0.0
-        for i in range(nf):
-            y[free[i]] = y_out[k, i]
-            v[free[i]] = v_out[k, i]
-        tau = impose_constraints(model, kind, mp, t_out[k], y, v, a)
-        if model == CFOAM:
-            cfoam_system(y, v, tau, ct, ws.M, ws.F)
-        else:
-            foam_system(model, y, v, tau, sm, ws.M, ws.F)
+        _unpack_row(free, y_out[k], v_out[k], y, v)
+        tau = impose_constraints(CFOAM, kind, mp, t_out[k], y, v, a)
+        cfoam_system(y, v, tau, ct, ws.M, ws.F)
         add_damping(C, v, ws.F)
         torque, q_theta, e, p = outputs(kind, tau, y, v, sm, free, a, ws)
-        transverse, axial, foreshortening = tip_outputs(y, sm)
-        out[k, 0] = y[0]
-        out[k, 1] = v[0]
-        out[k, 2] = a[0]
-        out[k, 3] = torque
-        out[k, 4] = q_theta
-        out[k, 5] = transverse
-        out[k, 6] = axial
-        out[k, 7] = foreshortening
-        out[k, 8] = e
-        out[k, 9] = p
-        out[k, 10] = dissipation_rate(C, v)
-        for i in range(2 * n):
-            out[k, N_SCALAR + i] = y[1 + i]
-        if model == CFOAM:
-            out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, y, v, a, sm, C, Mf, Ff, dQ)
-            for i in range(N):
-                out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
+        _write_row(out[k], y, v, a, torque, q_theta, e, p, C, damped, sm)
+        out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, y, v, a, sm, C, Mf, Ff, dQ)
+        for i in range(N):
+            out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
+
+
+@kernel
+def _fill_rows_cfoam(ct, kind, mp, C, sm, free, t_out, y_out, v_out, out):
+    """:func:`fill_outputs` of CFOAM from its tensors ``ct``: one mass matrix and force of
+    Eq. (24) per output time gives the accelerations, the torque, the energy, the angular
+    momentum and the high-order terms."""
+    N = 1 + 2 * sm.K1.shape[0]
+    _cfoam_rows(ct, kind, mp, C, np.any(C != 0.0), sm, free, t_out, y_out, v_out, out,
+                np.zeros((5, N)),
+                workspace(sm, free), np.empty((N, N)))
 
 
 @kernel
@@ -139,13 +189,17 @@ def fill_outputs(model, kind, mp, C, sm, free, t_out, y_out, v_out, out):
     """Every output at the times ``t_out`` from the free positions and velocities ``y_out``,
     ``v_out`` (rows with NaN give NaN rows): columns as in :func:`output_columns`.
 
-    One mass matrix and force of Eq. (24) per output time gives the accelerations, the torque,
-    the energy, the angular momentum and, for CFOAM, the high-order terms; CFOAM's comes from
-    the pre-contracted tensors (``core/cfoam_tensors.py``), the other models' from
-    :func:`hubbeam.core.eom.foam_system` (which ``eom.mass_matrix_and_force`` calls for them).
+    TLAM, FOAM and SFOAM take the accelerations, the torque, the energy and the angular momentum
+    from the hub row of Eq. (24) with the constant modal mass (``foam_rhs.foam_outputs``); CFOAM
+    from its mass matrix and force, built from the pre-contracted tensors
+    (``core/cfoam_tensors.py``), with its high-order terms. The tests hold both to the general
+    equations of :mod:`hubbeam.core.eom`.
     """
-    ct = cfoam_tensors(sm) if model == CFOAM else no_tensors()
-    _fill_rows(model, kind, mp, C, sm, ct, free, t_out, y_out, v_out, out)
+    if model == CFOAM:
+        _fill_rows_cfoam(cfoam_tensors(sm), kind, mp, C, sm, free, t_out, y_out, v_out, out)
+    else:
+        _fill_rows_foam(foam_problem(model, kind, mp, C, sm), model, kind, mp, C, sm, free, t_out,
+                        y_out, v_out, out)
 
 
 @inline_kernel
@@ -185,32 +239,36 @@ def integrate_free(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit
 
 
 @inline_kernel
-def _simulate(problem, ct, model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit,
-              max_steps, out, stats):
-    """:func:`simulate_kernel` on ``problem`` with the CFOAM tensors ``ct`` of the outputs."""
+def _states(problem, model, kind, sm, t_out, t_stops, rtol, atol, tip_limit, max_steps, stats):
+    """:func:`integrate_free` on ``problem``: ``(status, t_stop, free, y_out, v_out)``."""
     free = free_dofs(model, kind, sm.K1.shape[0])
     y_out = np.empty((t_out.shape[0], free.shape[0]))
     v_out = np.empty_like(y_out)
     status, t_stop, _ = _integrate(problem, free, sm, t_out, t_stops, rtol, atol, tip_limit,
                                    max_steps, y_out, v_out, stats)
-    _fill_rows(model, kind, mp, C, sm, ct, free, t_out, y_out, v_out, out)
-    return status, t_stop
+    return status, t_stop, free, y_out, v_out
 
 
 @kernel
 def simulate_foam_family(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit,
                          max_steps, out, stats):
     """:func:`simulate_kernel` of TLAM, FOAM and SFOAM (``FoamProblem``)."""
-    return _simulate(foam_problem(model, kind, mp, C, sm), no_tensors(), model, kind, mp, C, sm,
-                     t_out, t_stops, rtol, atol, tip_limit, max_steps, out, stats)
+    problem = foam_problem(model, kind, mp, C, sm)
+    status, t_stop, free, y_out, v_out = _states(problem, model, kind, sm, t_out, t_stops, rtol,
+                                                 atol, tip_limit, max_steps, stats)
+    _fill_rows_foam(problem, model, kind, mp, C, sm, free, t_out, y_out, v_out, out)
+    return status, t_stop
 
 
 @kernel
 def simulate_cfoam_family(model, kind, mp, C, sm, t_out, t_stops, rtol, atol, tip_limit,
                           max_steps, out, stats):
-    """:func:`simulate_kernel` of CFOAM (``CfoamProblem``, outputs from the tensors)."""
-    return _simulate(cfoam_problem(kind, mp, C, sm), cfoam_tensors(sm), model, kind, mp, C, sm,
-                     t_out, t_stops, rtol, atol, tip_limit, max_steps, out, stats)
+    """:func:`simulate_kernel` of CFOAM (``CfoamProblem``, outputs from its tensors)."""
+    problem = cfoam_problem(kind, mp, C, sm)
+    status, t_stop, free, y_out, v_out = _states(problem, model, kind, sm, t_out, t_stops, rtol,
+                                                 atol, tip_limit, max_steps, stats)
+    _fill_rows_cfoam(problem.ct, kind, mp, C, sm, free, t_out, y_out, v_out, out)
+    return status, t_stop
 
 
 #: the compiled kernel of each family of models: one radau5 specialisation each, so that two

@@ -22,6 +22,8 @@ rule simulation_kernel:
         family="{family}",
     wildcard_constraints:
         family="foam|cfoam",
+    # first on the cores of a cold run: every simulation waits for its family's kernel
+    priority: 100
     log:
         "logs/simulations/kernel_{family}.log",
     script:

@@ -288,7 +288,7 @@ def impose_constraints(model, kind, mp, t, y, v, a):
 
 
 @borrowing_kernel
-def _cholesky(A):
+def cholesky_factor(A):
     """Overwrite the lower triangle of a small SPD matrix with its Cholesky factor ``C``, the
     diagonal holding ``1 / C_jj`` (the solve then multiplies where it would divide, which takes
     the division latency off its chain of dependent operations).
@@ -313,8 +313,8 @@ def _cholesky(A):
 
 
 @borrowing_kernel
-def _cholesky_solve(C, b):
-    """Solve ``C C^T x = b`` in place, ``C`` from :func:`_cholesky` (reciprocal diagonal)."""
+def cholesky_solve(C, b):
+    """Solve ``C C^T x = b`` in place, ``C`` from :func:`cholesky_factor` (reciprocal diagonal)."""
     N = C.shape[0]
     for i in range(N):
         s = b[i]
@@ -331,9 +331,9 @@ def _cholesky_solve(C, b):
 @borrowing_kernel
 def solve_spd(A, b):
     """Solve A x = b in place (b <- x) for a small SPD ``A`` (overwritten by its factor)."""
-    if not _cholesky(A):
+    if not cholesky_factor(A):
         return False
-    _cholesky_solve(A, b)
+    cholesky_solve(A, b)
     return True
 
 
@@ -405,10 +405,11 @@ def accelerations(model, kind, mp, C, t, y, v, sm, free, a_out):
 
 
 @borrowing_kernel
-def strain_energy(y, sm):
-    """The strain energy U = (q1^T K1 q1 + q2^T K2 q2) / 2 of Eq. (22)."""
-    n = sm.K1.shape[0]
-    return 0.5 * (_quad(sm.K1, y, y, n, 1, 1) + _quad(sm.K2, y, y, n, 1 + n, 1 + n))
+def strain_energy(y, K1, K2):
+    """The strain energy U = (q1^T K1 q1 + q2^T K2 q2) / 2 of Eq. (22) (the stiffness matrices
+    passed alone: a call that passes the whole ``SystemMatrices`` costs more than this sum)."""
+    n = K1.shape[0]
+    return 0.5 * (_quad(K1, y, y, n, 1, 1) + _quad(K2, y, y, n, 1 + n, 1 + n))
 
 
 @borrowing_kernel
@@ -418,7 +419,7 @@ def outputs(kind, tau, y, v, sm, free, a_out, ws):
     entries of ``y, v, a_out`` imposed): one mass matrix for all of them."""
     N = y.shape[0]
     torque, q_theta = solve_free(kind, tau, free, a_out, ws)
-    e = strain_energy(y, sm)
+    e = strain_energy(y, sm.K1, sm.K2)
     p = 0.0
     for i in range(N):
         mv = 0.0
@@ -437,7 +438,7 @@ def energy(model, y, v, sm):
     M = np.empty((N, N))
     F = np.empty(N)
     mass_matrix_and_force(model, y, v, 0.0, sm, M, F)
-    e = strain_energy(y, sm)
+    e = strain_energy(y, sm.K1, sm.K2)
     for i in range(N):
         for j in range(N):
             e += 0.5 * v[i] * M[i, j] * v[j]

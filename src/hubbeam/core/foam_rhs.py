@@ -36,7 +36,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from hubbeam.core.eom import SFOAM, TLAM, free_dofs
+from hubbeam.core.eom import SFOAM, TLAM, cholesky_factor, cholesky_solve, free_dofs
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
 from hubbeam.core.radau import register_rhs
@@ -53,35 +53,67 @@ B0, B1, G_VEC, C0 = range(4)
 @kernel
 def foam_problem(model, kind, mp, C, sm):
     """The :data:`FoamProblem` of ``model`` (TLAM, FOAM or SFOAM) under maneuver ``kind`` with the
-    damping matrices ``C = [C1, C2]``."""
+    damping matrices ``C = [C1, C2]``.
+
+    Assembled with plain loops and the Cholesky factor of ``Me`` (numpy's stacking and inverse
+    would cost seconds of compilation in every process that builds the kernel)."""
     n = sm.M1.shape[0]
+    m = 2 * n
     cD = 0.0 if model == TLAM else 1.0
-    Z = np.zeros((n, n))
-    mass = np.vstack((np.hstack((sm.M1, Z)), np.hstack((Z, sm.M2))))
-    stiffness = np.vstack((np.hstack((sm.K1, Z)), np.hstack((Z, sm.K2))))
-    G_full = np.vstack((np.hstack((sm.M1, Z)), np.hstack((Z, sm.M2 - cD * sm.D))))
-    R_full = np.vstack((np.hstack((Z, sm.R)), np.hstack((-sm.R.T, Z))))
-    damping = np.vstack((np.hstack((C[0], Z)), np.hstack((Z, C[1]))))
-    zero = np.zeros(n)
-    mass_inv = np.linalg.inv(mass)
+    # on (q1, q2): diag(K1, K2), G = diag(M1, M2 - D), [[0, R], [-R^T, 0]], diag(C1, C2),
+    # Me = diag(M1, M2), and the vectors (V1, 0), (0, -V2)
+    A = np.zeros((5, m, m))
+    f = np.zeros((2, m))
+    for i in range(n):
+        f[0, i] = sm.V1[i]
+        f[1, n + i] = -sm.V2[i]
+        for j in range(n):
+            A[0, i, j] = sm.K1[i, j]
+            A[0, n + i, n + j] = sm.K2[i, j]
+            A[1, i, j] = sm.M1[i, j]
+            A[1, n + i, n + j] = sm.M2[i, j] - cD * sm.D[i, j]
+            A[2, i, n + j] = sm.R[i, j]
+            A[2, n + i, j] = -sm.R[j, i]
+            A[3, i, j] = C[0, i, j]
+            A[3, n + i, n + j] = C[1, i, j]
+            A[4, i, j] = sm.M1[i, j]
+            A[4, n + i, n + j] = sm.M2[i, j]
+    # Me^-1 times the first four matrices (column by column) and the two vectors
+    factor = A[4].copy()
+    cholesky_factor(factor)
+    X = np.empty((4, m, m))
+    x = np.empty(m)
+    for k in range(4):
+        for j in range(m):
+            for i in range(m):
+                x[i] = A[k, i, j]
+            cholesky_solve(factor, x)
+            for i in range(m):
+                X[k, i, j] = x[i]
+    fx = f.copy()
+    cholesky_solve(factor, fx[0])
+    cholesky_solve(factor, fx[1])
     # free elastic coordinates as indices into (q1, q2)
     free = free_dofs(model, kind, n)
     elastic = free[free > 0] - 1
     ne = elastic.shape[0]
-    full_P = (-mass_inv @ stiffness, mass_inv @ G_full, mass_inv @ R_full, G_full, -R_full,
-              -mass_inv @ damping, mass)
-    full_b = (mass_inv @ np.concatenate((sm.V1, zero)),
-              mass_inv @ np.concatenate((zero, -sm.V2)),
-              np.concatenate((sm.V1, zero)), np.concatenate((zero, sm.V2)))
-    P = np.empty((len(full_P), ne, ne))
-    b = np.empty((len(full_b), ne))
-    for k in range(len(full_P)):
-        for i in range(ne):
-            for j in range(ne):
-                P[k, i, j] = full_P[k][elastic[i], elastic[j]]
-    for k in range(len(full_b)):
-        for i in range(ne):
-            b[k, i] = full_b[k][elastic[i]]
+    P = np.empty((7, ne, ne))
+    b = np.empty((4, ne))
+    for i in range(ne):
+        r = elastic[i]
+        b[B0, i] = fx[0, r]
+        b[B1, i] = fx[1, r]
+        b[G_VEC, i] = f[0, r]
+        b[C0, i] = sm.V2[r - n] if r >= n else 0.0
+        for j in range(ne):
+            c = elastic[j]
+            P[P0, i, j] = -X[0, r, c]
+            P[P1, i, j] = X[1, r, c]
+            P[P2, i, j] = X[2, r, c]
+            P[G, i, j] = A[1, r, c]
+            P[C1, i, j] = -A[2, r, c]
+            P[P3, i, j] = -X[3, r, c]
+            P[ME, i, j] = A[4, r, c]
     q_theta_factor = 0.0 if model == SFOAM else 1.0
     scalars = np.array([sm.Jh + sm.Jb, q_theta_factor])
     return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)))

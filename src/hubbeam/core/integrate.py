@@ -97,29 +97,29 @@ def _unpack_row(free, y_row, v_row, y, v):
 
 
 @inline_kernel
-def _write_row(out_row, y, v, a, torque, q_theta, e, p, C, damped, sm):
-    """The columns of :data:`SCALAR_OUTPUTS` and ``q1``, ``q2`` of one output time; ``e`` is the
-    total energy and ``p`` the angular momentum of the state; ``damped``: ``C`` has a nonzero
-    entry (otherwise the dissipation is exactly zero and is not summed)."""
-    transverse, axial, foreshortening = tip_outputs(y, sm)
+def _write_row(out_row, y, v, a, torque, q_theta, tip, e, p, dissipation):
+    """The columns of :data:`SCALAR_OUTPUTS` and ``q1``, ``q2`` of one output time: ``tip`` is
+    ``eom.tip_outputs``, ``e`` the total energy, ``p`` the angular momentum and ``dissipation``
+    the dissipation rate of the state."""
     out_row[0] = y[0]
     out_row[1] = v[0]
     out_row[2] = a[0]
     out_row[3] = torque
     out_row[4] = q_theta
-    out_row[5] = transverse
-    out_row[6] = axial
-    out_row[7] = foreshortening
+    out_row[5] = tip[0]
+    out_row[6] = tip[1]
+    out_row[7] = tip[2]
     out_row[8] = e
     out_row[9] = p
-    out_row[10] = dissipation_rate(C, v) if damped else 0.0
+    out_row[10] = dissipation
     for i in range(y.shape[0] - 1):
         out_row[N_SCALAR + i] = y[1 + i]
 
 
-# The row loops borrow their work arrays (rows y, v, a and the free accelerations) from the
-# caller: compiled without numba's reference counting, passing ``sm`` and the problem to the
-# per-row kernels costs nothing (with it, the counts took a third of the loop).
+# Outputs of an undamped run (C = 0) have a dissipation rate of exactly zero, not summed.
+# TLAM, FOAM and SFOAM fill their rows in a loop compiled without numba's reference counting
+# (``jit.borrowing_kernel``; its work arrays are rows of ``work``): with the counts the loop took
+# twice as long. CFOAM's loop, whose rows cost more, measured faster with them.
 @borrowing_kernel
 def _foam_rows(problem, model, kind, mp, C, damped, sm, free, t_out, y_out, v_out, out, work):
     y = work[0]
@@ -127,17 +127,18 @@ def _foam_rows(problem, model, kind, mp, C, damped, sm, free, t_out, y_out, v_ou
     a = work[2]
     af = work[3, :free.shape[0]]
     for k in range(t_out.shape[0]):
+        for j in range(out.shape[1]):
+            out[k, j] = np.nan
         if not np.isfinite(y_out[k, 0]):
-            out[k, :] = np.nan
             continue
-        out[k, N_SCALAR + y.shape[0] - 1:] = np.nan  # the CFOAM-only columns
         _unpack_row(free, y_out[k], v_out[k], y, v)
         impose_constraints(model, kind, mp, t_out[k], y, v, a)
         torque, q_theta, kinetic, p = foam_outputs(t_out[k], y_out[k], v_out[k], af, problem)
         for i in range(free.shape[0]):
             a[free[i]] = af[i]
-        _write_row(out[k], y, v, a, torque, q_theta, kinetic + strain_energy(y, sm), p, C,
-                   damped, sm)
+        _write_row(out[k], y, v, a, torque, q_theta, tip_outputs(y, sm),
+                   kinetic + strain_energy(y, sm.K1, sm.K2), p,
+                   dissipation_rate(C, v) if damped else 0.0)
 
 
 @kernel
@@ -149,39 +150,36 @@ def _fill_rows_foam(problem, model, kind, mp, C, sm, free, t_out, y_out, v_out, 
                out, work)
 
 
-@borrowing_kernel
-def _cfoam_rows(ct, kind, mp, C, damped, sm, free, t_out, y_out, v_out, out, work, ws, Mf):
+@kernel
+def _fill_rows_cfoam(ct, kind, mp, C, sm, free, t_out, y_out, v_out, out):
+    """:func:`fill_outputs` of CFOAM from its tensors ``ct``: one mass matrix and force of
+    Eq. (24) per output time gives the accelerations, the torque, the energy, the angular
+    momentum and the high-order terms."""
     n = sm.K1.shape[0]
     N = 1 + 2 * n
-    y = work[0]
-    v = work[1]
-    a = work[2]
-    dQ = work[3]
-    Ff = work[4]
+    y = np.zeros(N)
+    v = np.zeros(N)
+    a = np.zeros(N)
+    dQ = np.zeros(N)
+    Mf = np.empty((N, N))
+    Ff = np.empty(N)
+    ws = workspace(sm, free)
+    damped = np.any(C != 0.0)
     for k in range(t_out.shape[0]):
+        for j in range(out.shape[1]):
+            out[k, j] = np.nan
         if not np.isfinite(y_out[k, 0]):
-            out[k, :] = np.nan
             continue
         _unpack_row(free, y_out[k], v_out[k], y, v)
         tau = impose_constraints(CFOAM, kind, mp, t_out[k], y, v, a)
         cfoam_system(y, v, tau, ct, ws.M, ws.F)
         add_damping(C, v, ws.F)
         torque, q_theta, e, p = outputs(kind, tau, y, v, sm, free, a, ws)
-        _write_row(out[k], y, v, a, torque, q_theta, e, p, C, damped, sm)
+        _write_row(out[k], y, v, a, torque, q_theta, tip_outputs(y, sm), e, p,
+                   dissipation_rate(C, v) if damped else 0.0)
         out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, y, v, a, sm, C, Mf, Ff, dQ)
         for i in range(N):
             out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
-
-
-@kernel
-def _fill_rows_cfoam(ct, kind, mp, C, sm, free, t_out, y_out, v_out, out):
-    """:func:`fill_outputs` of CFOAM from its tensors ``ct``: one mass matrix and force of
-    Eq. (24) per output time gives the accelerations, the torque, the energy, the angular
-    momentum and the high-order terms."""
-    N = 1 + 2 * sm.K1.shape[0]
-    _cfoam_rows(ct, kind, mp, C, np.any(C != 0.0), sm, free, t_out, y_out, v_out, out,
-                np.zeros((5, N)),
-                workspace(sm, free), np.empty((N, N)))
 
 
 @kernel

@@ -45,6 +45,13 @@ def borrowing_kernel(func):
     return numba.njit(_nrt=False, **JIT_OPTIONS)(func)
 
 
+def internal_kernel(func):
+    """A :func:`borrowing_kernel` that only other kernels call: compiled without the CPython
+    entry point numba otherwise builds for every function (the code that unboxes each argument
+    from Python objects), which is compile time spent on code that never runs."""
+    return numba.njit(_nrt=False, no_cpython_wrapper=True, **JIT_OPTIONS)(func)
+
+
 def inline_kernel(func):
     """A small kernel on a hot path, inlined into its callers at numba's IR level.
 

@@ -47,7 +47,7 @@ from collections import namedtuple
 import numpy as np
 from numba.extending import overload
 
-from hubbeam.core.jit import JIT_OPTIONS, borrowing_kernel, inline_kernel, kernel
+from hubbeam.core.jit import JIT_OPTIONS, borrowing_kernel, inline_kernel, internal_kernel, kernel
 from hubbeam.core.step_control import INITIAL_STEP_FRACTION, MAX_FACTOR, MIN_FACTOR
 
 # Status codes returned by :func:`radau5`, the one home of a run's status (the names are stored
@@ -233,7 +233,7 @@ def lu_solve(lu, piv, b):
         b[i] = s * lu[i, i]
 
 
-@borrowing_kernel
+@internal_kernel
 def _form_reduced(mu, Ka, Ca, mat):
     """``mat = mu^2 I - mu Ca - Ka``: ``mu I - J`` after eliminating the velocity block."""
     n = Ka.shape[0]
@@ -243,7 +243,7 @@ def _form_reduced(mu, Ka, Ca, mat):
         mat[i, i] += mu * mu
 
 
-@borrowing_kernel
+@internal_kernel
 def _reduced_solve(lu, piv, mu, Ca, ry, rv, dy, dv):
     """Solve ``(mu I - J) (dy, dv) = (ry, rv)`` for ``J = [[0, I], [Ka, Ca]]``."""
     n = ry.shape[0]
@@ -273,7 +273,7 @@ register_rhs(ForcedOscillator, forced_oscillator_rhs)
 
 
 # --------------------------------------------------------------------------- small helpers
-@borrowing_kernel
+@internal_kernel
 def _all_finite(x):
     for i in range(x.shape[0]):
         if not np.isfinite(x[i]):
@@ -281,13 +281,13 @@ def _all_finite(x):
     return True
 
 
-@borrowing_kernel
+@internal_kernel
 def _copy(src, dst):
     for i in range(src.shape[0]):
         dst[i] = src[i]
 
 
-@borrowing_kernel
+@internal_kernel
 def _scale(y0, v0, y1, v1, rtol, atol, sc):
     """Reciprocal error weights ``1 / (atol_k + rtol max(|z0_k|, |z1_k|))`` of ``z = (y, v)``
     (the norms below multiply by them)."""
@@ -297,7 +297,7 @@ def _scale(y0, v0, y1, v1, rtol, atol, sc):
         sc[n + i] = 1.0 / (atol[n + i] + rtol * max(abs(v0[i]), abs(v1[i])))
 
 
-@borrowing_kernel
+@internal_kernel
 def _rms(dy, dv, sc):
     """Weighted root-mean-square norm of ``(dy, dv)`` (NaN propagates)."""
     n = dy.shape[0]
@@ -307,7 +307,7 @@ def _rms(dy, dv, sc):
     return math.sqrt(s / (2 * n))
 
 
-@borrowing_kernel
+@internal_kernel
 def _rms_stages(dy, dv, sc):
     """Weighted root-mean-square norm over the three stages of ``(dy, dv)``, shape (3, N)."""
     n = dy.shape[1]
@@ -344,7 +344,7 @@ def workspace(n):
 
 
 # --------------------------------------------------------------------------- building blocks
-@borrowing_kernel
+@internal_kernel
 def _difference_column(problem, t, y_st, v_st, a, a_st, perturbed, j, out):
     """Column ``j`` of ``out = da/dx`` by a forward difference in ``perturbed[j]`` (``perturbed``
     is ``y_st`` or ``v_st``, restored afterwards); ``a`` holds ``a(t, y_st, v_st)``."""
@@ -371,7 +371,7 @@ def jacobian(problem, t, y, v, w, stats):
     stats[RHS_CALLS] += 2 * n
 
 
-@borrowing_kernel
+@internal_kernel
 def _factorize(h, w, stats):
     """LU factors of the reduced real and complex Newton matrices for step ``h``."""
     _form_reduced(GAMMA / h, w.Ka, w.Ca, w.lu_r)
@@ -381,7 +381,7 @@ def _factorize(h, w, stats):
     stats[FACTORIZATIONS] += 1
 
 
-@borrowing_kernel
+@internal_kernel
 def _extrapolate_stages(ratio, w):
     """Starting values: the last accepted step's collocation polynomial, continued.
 
@@ -431,7 +431,7 @@ def hermite_interpolate(s, h, y0, v0, a0, y1, v1, a1, y_out, v_out):
                     + h * (d2 * a0[m] + d5 * a1[m]))
 
 
-@borrowing_kernel
+@internal_kernel
 def _newton(problem, t, h, y, v, w, eta, tol, stats):
     """Simplified Newton iteration for the stage increments ``w.Zy, w.Zv`` (started from them).
 
@@ -520,7 +520,7 @@ def _newton(problem, t, h, y, v, w, eta, tol, stats):
     return False, NEWTON_MAX_ITER, theta, eta
 
 
-@borrowing_kernel
+@internal_kernel
 def _error_estimate(problem, t, h, y, v, w, refine, stats):
     """Scaled norm of the embedded error estimate, which is left in ``w.ey, w.ev``.
 
@@ -587,7 +587,7 @@ def single_step(problem, t, y, v, h, rtol, atol, y1, v1, err_y, err_v):
 
 
 # --------------------------------------------------------------------------- driver
-@kernel
+@inline_kernel
 def radau5(problem, y0, v0, t_out, t_stops, rtol, atol, watch, watch_limit, max_steps, h_init,
            fixed_step, y_out, v_out, stats):
     """Integrate ``y'' = a(t, y, y')`` from ``t_out[0]`` to ``t_out[-1]`` with Radau IIA (order 5).
@@ -619,7 +619,7 @@ def radau5(problem, y0, v0, t_out, t_stops, rtol, atol, watch, watch_limit, max_
                   atol, watch, watch_limit, max_steps, h_init, fixed_step, y_out, v_out, stats)
 
 
-@borrowing_kernel
+@internal_kernel
 def _march(problem, y, v, w, t_out, t_stops, rtol, atol, watch, watch_limit, max_steps, h_init,
            fixed_step, y_out, v_out, stats):
     """:func:`radau5` from ``(y, v)`` (overwritten: the state as it goes) with the work arrays

@@ -144,7 +144,9 @@ def _critical_speed(ax, sweep: xr.Dataset, x_name: str, y_name: str) -> bool:
     return True
 
 
-def _legend(ax, flagged: list[str], critical: bool, extra=()) -> None:
+def _legend(ax, flagged: list[str], critical: bool, extra=(), below=None) -> None:
+    """The legend of a map panel: inside ``ax``, or under the whole figure ``below`` (a grid of
+    panels, where it would hide part of the first one)."""
     handles = list(extra)
     for name in flagged:
         hatch, label = MARKS[name]
@@ -153,7 +155,10 @@ def _legend(ax, flagged: list[str], critical: bool, extra=()) -> None:
     if critical:
         handles.append(ax.plot([], [], color=CRITICAL_COLOR, linestyle="--", linewidth=1.5,
                                label="TLAM critical speed $\\Omega_c$")[0])
-    if handles:
+    if handles and below is not None:
+        below.legend(handles=handles, loc="outside lower center", ncol=min(len(handles), 3),
+                     fontsize=7, frameon=False)
+    elif handles:
         ax.legend(handles=handles, loc="upper right", fontsize=7, frameon=True, framealpha=0.85)
 
 
@@ -275,7 +280,7 @@ def _slices(sweep: xr.Dataset, config: dict):
         norm = _peak_norm(sweep[PEAK].values)
         label, cmap = axis_label("Peak $|v(L)|$", sweep[PEAK].attrs.get("units", "m")), "viridis"
     fig, axes = new_figure(len(rows), picks.size, width=2.6 * picks.size + 0.8,
-                           height=2.6 * len(rows) + 0.9, sharex=True, sharey=True)
+                           height=2.6 * len(rows) + 1.3, sharex=True, sharey=True)
     mesh = None
     for row, model in enumerate(rows):
         for column, index in enumerate(picks):
@@ -298,7 +303,7 @@ def _slices(sweep: xr.Dataset, config: dict):
                 extra = ([ax.plot([], [], color=DEPARTURE_COLOR,
                                   label=f"departs by {float(figure['threshold']):.0%}")[0]]
                          if departure else [])
-                _legend(ax, flagged, critical, extra=extra)
+                _legend(ax, flagged, critical, extra=extra, below=fig)
             coordinate = sweep[third]
             panel_title(ax, row * picks.size + column,
                         f"{model}, {AXIS_LABELS.get(third, third)} = "

@@ -160,3 +160,13 @@ def test_benchmark_settings_are_checked(repo_root, tmp_path):
     path.write_text(yaml.safe_dump(settings))
     with pytest.raises(ConfigError, match=r"benchmark\.reference_rtol: got 1e-15.*a number >= 2\.22"):
         load_settings([study], path)
+
+
+def test_first_call_counts_the_family_kernels(repo_root):
+    """The cold-start measurement runs and reads numba's cache statistics of the kernels of
+    both families (a first simulate call loads or compiles one of them in this process)."""
+    from benchmarks.fresh_process import first_call
+
+    result = first_call([str(repo_root / "config" / "config.yaml")], TINY)
+    assert result["first_call_s"] > 0 and result["second_call_s"] > 0
+    assert result["cache_misses"] + result["cache_hits"] >= 1

@@ -170,3 +170,16 @@ def test_first_call_counts_the_family_kernels(repo_root):
     result = first_call([str(repo_root / "config" / "config.yaml")], TINY)
     assert result["first_call_s"] > 0 and result["second_call_s"] > 0
     assert result["cache_misses"] + result["cache_hits"] >= 1
+
+
+def test_sweep_rows_of_a_map_without_residuals(study_config):
+    """A map that stores only the peak (the three-axis one) gets a throughput row with no
+    residual error instead of stopping the benchmark."""
+    from benchmarks.extras import sweep_rows
+
+    maps = study_config["sweeps"]["maps"]
+    study_config["sweeps"]["maps"] = {"tlam_vs_foam_3d": maps["tlam_vs_foam_3d"]}
+    rows = sweep_rows(study_config, BeamParameters.from_config(study_config), 2, 1e-8)
+    assert [row["sweep"] for row in rows] == ["tlam_vs_foam_3d"]
+    assert rows[0]["simulations"] == 2 * 2 ** 3 and math.isnan(rows[0]["max_abs_err_residual_m"])
+    assert rows[0]["max_rel_err_peak"] < 1e-3

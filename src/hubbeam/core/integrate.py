@@ -86,14 +86,20 @@ def tip_watch(free, sm):
 
 
 @borrowing_kernel
-def _unpack_row(free, y_row, v_row, y, v):
-    """Full-length ``y, v`` from one row of free positions and velocities (the rest zero)."""
+def _start_row(out, k, free, y_out, v_out, y, v):
+    """Fill row ``k`` of ``out`` with NaN; if the states of output time ``k`` are finite (the run
+    got there), write them into the full-length ``y, v`` (the rest zero) and return True."""
+    for j in range(out.shape[1]):
+        out[k, j] = np.nan
+    if not np.isfinite(y_out[k, 0]):
+        return False
     for i in range(y.shape[0]):
         y[i] = 0.0
         v[i] = 0.0
     for i in range(free.shape[0]):
-        y[free[i]] = y_row[i]
-        v[free[i]] = v_row[i]
+        y[free[i]] = y_out[k, i]
+        v[free[i]] = v_out[k, i]
+    return True
 
 
 @inline_kernel
@@ -127,11 +133,8 @@ def _foam_rows(problem, model, kind, mp, C, damped, sm, free, t_out, y_out, v_ou
     a = work[2]
     af = work[3, :free.shape[0]]
     for k in range(t_out.shape[0]):
-        for j in range(out.shape[1]):
-            out[k, j] = np.nan
-        if not np.isfinite(y_out[k, 0]):
+        if not _start_row(out, k, free, y_out, v_out, y, v):
             continue
-        _unpack_row(free, y_out[k], v_out[k], y, v)
         impose_constraints(model, kind, mp, t_out[k], y, v, a)
         torque, q_theta, kinetic, p = foam_outputs(t_out[k], y_out[k], v_out[k], af, problem)
         for i in range(free.shape[0]):
@@ -166,11 +169,8 @@ def _fill_rows_cfoam(ct, kind, mp, C, sm, free, t_out, y_out, v_out, out):
     ws = workspace(sm, free)
     damped = np.any(C != 0.0)
     for k in range(t_out.shape[0]):
-        for j in range(out.shape[1]):
-            out[k, j] = np.nan
-        if not np.isfinite(y_out[k, 0]):
+        if not _start_row(out, k, free, y_out, v_out, y, v):
             continue
-        _unpack_row(free, y_out[k], v_out[k], y, v)
         tau = impose_constraints(CFOAM, kind, mp, t_out[k], y, v, a)
         cfoam_system(y, v, tau, ct, ws.M, ws.F)
         add_damping(C, v, ws.F)

@@ -1,0 +1,88 @@
+"""The one table of the hub-beam models: TLAM, FOAM, SFOAM and CFOAM (Section 3 of the paper).
+
+Every trait that decides what is computed for a model is stated here once, and every other part of
+hubbeam (the kernels' dispatch, the dataset's variables, the constant-speed linearisation, the
+validity checks, the workflow's wildcard constraints and kernel families, the linear models) reads
+it from :data:`MODELS`. Code outside this module does not compare a model's name to decide what to
+compute (``tests/test_models.py`` fails when it does).
+
+Traits of a model (:class:`Model`):
+
+* ``kernel_id``: the integer the jitted kernels receive (``hubbeam.core.eom``);
+* ``family``: the compiled kernel that integrates it (``"foam"``: the constant modal mass of
+  Eq. (24) inverted once, ``hubbeam.core.foam_rhs``; ``"cfoam"``: the exact kinetic energy,
+  ``hubbeam.core.cfoam_rhs``);
+* ``keeps_axial``: the axial coordinates ``q1`` are integrated (SFOAM holds them at zero, Eq. 40);
+* ``softening_terms``: the underlined ``D`` terms of Eqs. (25), (31), (32) are kept (all but TLAM);
+* ``hub_velocity_force``: the velocity-dependent generalised force ``Q_theta`` of Eq. (32) acts on
+  the hub (SFOAM deletes it, Eq. 40);
+* ``linearisation``: the variant of the constant-speed equations, Eq. (31), that linearises it
+  about a steady spin (``hubbeam.linearised.CENTRIFUGAL_TERMS``): TLAM's for TLAM, FOAM's for the
+  others (CFOAM's high-order terms are of second order in the deflection and vanish from the
+  linearisation about ``q2 = 0``, reproduction note 5);
+* ``high_order_outputs``: the dataset carries CFOAM-minus-FOAM terms along the trajectory
+  (``hubbeam.variables.HIGH_ORDER_VARIABLES``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from hubbeam.core import eom
+
+
+@dataclass(frozen=True)
+class Model:
+    """One hub-beam model and the traits that decide what is computed for it."""
+
+    name: str
+    kernel_id: int
+    family: str
+    keeps_axial: bool
+    softening_terms: bool
+    hub_velocity_force: bool
+    linearisation: str
+    high_order_outputs: bool
+    description: str
+
+
+#: the models, in the paper's order
+MODELS: dict[str, Model] = {model.name: model for model in (
+    Model("TLAM", eom.TLAM, "foam", keeps_axial=True, softening_terms=False,
+          hub_velocity_force=True, linearisation="TLAM", high_order_outputs=False,
+          description="traditional linear approximation model: no foreshortening terms"),
+    Model("FOAM", eom.FOAM, "foam", keeps_axial=True, softening_terms=True,
+          hub_velocity_force=True, linearisation="FOAM", high_order_outputs=False,
+          description="first-order approximation model, Eqs. (24)-(34)"),
+    Model("SFOAM", eom.SFOAM, "foam", keeps_axial=False, softening_terms=True,
+          hub_velocity_force=False, linearisation="FOAM", high_order_outputs=False,
+          description="simplified first-order model, Eq. (40): q1 and Q_theta dropped"),
+    Model("CFOAM", eom.CFOAM, "cfoam", keeps_axial=True, softening_terms=True,
+          hub_velocity_force=True, linearisation="FOAM", high_order_outputs=True,
+          description="complete model: the exact kinetic energy of Eqs. (8)-(9)"),
+)}
+
+#: the kernel families, each compiled once (``hubbeam.core.integrate.FAMILY_KERNELS``)
+FAMILIES: tuple[str, ...] = tuple(dict.fromkeys(model.family for model in MODELS.values()))
+
+
+class UnknownModelError(ValueError):
+    """A model name that is not in :data:`MODELS`."""
+
+
+def model(name: str) -> Model:
+    """The :class:`Model` called ``name``; an :class:`UnknownModelError` names the allowed ones."""
+    try:
+        return MODELS[name]
+    except (KeyError, TypeError):
+        raise UnknownModelError(f"model = {name!r}; allowed: one of {', '.join(MODELS)}") from None
+
+
+def by_kernel_id(kernel_id: int) -> Model:
+    """The :class:`Model` the kernels know as ``kernel_id``."""
+    return next(m for m in MODELS.values() if m.kernel_id == kernel_id)
+
+
+def wildcard_pattern(values) -> str:
+    """A regular expression for a Snakemake wildcard that matches exactly ``values``."""
+    return "|".join(sorted(values, key=len, reverse=True))

@@ -447,7 +447,7 @@ def test_schema_takes_its_limits_from_the_limits_module():
     from hubbeam import config_schema, limits, simulate
     from hubbeam.core import radau
 
-    raw = yaml.safe_load(config_schema.SCHEMA_PATH.read_text(encoding="utf-8"))
+    raw = yaml.safe_load(config_schema.SCHEMA_RESOURCE.read_text(encoding="utf-8"))
     for keys, bounds in config_schema.SCHEMA_LIMITS.items():
         raw_node, node = raw, config_schema.SCHEMA
         for key in keys:

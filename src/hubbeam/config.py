@@ -2,7 +2,7 @@
 
 Validation has two layers, reported together in one :class:`ConfigError`:
 
-1. the JSON schema ``workflow/schemas/config.schema.yaml`` (shape, types, ranges, allowed names);
+1. the JSON schema ``src/hubbeam/schemas/config.schema.yaml`` (shape, types, ranges, allowed names);
 2. checks a schema cannot express: the tip mass lies on the beam (``0 <= l <= L``), every case
    spans at least one output step, grids increase, numbers are finite, case names stay distinct
    on case-insensitive file systems, keys are text, and no YAML file repeats a key; a beam is

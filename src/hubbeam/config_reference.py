@@ -1,6 +1,6 @@
 """The configuration reference ``docs/configuration.md``, generated from the config schema.
 
-Every key of ``workflow/schemas/config.schema.yaml`` is listed with its type, whether it is
+Every key of the schema ``src/hubbeam/schemas/config.schema.yaml`` is listed with its type, whether it is
 required, its default, what is allowed and its description, all taken from the schema alone.
 The hand-written prose around the reference (where the configuration lives, how YAML numbers
 are written, an example) is the template ``docs/templates/configuration.md``; the generated
@@ -22,10 +22,13 @@ import json
 import re
 import sys
 from collections.abc import Mapping
+from pathlib import Path
 
-from hubbeam.config_schema import SCHEMA, SCHEMA_PATH
+from hubbeam.config_schema import SCHEMA
 
-ROOT = SCHEMA_PATH.parents[2]
+#: the source tree (the reference is written there, by a developer)
+ROOT = Path(__file__).resolve().parents[2]
+SCHEMA_PATH = ROOT / "src" / "hubbeam" / "schemas" / "config.schema.yaml"
 TEMPLATE_PATH = ROOT / "docs" / "templates" / "configuration.md"
 DOC_PATH = ROOT / "docs" / "configuration.md"
 MARKER = "<!-- reference -->"

@@ -1,6 +1,7 @@
 """The configuration schema and how its violations are told to the user.
 
-``workflow/schemas/config.schema.yaml`` (JSON schema, draft 2020-12) describes the shape, types,
+The package data ``hubbeam/schemas/config.schema.yaml`` (JSON schema, draft 2020-12; found through
+:mod:`importlib.resources`, so an installed package checks configurations too) describes the shape, types,
 ranges and allowed names of a configuration. The bounds of :mod:`hubbeam.limits` are filled into it
 when it is read (:data:`SCHEMA_LIMITS`), so the file states none of them. :func:`explain` turns one
 schema error into :class:`Problem` entries that name the key path, the value found and what is
@@ -14,6 +15,7 @@ import json
 import math
 import os
 from collections.abc import Mapping
+from importlib import resources
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -22,7 +24,8 @@ import yaml
 
 from hubbeam import limits
 
-SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+#: the schema, package data of hubbeam
+SCHEMA_RESOURCE = resources.files("hubbeam") / "schemas" / "config.schema.yaml"
 
 
 _TYPE_NAMES = {bool: "boolean", int: "integer", float: "decimal number", str: "text", dict: "mapping",
@@ -58,15 +61,14 @@ SCHEMA_LIMITS = {
 }
 
 
-def read_schema(path: os.PathLike | str, bounds: Mapping[tuple, Mapping] | None = None) -> dict:
-    """The JSON schema (YAML) at ``path`` with ``bounds`` ({node keys: bounds}, e.g.
-    :data:`SCHEMA_LIMITS`) filled in; a clear error when the file is missing."""
-    path = Path(path)
+def read_schema(path, bounds: Mapping[tuple, Mapping] | None = None) -> dict:
+    """The JSON schema (YAML) at ``path`` (a file or a :mod:`importlib.resources` traversable) with
+    ``bounds`` ({node keys: bounds}, e.g. :data:`SCHEMA_LIMITS`) filled in; a clear error when the
+    file is missing."""
+    path = Path(path) if isinstance(path, (str, os.PathLike)) else path
     if not path.is_file():
-        raise FileNotFoundError(
-            f"the config schema {path} is missing: hubbeam runs from its source tree "
-            "(install it with `pip install -e .`)"
-        )
+        raise FileNotFoundError(f"the config schema {path} is missing: the hubbeam package is incomplete "
+                                "(reinstall it with `pip install .`)")
     schema = yaml.safe_load(path.read_text(encoding="utf-8"))
     for keys, values in (bounds or {}).items():
         node = schema
@@ -76,7 +78,7 @@ def read_schema(path: os.PathLike | str, bounds: Mapping[tuple, Mapping] | None 
     return schema
 
 
-SCHEMA = read_schema(SCHEMA_PATH, SCHEMA_LIMITS)
+SCHEMA = read_schema(SCHEMA_RESOURCE, SCHEMA_LIMITS)
 
 
 #: Case names double as wildcards and file names (``results/simulations/<case>.nc``).

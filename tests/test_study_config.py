@@ -100,7 +100,7 @@ def test_the_paper_keeps_its_folders_and_needs_table2_speed(study):
 @pytest.mark.parametrize("name", ["my study", "a/b", "..", "tiny!", ""])
 def test_a_study_name_that_is_no_folder_name_is_rejected(study, name):
     study["study"]["name"] = name
-    assert_reported(problems_of(study), "study.name", f"got {name!r}", "pattern")
+    assert_reported(problems_of(study), "study.name", f"got {name!r}", "letters, digits, '_' and '-' only")
 
 
 @pytest.mark.parametrize("name", PAPER_FOLDERS)

@@ -212,7 +212,7 @@ def _update(config: dict, override: Mapping) -> None:
 def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None) -> dict:
     schema = SCHEMA if section is None else _with_section(section)
     coerce_numbers(cfg, schema)
-    found = [problem for error in Validator(schema).iter_errors(cfg) for problem in explain(error, schema)]
+    found = [problem for error in Validator(schema).iter_errors(cfg) for problem in explain(error, schema, cfg)]
     found += physical_problems(cfg)
     if section is not None and not found:
         found += section.check(cfg)

@@ -19,7 +19,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from hubbeam import limits, variables
-from hubbeam.config_schema import SCHEMA, Problem, allowed, key_path, show, type_name
+from hubbeam.config_schema import SCHEMA, Problem, Validator, allowed, key_path, kind_keys, show, type_name
 from hubbeam.study import PAPER_FOLDERS
 
 
@@ -147,32 +147,9 @@ def _sweep_memory_problems(sweeps: Mapping, default_modes: int, budget_mb: float
 
 
 #: maneuver parameters of each kind (a sweep gives each of the first two kinds either fixed or swept)
-MANEUVER_PARAMETERS = {"prescribed": ("wf", "tf"), "torque": ("tau_max", "tf"),
-                       "speed_table": ("time", "speed"), "torque_table": ("time", "torque"),
-                       "pd": ("kp", "kd", "reference")}
-
-
+MANEUVER_PARAMETERS = kind_keys("maneuver")
 #: parameters of each kind of a pd maneuver's reference motion
-REFERENCE_PARAMETERS = {"prescribed": ("wf", "tf"), "angle_table": ("time", "angle")}
-
-
-#: parameters of each kind of damping
-DAMPING_PARAMETERS = {"modal": ("axial", "transverse"),
-                      "rayleigh": ("mass_coefficient", "stiffness_coefficient")}
-
-
-#: beam keys of a uniform beam, replaced by ``sections`` for a non-uniform one
-UNIFORM_BEAM_KEYS = ("density", "area", "youngs_modulus", "second_moment")
-
-
-def _kind_problems(where: str, entry: Mapping, parameters: Mapping[str, tuple]) -> list[Problem]:
-    """Keys of ``entry`` that do not belong to its ``kind`` (the schema checks the required ones)."""
-    allowed = parameters.get(entry.get("kind"))
-    if allowed is None:
-        return []
-    return [Problem(f"{where}.{key}", f"got {show(value)}; not allowed when kind is "
-                    f"{entry['kind']!r} (allowed keys: {', '.join(['kind', *allowed])})")
-            for key, value in entry.items() if key not in ("kind", *allowed)]
+REFERENCE_PARAMETERS = kind_keys("reference")
 
 
 def _table_problems(where: str, entry: Mapping, abscissa: str, columns: tuple[str, ...],
@@ -192,13 +169,11 @@ def _table_problems(where: str, entry: Mapping, abscissa: str, columns: tuple[st
 
 
 def _case_entry_problems(where: str, case: Mapping) -> list[Problem]:
-    """The maneuver, its pd reference and the damping have only their kind's keys; time tables
-    start at t >= 0 and increase."""
-    maneuver, damping = _section(case, "maneuver"), _section(case, "damping")
-    problems = _kind_problems(f"{where}.maneuver", maneuver, MANEUVER_PARAMETERS)
-    problems += _kind_problems(f"{where}.damping", damping, DAMPING_PARAMETERS)
+    """The time tables of a maneuver and of its pd reference start at t >= 0 and increase (the
+    schema checks each kind's keys)."""
+    maneuver = _section(case, "maneuver")
     reference = _section(maneuver, "reference")
-    problems += _kind_problems(f"{where}.maneuver.reference", reference, REFERENCE_PARAMETERS)
+    problems = []
     for path, entry, kinds in ((f"{where}.maneuver", maneuver, MANEUVER_PARAMETERS),
                                (f"{where}.maneuver.reference", reference, REFERENCE_PARAMETERS)):
         columns = kinds.get(entry.get("kind"), ())
@@ -211,15 +186,20 @@ def _case_entry_problems(where: str, case: Mapping) -> list[Problem]:
     return problems
 
 
+#: the forms of a beam (schema ``beam.allOf``): (condition, title, the keys of the form)
+BEAM_FORMS = tuple((rule["if"], rule["then"]["title"], tuple(rule["then"]["required"]))
+                   for rule in SCHEMA["properties"]["beam"]["allOf"])
+
+
 def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
-    """A beam is uniform (all of UNIFORM_BEAM_KEYS) or given by stations from 0 to L, not both."""
-    if "sections" not in beam:
-        return [Problem(f"beam.{key}", f"missing (required for a uniform beam, i.e. without "
-                        f"beam.sections); allowed: {allowed(['beam', key], SCHEMA)}")
-                for key in UNIFORM_BEAM_KEYS if key not in beam]
-    problems = [Problem(f"beam.{key}", f"got {show(beam[key])}; not allowed together with "
-                        "beam.sections (allowed: either the uniform keys or sections)")
-                for key in UNIFORM_BEAM_KEYS if key in beam]
+    """A beam has the keys of one form only (:data:`BEAM_FORMS`; the schema requires the form's
+    keys); stations run from 0 to L."""
+    own = next((keys for condition, _, keys in BEAM_FORMS if Validator(condition).is_valid(beam)), ())
+    given = next((key for key in own if key in beam), None)
+    forms = "; ".join(f"{title.removeprefix('for ')}: {', '.join(keys)}" for _, title, keys in BEAM_FORMS)
+    problems = [Problem(f"beam.{key}", f"got {show(beam[key])}; not allowed together with beam.{given} "
+                        f"(allowed: the keys of one form of the beam -- {forms})")
+                for _, _, keys in BEAM_FORMS if keys is not own for key in keys if key in beam and given]
     sections = _section(beam, "sections")
     problems += _table_problems("beam.sections", sections, "x", ("rhoA", "EI", "EA"), "m")
     x = sections.get("x")

@@ -111,6 +111,13 @@ def validate_config(cfg: Any, files: Iterable[os.PathLike | str] = ()) -> dict:
     return _validate(cfg, problems, files)
 
 
+def validate_parts(cfg: dict, schema: dict) -> dict:
+    """Check ``cfg``, a configuration of some sections only, against ``schema`` (made of the
+    study schema's sections) and the physical constraints; raise :class:`ConfigError` listing every
+    problem. :mod:`hubbeam.settings` checks the Python API's bare case and numerics so."""
+    return _validate(cfg, [], [], schema=schema)
+
+
 def case_names(cfg: Mapping) -> list[str]:
     """Names of the configured cases, sorted."""
     return sorted(cfg["cases"])
@@ -209,8 +216,9 @@ def _update(config: dict, override: Mapping) -> None:
 # validation
 
 
-def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None) -> dict:
-    schema = SCHEMA if section is None else _with_section(section)
+def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None,
+              schema: dict | None = None) -> dict:
+    schema = schema or (SCHEMA if section is None else _with_section(section))
     coerce_numbers(cfg, schema)
     found = [problem for error in Validator(schema).iter_errors(cfg) for problem in explain(error, schema, cfg)]
     found += physical_problems(cfg)

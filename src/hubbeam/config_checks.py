@@ -80,7 +80,7 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
     numerics = _section(cfg, "numerics")
     budget_mb = _positive(numerics.get("memory_budget_mb", limits.MEMORY_BUDGET_MB))
     default_modes = _integer(numerics.get("modes"))
-    if budget_mb is None or output_step is None or default_modes is None:
+    if budget_mb is None or output_step is None:
         return []  # the schema reports it
     budget = budget_mb * variables.MIB
     problems = []
@@ -94,9 +94,11 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
         longest = (math.floor((budget / variables.BYTES_PER_VALUE - modes) / values) - 1) * output_step
         problems.append(Problem(where, f"got {t_end:g} s: {what} ({model}, {modes} modes) would store "
                                 f"{count} output times x {values} values x {variables.BYTES_PER_VALUE} "
-                                f"bytes = {variables.budget_text(size, budget_mb)}; allowed: t_end <= "
-                                f"{longest:.6g} s at numerics.output_step = {output_step:g} s (or a "
-                                "longer output step, or a larger numerics.memory_budget_mb)"))
+                                f"bytes = {variables.budget_text(size, budget_mb)}; allowed: " + (
+                                    f"t_end <= {longest:.6g} s at numerics.output_step = {output_step:g} s "
+                                    "(or a longer output step, or a larger numerics.memory_budget_mb)"
+                                    if longest >= 0 else "a larger numerics.memory_budget_mb (it holds not "
+                                    "even the first output time)")))
 
     for name, case in _section(cfg, "cases").items():
         case = case if isinstance(case, dict) else {}
@@ -107,10 +109,10 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
     models = [m for m in validation.get("models", []) if isinstance(m, str)] if isinstance(
         validation.get("models"), list) else []
     study = validation.get("mode_study") if isinstance(validation.get("mode_study"), list) else []
-    modes = max([default_modes, *(m for m in study if _integer(m) is not None)])
+    modes = max((m for m in [default_modes, *study] if _integer(m) is not None), default=None)
     for name, case in _section(validation, "cases").items():
         t_end = _positive(case.get("t_end")) if isinstance(case, dict) else None
-        if t_end is not None and models:
+        if t_end is not None and models and modes is not None:
             model = max(models, key=lambda m: variables.values_per_time(m, modes))
             check_run(f"validation.cases.{name}.t_end", f"validation run {name}", model, modes, t_end)
     problems += _sweep_memory_problems(_section(cfg, "sweeps"), default_modes, budget_mb)
@@ -162,7 +164,7 @@ def _table_problems(where: str, entry: Mapping, abscissa: str, columns: tuple[st
                         f"values ({unit})")] if any(b <= a for a, b in itertools.pairwise(first)) else []
     for column in columns:
         values = entry.get(column)
-        if isinstance(values, list) and len(values) != len(first):
+        if isinstance(values, list) and len(values) != len(first) and len(values) >= 2:  # shorter: minItems
             problems.append(Problem(f"{where}.{column}", f"got {len(values)} values; allowed: one "
                                     f"per entry of {where}.{abscissa} ({len(first)})"))
     return problems

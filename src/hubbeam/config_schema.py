@@ -253,7 +253,8 @@ def _allowed_values(node: dict) -> str:
                   if key in node]
         return ("an integer" if kind == "integer" else "a number") + (" " + " and ".join(bounds) if bounds else "")
     if kind == "array":
-        return f"a list of at least {node.get('minItems', 0)} distinct values, each {_allowed_values(node['items'])}"
+        distinct = " distinct" if node.get("uniqueItems") else ""
+        return f"a list of at least {node.get('minItems', 0)}{distinct} values, each {_allowed_values(node['items'])}"
     if kind == "object" and "properties" in node:
         return "a mapping with keys " + ", ".join(node["properties"])
     if kind == "object":

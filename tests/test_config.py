@@ -133,7 +133,8 @@ BAD_VALUES = [
     ("cases.tab3_foam_tau50.maneuver.tau_max", 0.0, ["got 0.0", "> 0"]),
     ("cases.fig04_foam.model", "FEM", ["got 'FEM'", "one of TLAM, FOAM, SFOAM, CFOAM"]),
     ("cases.fig04_foam.maneuver.kind", "ramp", ["got 'ramp'", "one of prescribed, torque"]),
-    ("cases.fig04_foam.maneuver", "spin-up", ["got 'spin-up' (text)", "a mapping with keys kind, wf, tf, tau_max"]),
+    ("cases.fig04_foam.maneuver", "spin-up", ["got 'spin-up' (text)", "a mapping with a kind (prescribed, "
+                                              "torque, speed_table, torque_table, pd) and the keys of its kind"]),
     ("cases.fig10_foam_mt0p1.tip_mass.position", 8.5, ["got 8.5", "0 <= position <= beam.length = 8.0"]),
     ("cases.fig10_foam_mt0p1.tip_mass.position", -0.1, ["got -0.1", ">= 0"]),
     ("cases.fig10_foam_mt0p1.tip_mass.mass", -0.1, ["got -0.1", "a number >= 0"]),
@@ -457,3 +458,27 @@ def test_schema_takes_its_limits_from_the_limits_module():
         assert {key: node[key] for key in bounds} == bounds
     assert config_schema.SCHEMA["$defs"]["modes"]["maximum"] == limits.MAX_MODES == simulate.MAX_MODES
     assert limits.MIN_RTOL == 100 * radau.UROUND == simulate.MIN_RTOL
+
+
+#: bad values of every kind of schema rule: (key, value to set, fragment of the one message at the key)
+SCHEMA_RULES = [
+    ("cases.fig04_foam.model", "XFOAM", "allowed: one of TLAM, FOAM, SFOAM, CFOAM"),          # enum
+    ("cases.fig04_foam.maneuver.kind", "ramp", "allowed: one of prescribed, torque"),         # enum of kinds
+    ("cases.fig04_foam.damping", "none", "allowed: a mapping"),                               # type
+    ("cases.fig04_foam.damping", {"kind": "modal", "axial": 0.1}, "required when kind is 'modal'"),
+    ("cases.fig04_foam.maneuver.tau_max", 3.0, "not allowed when kind is 'prescribed'"),     # branch keys
+    ("sweeps.maps.spinup_peak.figure.model", "FOAM", "not allowed when kind is 'peak'"),      # not
+    ("sweeps.maps.spinup_peak.in_all", "yes", "allowed: true or false"),                      # boolean
+    ("study", {"name": "../evil"}, "allowed: letters, digits, '_' and '-' only"),             # pattern
+    ("readings", {"bad name": {}}, "allowed: letters, digits and '_' only"),                  # propertyNames
+]
+
+
+@pytest.mark.parametrize("dotted, value, fragment", SCHEMA_RULES, ids=[rule[0] for rule in SCHEMA_RULES])
+def test_no_message_dumps_the_schema(study_config, dotted, value, fragment):
+    """Every schema rule is told in words: no message shows a piece of the schema as JSON."""
+    set_at(study_config, dotted, value)
+    problems = problems_of(study_config)
+    assert any(fragment in problem for problem in problems), problems
+    assert not [problem for problem in problems
+                if re.search(r'"(type|pattern|description|enum|properties|required)"', problem)], problems

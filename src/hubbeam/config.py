@@ -139,7 +139,7 @@ def case_settings(cfg: Mapping, name: str) -> dict:
         "model": case["model"],
         "maneuver": _floats(case["maneuver"]),
         "t_end": float(case["t_end"]),
-        "modes": int(case.get("modes", cfg["numerics"]["modes"])),
+        "modes": int(case["modes"] if "modes" in case else cfg["numerics"]["modes"]),
         "tip_mass": {
             "mass": float(tip_mass.get("mass", 0.0)),
             "position": float(tip_mass.get("position", cfg["beam"]["length"])),

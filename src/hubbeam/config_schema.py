@@ -151,6 +151,11 @@ def explain(error: jsonschema.ValidationError, schema: dict, root: Any = None) -
         why = f"required {branch}" if branch else "required"
         return [Problem(key_path(parts + [key]), f"missing ({why}); allowed: {allowed(parts + [key], schema, root)}")
                 for key in error.validator_value if key not in instance]
+    if kind == "not":  # keys a branch forbids: not: {required: [...]} or not: {anyOf: [{required: [...]}, ...]}
+        negated = error.validator_value
+        forbidden = [key for rule in negated.get("anyOf", [negated]) for key in rule.get("required", [])]
+        return [Problem(key_path(parts + [key]), f"got {show(instance[key])}; not allowed {branch or 'here'}")
+                for key in forbidden if key in instance]
     if kind == "additionalProperties":
         known = ", ".join(error.schema.get("properties", {}))
         if branch:
@@ -218,7 +223,7 @@ def _child(value: Any, part) -> Any:
 def _with_branches(node: dict, value: Any, schema: dict) -> dict:
     """``node`` with the ``then`` part of every ``allOf`` rule whose ``if`` ``value`` meets."""
     for rule in node.get("allOf", []):
-        if "then" in rule and value is not None and Validator(rule["if"]).is_valid(value):
+        if "then" in rule and isinstance(value, dict) and Validator(rule["if"]).is_valid(value):
             then = _resolve(rule["then"], schema)
             node = {**node, **then, "properties": {**node.get("properties", {}), **then.get("properties", {})}}
     return node
@@ -255,11 +260,17 @@ def _allowed_values(node: dict) -> str:
     if kind == "array":
         distinct = " distinct" if node.get("uniqueItems") else ""
         return f"a list of at least {node.get('minItems', 0)}{distinct} values, each {_allowed_values(node['items'])}"
+    if kind == "object" and "enum" in node.get("properties", {}).get("kind", {}) and "allOf" in node:
+        return f"a mapping with a kind ({', '.join(node['properties']['kind']['enum'])}) and the keys of its kind"
     if kind == "object" and "properties" in node:
         return "a mapping with keys " + ", ".join(node["properties"])
     if kind == "object":
         return "a mapping"
-    return json.dumps(node)
+    if kind == "string":
+        return _pattern_words(node["pattern"]) if "pattern" in node else "text"
+    if kind == "boolean":
+        return "true or false"
+    return "a value as described in docs/configuration.md"
 
 
 def show(value: Any) -> str:

@@ -20,7 +20,7 @@ from types import MappingProxyType
 from typing import Any
 
 from hubbeam.beam import BeamSections, beam_from_config
-from hubbeam.config import validate_parts
+from hubbeam.config import case_settings, validate_parts
 from hubbeam.config_schema import SCHEMA
 from hubbeam.limits import MEMORY_BUDGET_MB, SMALL_DEFLECTION_LIMIT
 from hubbeam.parameters import TipMass, UniformBeam
@@ -186,30 +186,32 @@ def from_config(cfg: Mapping) -> Settings:
         beam=beam, numerics=numerics,
         eigen=Eigen(**{**eigen, "speeds": Grid(**eigen["speeds"]), "positions": Grid(**eigen["positions"]),
                        "tip_masses": tuple(eigen["tip_masses"])}),
-        cases=MappingProxyType({name: _case(name, case, numerics.modes, beam.L)
-                                for name, case in sorted(cfg["cases"].items())}),
+        cases=MappingProxyType({name: _case(case_settings(cfg, name)) for name in sorted(cfg["cases"])}),
         study=None if study is None else Study(**{**study, "comparisons": MappingProxyType(
             {name: tuple(members) for name, members in study.get("comparisons", {}).items()})}),
     )
 
 
-def _case(name: str | None, case: Mapping, default_modes: int, length: float) -> Case:
-    tip_mass = case.get("tip_mass", {})
-    return Case(name=name, model=case["model"], maneuver=Maneuver.from_mapping(case["maneuver"]),
-                t_end=float(case["t_end"]), modes=int(case.get("modes", default_modes)),
-                tip_mass=TipMass(mass=tip_mass.get("mass", 0.0), position=tip_mass.get("position", length)),
-                damping=Maneuver.from_mapping(case["damping"]) if "damping" in case else None)
+def _case(resolved: Mapping) -> Case:
+    """The :class:`Case` of a resolved case (:func:`hubbeam.config.case_settings`, which fills the
+    defaults); a name :data:`UNNAMED` is None."""
+    return Case(name=None if resolved["name"] == UNNAMED else resolved["name"], model=resolved["model"],
+                maneuver=Maneuver.from_mapping(resolved["maneuver"]), t_end=resolved["t_end"],
+                modes=resolved["modes"], tip_mass=TipMass(**resolved["tip_mass"]),
+                damping=Maneuver.from_mapping(resolved["damping"]) if "damping" in resolved else None)
 
 
 #: the name a case given without one has in messages
 UNNAMED = "<unnamed>"
 #: the schema of a bare case and the integrator settings of a simulation (the API's mappings):
-#: the configuration's sections, ``numerics`` without the keys a simulation given its matrices
-#: does not read (``modes`` comes with the case, ``quadrature_points`` only assembles matrices)
+#: the configuration's sections, the case with its ``modes`` (resolved), ``numerics`` without the
+#: keys a simulation given its matrices does not read (``modes`` comes with the case,
+#: ``quadrature_points`` only assembles matrices)
 SIMULATION_SCHEMA = {
     "type": "object",
     "properties": {
-        "cases": {"type": "object", "additionalProperties": {"$ref": "#/$defs/case"}},
+        "cases": {"type": "object", "additionalProperties": {
+            "$ref": "#/$defs/case", "required": [*SCHEMA["$defs"]["case"]["required"], "modes"]}},
         "numerics": {**SCHEMA["properties"]["numerics"], "required": [
             key for key in SCHEMA["properties"]["numerics"]["required"] if key not in ("modes", "quadrature_points")]},
     },
@@ -236,5 +238,4 @@ def simulation_settings(case: Case | Mapping, numerics: Numerics | Mapping, leng
     where = UNNAMED if name is None else name
     cfg = copy.deepcopy({"beam": {"length": length}, "numerics": numerics, "cases": {where: case}})
     validate_parts(cfg, SIMULATION_SCHEMA)
-    numerics = Numerics.from_mapping(cfg["numerics"])
-    return _case(name, cfg["cases"][where], numerics.modes, length), numerics
+    return _case(case_settings(cfg, where)), Numerics.from_mapping(cfg["numerics"])

@@ -482,3 +482,28 @@ def test_no_message_dumps_the_schema(study_config, dotted, value, fragment):
     assert any(fragment in problem for problem in problems), problems
     assert not [problem for problem in problems
                 if re.search(r'"(type|pattern|description|enum|properties|required)"', problem)], problems
+
+
+@pytest.mark.parametrize("path", ["config/config.yaml", "studies/spinup10m.yaml", "studies/tapered_pd.yaml"])
+def test_a_checked_configuration_becomes_frozen_objects_that_give_back_its_cases(repo_root, path):
+    """hubbeam.settings.from_config: one object per section; each case gives back its resolved
+    mapping (what a dataset records), and no object can be changed."""
+    import dataclasses
+
+    from hubbeam.beam import beam_from_config
+    from hubbeam.settings import Case, from_config
+    from hubbeam.tabular import resolve_files
+
+    cfg = validate_config(resolve_files(read_config_file(repo_root / path), (repo_root / path).parent))
+    settings = from_config(cfg)
+    assert settings.beam == beam_from_config(cfg["beam"])
+    assert (settings.study is None) == ("study" not in cfg)
+    assert settings.numerics.rtol == cfg["numerics"]["rtol"]
+    assert settings.eigen.speeds.num == cfg["eigen"]["speeds"]["num"]
+    assert sorted(settings.cases) == case_names(cfg)
+    for name, case in settings.cases.items():
+        assert isinstance(case, Case) and case.to_dict() == case_settings(cfg, name)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        case.t_end = 1.0
+    with pytest.raises(TypeError):
+        settings.cases["x"] = case

@@ -2,12 +2,12 @@
 
 The tip mass lies on the beam (``0 <= l <= L``), every case spans at least one output step, grids
 increase, numbers are finite, case names stay distinct on case-insensitive file systems, keys are
-text; a beam is either uniform or given by stations (``beam.sections``, from x = 0 to x = L),
-tables of stations and times increase, a maneuver or damping has only the keys of its kind, a
-study (``study`` section) neither takes a folder of the paper's products nor compares unknown
-cases, and no case, validation run or sweep would need more memory than
-``numerics.memory_budget_mb`` (:mod:`hubbeam.variables`). Each check runs only on values the
-schema accepted, and each problem names the key, the value and what is allowed.
+text; a beam has the keys of one form only (the forms and their keys are the schema's), stations
+run from x = 0 to x = L, tables of stations and times increase, a study (``study`` section) neither
+takes a folder of the paper's products nor compares unknown cases, and no case, validation run or
+sweep would need more memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.variables`). Each
+check runs only on values the schema accepted, and each problem names the key, the value and what
+is allowed.
 """
 
 from __future__ import annotations

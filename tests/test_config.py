@@ -491,7 +491,7 @@ def test_a_checked_configuration_becomes_frozen_objects_that_give_back_its_cases
     import dataclasses
 
     from hubbeam.beam import beam_from_config
-    from hubbeam.settings import Case, from_config
+    from hubbeam.settings import Case, from_config, simulation_settings
     from hubbeam.tabular import resolve_files
 
     cfg = validate_config(resolve_files(read_config_file(repo_root / path), (repo_root / path).parent))
@@ -503,6 +503,8 @@ def test_a_checked_configuration_becomes_frozen_objects_that_give_back_its_cases
     assert sorted(settings.cases) == case_names(cfg)
     for name, case in settings.cases.items():
         assert isinstance(case, Case) and case.to_dict() == case_settings(cfg, name)
+        # the API's path from the resolved mapping gives the same object
+        assert simulation_settings(case_settings(cfg, name), cfg["numerics"], settings.beam.L)[0] == case
     with pytest.raises(dataclasses.FrozenInstanceError):
         case.t_end = 1.0
     with pytest.raises(TypeError):

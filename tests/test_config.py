@@ -20,7 +20,7 @@ from hubbeam.config import (
     read_config_file,
     validate_config,
 )
-from hubbeam.config_schema import CASE_NAME_PATTERN
+from hubbeam.config_schema import CASE_NAME_PATTERN, SCHEMA
 from hubbeam.paper import TABLE1
 from hubbeam.parameters import BeamParameters, TipMass
 
@@ -509,3 +509,20 @@ def test_a_checked_configuration_becomes_frozen_objects_that_give_back_its_cases
         case.t_end = 1.0
     with pytest.raises(TypeError):
         settings.cases["x"] = case
+
+
+def test_every_pattern_of_the_schema_is_said_in_words():
+    """explain says a pattern in words (config_schema._PATTERNS): each one the schema uses has them."""
+    from hubbeam.config_schema import _PATTERNS
+
+    def patterns(node):
+        if isinstance(node, dict):
+            yield from ([node["pattern"]] if isinstance(node.get("pattern"), str) else [])
+            for value in node.values():
+                yield from patterns(value)
+        elif isinstance(node, list):
+            for value in node:
+                yield from patterns(value)
+
+    used = set(patterns(SCHEMA))
+    assert used and used <= set(_PATTERNS), used - set(_PATTERNS)

@@ -1,12 +1,13 @@
 """The configuration schema and how its violations are told to the user.
 
 The package data ``hubbeam/schemas/config.schema.yaml`` (JSON schema, draft 2020-12; found through
-:mod:`importlib.resources`, so an installed package checks configurations too) describes the shape, types,
-ranges and allowed names of a configuration. The bounds of :mod:`hubbeam.limits` are filled into it
-when it is read (:data:`SCHEMA_LIMITS`), so the file states none of them. :func:`explain` turns one
-schema error into :class:`Problem` entries that name the key path, the value found and what is
-allowed; :func:`coerce_numbers` takes text that reads as a finite number for a number where the
-schema wants one (YAML 1.1 reads ``1e-9`` as text).
+:mod:`importlib.resources`, so an installed package checks configurations too) describes the shape,
+types, ranges and allowed names of a configuration. The bounds of :mod:`hubbeam.limits` are filled
+into it when it is read (:data:`SCHEMA_LIMITS`), so the file states none of them. :func:`explain`
+turns one schema error into :class:`Problem` entries that name the key path, the value found and
+what is allowed; :func:`coerce_numbers` takes text that reads as a finite number for a number where
+the schema wants one (YAML 1.1 reads ``1e-9`` as text). Each maneuver, reference and damping kind
+has a branch of its own keys in the schema, selected by ``kind``; :func:`kind_keys` reads them.
 """
 
 from __future__ import annotations

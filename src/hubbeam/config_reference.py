@@ -216,7 +216,9 @@ class _Writer:
             (key, value), then = _condition(rule)
             only = node.get("properties", {}).get(key, {}).get("const", value)  # a kind narrowed to one
             if "$ref" in then and only == value:
-                self.section(f"{title}` when `{key}` is `{value}", then, min(level + 1, 6))
+                selector = {"properties": {key: {"description": f"{value}: the keys of this section"}}}
+                self.section(f"{title}` when `{key}` is `{value}", _overlay(resolve(then, self.defs), selector),
+                             min(level + 1, 6))
 
     def map_entries(self, title: str, node: Mapping, entries: Mapping, level: int) -> None:
         rules = _allowed(node.get("propertyNames", {}), self.defs) + _allowed(node, self.defs)

@@ -39,6 +39,7 @@ from hubbeam.config_schema import (
     key_path,
     show,
 )
+from hubbeam.defaults import fill_eigen, fill_numerics
 
 
 class ConfigError(ValueError):
@@ -212,6 +213,8 @@ def _update(config: dict, override: Mapping) -> None:
 def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None) -> dict:
     schema = SCHEMA if section is None else _with_section(section)
     coerce_numbers(cfg, schema)
+    if isinstance(cfg, dict):
+        fill_numerics(cfg)
     found = [problem for error in Validator(schema).iter_errors(cfg) for problem in explain(error, schema)]
     found += physical_problems(cfg)
     if section is not None and not found:
@@ -219,6 +222,7 @@ def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section
     problems = list(dict.fromkeys(problems + sorted(found, key=lambda problem: problem.path)))
     if problems:
         raise ConfigError(problems, sources)
+    fill_eigen(cfg)
     return cfg
 
 

@@ -237,7 +237,7 @@ def _study_problems(cfg: Mapping, eigen: Mapping, cases: Mapping) -> list[Proble
     """A study keeps out of the paper's folders, compares its own cases and ends its eigen grid of
     positions at the tip; the paper (no ``study``) needs ``eigen.table2_speed`` for Table 2."""
     if "study" not in cfg:
-        if "table2_speed" in eigen or not eigen:
+        if "table2_speed" in eigen:
             return []
         return [Problem("eigen.table2_speed", "missing (required for the paper's Table 2, i.e. "
                         f"without a study section); allowed: {allowed(['eigen', 'table2_speed'], SCHEMA)}")]

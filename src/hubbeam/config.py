@@ -13,7 +13,9 @@ Validation has two layers, reported together in one :class:`ConfigError`:
    (:mod:`hubbeam.variables`).
 
 Before validation, text that reads as a finite number where the schema wants a number is taken
-as that number (:func:`coerce_numbers`): YAML 1.1 reads ``1e-9`` as text.
+as that number (:func:`coerce_numbers`): YAML 1.1 reads ``1e-9`` as text, and the ``numerics``
+keys left out take their defaults; after it, the ``eigen`` grids left out are derived from the
+study (:mod:`hubbeam.defaults`). The configuration is completed in place.
 
 Every problem names the key path (``cases.fig05_tlam.maneuver.wf``), the offending value and
 what is allowed. :func:`case_settings` resolves one case with the defaults of ``numerics``.

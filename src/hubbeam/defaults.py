@@ -10,9 +10,9 @@ configuration is valid:
 * ``positions``: :data:`POSITION_POINTS` tip-mass positions from the root to the tip, ``[0, L]``;
 * ``speeds``: :data:`SPEED_POINTS` hub speeds from 0 to :data:`SPEED_MARGIN` times the larger of
   the highest hub speed a case reaches (:func:`highest_hub_speed`) and the highest critical
-  speed of the study's beam (:func:`highest_critical_speed`), rounded up to two significant
-  digits, so that the Campbell diagram shows every case's speed and where TLAM loses its bending
-  stiffness;
+  speed of the study's beam with any tip mass (:func:`highest_critical_speed`), rounded up to
+  two significant digits (:func:`round_up`), so that the Campbell diagram shows every case's
+  speed and where TLAM loses its bending stiffness;
 * ``critical_speed_search_max``: the top of that speed grid.
 
 Both only add keys that are missing; a value the configuration gives is kept. The completed
@@ -72,7 +72,7 @@ def fill_eigen(cfg: dict) -> None:
     if missing & {"speeds", "critical_speed_search_max"}:
         params = beam_from_config(beam)
         bare = assemble(params, None, int(numerics["modes"]), int(numerics["quadrature_points"]))
-        highest = max(highest_critical_speed(bare.K2, bare.M2, bare.D),
+        highest = max(highest_critical_speed(bare.K2, bare.M2),
                       *(highest_hub_speed(case["maneuver"], float(case["t_end"]), bare.Jh + bare.Jb)
                         for case in cases.values()))
         top = round_up(SPEED_MARGIN * highest)
@@ -80,21 +80,19 @@ def fill_eigen(cfg: dict) -> None:
         eigen.setdefault("critical_speed_search_max", top)
 
 
-def highest_critical_speed(K2: np.ndarray, M2: np.ndarray, D: np.ndarray) -> float:
-    """The highest critical speed (rad s-1) of TLAM and FOAM over every tip mass and position, from
-    the bare beam's ``K2, M2, D`` (0 when neither model has one).
+def highest_critical_speed(K2: np.ndarray, M2: np.ndarray) -> float:
+    """The highest critical speed (rad s-1) over every tip mass and position, from the bare beam's
+    ``K2, M2``: TLAM's, the bare beam's first natural frequency.
 
-    ``K22 = K2 - Omega^2 B`` (Eq. 31) becomes singular at ``Omega^2 = 1 / mu`` for the positive
-    eigenvalues ``mu`` of ``B v = mu K2 v`` (``hubbeam.eigen``). A point mass ``m`` at ``l`` adds
-    ``m f2(l)^T f2(l)`` to ``M2`` and ``m (rA + l) S(l)`` to ``D``: a positive semi-definite term to
-    TLAM's ``B = M2``, which lowers its critical speed, and a negative semi-definite one to FOAM's
-    ``B = M2 - D`` (``w(l)^2 <= (rA + l) int_0^l w'^2``), which has no positive eigenvalue for any
-    beam clamped to the hub (``hubbeam.eigen``). The bare beam's TLAM critical speed, its first
-    natural frequency, bounds them all.
+    ``K22 = K2 - Omega^2 B`` (Eq. 31) becomes singular at ``Omega^2 = 1 / mu`` for the largest
+    eigenvalue ``mu`` of ``B v = mu K2 v`` (``hubbeam.eigen``), ``B = M2`` for TLAM. A point mass
+    ``m`` at ``l`` adds the positive semi-definite ``m f2(l)^T f2(l)`` to ``M2``, which raises
+    ``mu`` and so lowers the critical speed: the bare beam's bounds them all. FOAM has none
+    (``B = M2 - D`` is negative definite for a beam clamped to the hub, ``hubbeam.eigen``), so it
+    is not asked here: a rounding error could only make up a spurious one.
     """
-    mu = [linearised.symmetric_eigenvalues(linearised.centrifugal_matrix(M2, D, model), K2)[-1]
-          for model in linearised.AXIAL_MODELS]
-    return max((1.0 / math.sqrt(value) for value in mu if value > 0.0), default=0.0)
+    mu = linearised.symmetric_eigenvalues(M2, K2)[-1]  # B = M2 of TLAM
+    return float(1.0 / math.sqrt(mu))
 
 
 def highest_hub_speed(maneuver: Mapping, t_end: float, inertia: float) -> float:

@@ -8,6 +8,8 @@ from __future__ import annotations
 import copy
 import math
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -182,3 +184,14 @@ def test_the_schema_describes_the_derived_grids():
                                              (3.0, 3.0), (99.1, 100.0)])
 def test_round_up_to_two_significant_digits(value, expected):
     assert defaults.round_up(value) == expected
+
+
+def test_the_first_study_plans_every_product_as_written(tmp_path):
+    """`snakemake -n --configfile studies/first_study.yaml` from an empty folder: the rules find
+    every setting they read in the completed configuration."""
+    snakemake_command = [sys.executable, "-m", "snakemake", "--snakefile", str(REPO / "Snakefile"), "--directory",
+               str(tmp_path), "--dry-run", "--cores", "1", "--configfile", str(FIRST_STUDY)]
+    run = subprocess.run(snakemake_command, cwd=tmp_path, capture_output=True, text=True, timeout=300, check=False)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    for rule in ("study_eigen", "study_beam", "simulate", "study_report", "study_archive"):
+        assert re.search(rf"^{rule}\s+1$", run.stdout, re.M), rule

@@ -17,7 +17,7 @@ import numpy as np
 import scipy.linalg
 import xarray as xr
 
-from hubbeam.beam import beam_attributes
+from hubbeam.beam import SECTION_UNITS, beam_attributes
 from hubbeam.eigen import K22, MODELS
 from hubbeam.matrices import assemble
 from hubbeam.modes import transverse_modes
@@ -25,6 +25,8 @@ from hubbeam.parameters import TipMass
 
 #: points along the span at which properties and shapes are stored (plus the stations)
 SPAN_POINTS = 201
+#: long name of each sectional property
+LONG_NAMES = {"rhoA": "mass per unit length", "EI": "bending stiffness", "EA": "axial stiffness"}
 
 
 def span(params) -> np.ndarray:
@@ -64,11 +66,9 @@ def beam_dataset(params, tips: Mapping[str, TipMass], speeds, shape_tips, n_shap
     frequency = np.stack([f for f, _ in results], axis=1)
     shape = np.stack([w for _, w in results], axis=1)
     names = list(tips)
-    units = {"rhoA": ("kg m-1", "mass per unit length"), "EI": ("N m2", "bending stiffness"),
-             "EA": ("N", "axial stiffness")}
     properties = {}
-    for name, (unit, long_name) in units.items():
-        at = getattr(params, f"{name}_at")
+    for name, long_name in LONG_NAMES.items():
+        at, unit = getattr(params, f"{name}_at"), SECTION_UNITS[name]
         properties[name] = ("x", at(x), {"units": unit, "long_name": long_name})
         properties[f"station_{name}"] = ("station", at(stations),
                                          {"units": unit, "long_name": f"{long_name} at the stations"})

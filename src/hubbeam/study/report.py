@@ -13,12 +13,10 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from hubbeam.beam import beam_from_config
+from hubbeam.beam import SECTION_PROPERTIES, SECTION_UNITS, beam_from_config
 from hubbeam.document import markdown_to_html, render
 from hubbeam.study.summary import COLUMNS
 
-#: the beam's properties in the summary: (name, unit)
-BEAM_PROPERTIES = (("rhoA", "kg m-1"), ("EI", "N m2"), ("EA", "N"))
 #: the eigen figure shown in the report's beam section rather than with the eigen-analysis
 BEAM_FIGURE = "beam_properties"
 
@@ -40,9 +38,9 @@ def beam_summary(beam: Mapping) -> list[dict]:
     params = beam_from_config(beam)
     stations = params.stations
     rows = []
-    for name, unit in BEAM_PROPERTIES:
+    for name in SECTION_PROPERTIES:
         values = getattr(params, f"{name}_at")(stations)
-        rows.append({"name": name, "unit": unit, "root": float(values[0]), "tip": float(values[-1]),
+        rows.append({"name": name, "unit": SECTION_UNITS[name], "root": float(values[0]), "tip": float(values[-1]),
                      "min": float(values.min()), "max": float(values.max())})
     return rows
 

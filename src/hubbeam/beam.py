@@ -30,6 +30,8 @@ from hubbeam.parameters import CONFIG_KEYS, PRODUCT_KEYS, BeamParameters, BeamPr
 
 #: the properties tabulated at the stations, in the order of the config's ``sections``
 SECTION_PROPERTIES = ("rhoA", "EI", "EA")
+#: unit of each sectional property
+SECTION_UNITS = {"rhoA": "kg m-1", "EI": "N m2", "EA": "N"}
 #: keys of a ``beam`` section with ``sections`` (besides ``sections`` itself)
 SECTIONS_BEAM_KEYS = ("length", "hub_inertia", "hub_radius")
 #: config key -> field name
@@ -103,12 +105,11 @@ class BeamSections:
             if not (math.isfinite(x[i]) and x[i] > x[i - 1]):
                 raise ValueError(f"beam.sections.x[{i}] = {x[i]!r}: expected a finite station "
                                  f"> x[{i - 1}] = {x[i - 1]} (strictly increasing)")
-        units = {"rhoA": "kg m-1", "EI": "N m2", "EA": "N"}
         for name in SECTION_PROPERTIES:
             for i, value in enumerate(tables[name]):
                 if not (math.isfinite(value) and value > 0.0):
                     raise ValueError(f"beam.sections.{name}[{i}] = {value!r}: expected a finite "
-                                     f"value > 0 {units[name]}")
+                                     f"value > 0 {SECTION_UNITS[name]}")
         for name, value in (("L", L), ("Jh", Jh), ("rA", rA), *tables.items()):
             object.__setattr__(self, name, value)
 

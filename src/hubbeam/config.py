@@ -14,7 +14,9 @@ Validation has two layers, reported together in one :class:`ConfigError`:
    (:mod:`hubbeam.variables`).
 
 Before validation, text that reads as a finite number where the schema wants a number is taken
-as that number (:func:`coerce_numbers`): YAML 1.1 reads ``1e-9`` as text.
+as that number (:func:`coerce_numbers`): YAML 1.1 reads ``1e-9`` as text, and the ``numerics``
+keys left out take their defaults; after it, the ``eigen`` grids left out are derived from the
+study (:mod:`hubbeam.defaults`). The configuration is completed in place.
 
 Every problem names the key path (``cases.fig05_tlam.maneuver.wf``), the offending value and
 what is allowed. :func:`case_settings` resolves one case with the defaults of ``numerics``;
@@ -41,6 +43,7 @@ from hubbeam.config_schema import (
     key_path,
     show,
 )
+from hubbeam.defaults import fill_eigen, fill_numerics
 
 
 class ConfigError(ValueError):
@@ -220,15 +223,20 @@ def _update(config: dict, override: Mapping) -> None:
 
 def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None,
               schema: dict | None = None) -> dict:
+    whole = schema is None  # a whole configuration, not the API's bare case and numerics
     schema = schema or (SCHEMA if section is None else _with_section(section))
     coerce_numbers(cfg, schema)
+    if isinstance(cfg, dict):
+        fill_numerics(cfg)
     found = [problem for error in Validator(schema).iter_errors(cfg) for problem in explain(error, schema, cfg)]
-    found += physical_problems(cfg)
+    found += physical_problems(cfg, whole)
     if section is not None and not found:
         found += section.check(cfg)
     problems = list(dict.fromkeys(problems + sorted(found, key=lambda problem: problem.path)))
     if problems:
         raise ConfigError(problems, sources)
+    if whole:
+        fill_eigen(cfg)
     return cfg
 
 

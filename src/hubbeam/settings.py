@@ -204,16 +204,14 @@ def _case(resolved: Mapping) -> Case:
 #: the name a case given without one has in messages
 UNNAMED = "<unnamed>"
 #: the schema of a bare case and the integrator settings of a simulation (the API's mappings):
-#: the configuration's sections, the case with its ``modes`` (resolved), ``numerics`` without the
-#: keys a simulation given its matrices does not read (``modes`` comes with the case,
-#: ``quadrature_points`` only assembles matrices)
+#: the configuration's sections, the case with its ``modes`` (resolved), ``numerics`` as in a
+#: configuration (a key left out takes its default, ``hubbeam.defaults``)
 SIMULATION_SCHEMA = {
     "type": "object",
     "properties": {
         "cases": {"type": "object", "additionalProperties": {
             "$ref": "#/$defs/case", "required": [*SCHEMA["$defs"]["case"]["required"], "modes"]}},
-        "numerics": {**SCHEMA["properties"]["numerics"], "required": [
-            key for key in SCHEMA["properties"]["numerics"]["required"] if key not in ("modes", "quadrature_points")]},
+        "numerics": SCHEMA["properties"]["numerics"],
     },
     "$defs": SCHEMA["$defs"],
 }

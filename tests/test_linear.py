@@ -403,3 +403,46 @@ def test_linear_model_against_the_nonlinear_kernel(_study_config, beam, model, s
     assert np.all(r < 0.06)
     assert np.all(np.abs(d[0]) <= 0.1)
     assert np.all(np.abs(d[1]) <= 0.6 * np.abs(d[0]))
+
+
+# --- export --------------------------------------------------------------------------------------
+
+
+def test_netcdf_and_mat_files_hold_the_models(beam, matrices, tmp_path):
+    """Both files give back, at every speed, the model :func:`linear_model` returns (the netCDF
+    float encoding is lossless; the .mat file stores doubles)."""
+    from scipy.io import loadmat
+
+    from hubbeam.io import open_result
+    from hubbeam.linear.export import to_dataset, write_dataset, write_mat
+
+    speeds = [0.0, 1.0, 2.5]  # TLAM's critical speed with this tip mass is 1.94 rad s-1
+    ds = to_dataset(beam, matrices(TIP), "TLAM", speeds, "free", tip=TIP,
+                    damping=damping_matrices(MODAL, matrices(TIP)))
+    stored = open_result(write_dataset(ds, tmp_path / "linear.nc"))
+    mat = loadmat(write_mat(ds, tmp_path / "linear.mat"))
+    assert stored.attrs["Conventions"] == "CF-1.11" and stored.attrs["model"] == "TLAM"
+    assert stored.attrs["tip_mass_kg"] == TIP.mass and stored.attrs["n_modes"] == 5
+    assert [str(cell[0]) for cell in mat["states"][:, 0]] == list(ds.state.values)
+    for k, speed in enumerate(speeds):
+        lm = linear_model(beam, matrices(TIP), "TLAM", speed, damping=damping_matrices(MODAL, matrices(TIP)))
+        for name in "ABCD":
+            np.testing.assert_array_equal(stored[name].values[k], getattr(lm, name))
+            np.testing.assert_array_equal(mat[name][:, :, k], getattr(lm, name))
+        assert list(stored.state.values) == list(lm.states)
+        assert list(stored.output.values) == list(lm.outputs)
+    np.testing.assert_array_equal(mat["speed"][:, 0], speeds)
+    unstable = stored.growth_rate.values > 1e-6  # rounding leaves ~1e-12 on the stable side
+    assert unstable.tolist() == [False, False, True]
+
+
+@pytest.mark.parametrize(("speeds", "message"), [
+    ([], "speeds = []; allowed: a non-empty list of hub speeds, each finite and >= 0 rad s-1"),
+    ([1.0, -0.5], "speeds[1] = -0.5; allowed"),
+    ([1.0, float("inf")], "speeds[1] = inf; allowed"),
+])
+def test_bad_speed_grid_is_named(beam, matrices, speeds, message):
+    from hubbeam.linear.export import to_dataset
+
+    with pytest.raises(ValueError, match=re.escape(message)):
+        to_dataset(beam, matrices(), "FOAM", speeds)

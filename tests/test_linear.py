@@ -446,3 +446,11 @@ def test_bad_speed_grid_is_named(beam, matrices, speeds, message):
 
     with pytest.raises(ValueError, match=re.escape(message)):
         to_dataset(beam, matrices(), "FOAM", speeds)
+
+
+def test_benchmark_rows(_study_config, beam):
+    from benchmarks.linear import linear_rows
+
+    rows = linear_rows(_study_config, beam, repeats=1, budget=1.0)
+    assert [row["states"] for row in rows] == [42, 42, 42]
+    assert all(row["wall_s"] > 0 for row in rows)

@@ -114,15 +114,15 @@ def test_steady_spin_needs_no_torque(beam, matrices, model, tip):
     vanishes, damping included (it acts on the elastic rates, zero there): what is left is the
     rounding of the cancelling centrifugal and elastic forces, ``eps`` times ``K1 q1s`` over
     the mass."""
-    from hubbeam.linear.jacobian import _accelerations, _state, kernel_model
+    from hubbeam.linear.jacobian import kernel_model, nonlinear_accelerations, steady_state
 
     sm = matrices(tip)
     C = damping_matrices(MODAL, sm)
     speed = 3.0
     traits = MODELS[model]
     q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(5)
-    y, v, kept = _state(sm, traits, speed, q1s)
-    a = _accelerations(kernel_model(traits), sm, C, "free", y, v, 0.0, kept)
+    y, v, kept = steady_state(sm, traits, speed, q1s)
+    a = nonlinear_accelerations(kernel_model(traits), sm, C, "free", y, v, 0.0, kept)
     forces = np.abs(sm.K1) @ np.abs(q1s) + speed**2 * np.abs(sm.V1)
     assert np.all(np.abs(a) <= 100 * EPS * max(forces.max(), EPS))
 

@@ -25,6 +25,7 @@ import matplotlib
 import matplotlib.pyplot
 import numpy as np
 import pytest
+from scipy.integrate import quad
 from scipy.linalg import eig, eigh
 from scipy.optimize import brentq, linear_sum_assignment
 
@@ -216,6 +217,38 @@ def test_beam_on_a_hub_of_finite_inertia(beam):
     assert np.all(errors > -1e-12)
     assert np.all(errors[1] <= errors[0] / 2**4)
     assert np.all(errors[2] <= errors[1] / 2**3)
+
+
+@pytest.mark.parametrize("tip", [None, TIP], ids=["no_tip", "tip"])
+def test_quasi_static_root_moment_and_tip_deflection(beam, tip):
+    """At rest a slow hub acceleration ``alpha`` loads the beam with its own inertia,
+    ``p(x) = -rho A (rA + x) alpha`` and ``-m_t (rA + l) alpha`` at the tip mass: a cantilever, whose
+    root moment is ``EI v''(0) = int p(xi) xi dxi`` and whose tip deflection is ``int p(xi)
+    xi^2 (3 L - xi) / (6 EI) dxi``. The prescribed-hub model's response at ``s = 1e-4 i`` rad/s is
+    quasi-static to ``(s / omega_1)^2 = 1e-9``. The Ritz series of a second derivative at the
+    boundary converges slowly (like ``n^-2``: each doubling of n quarters it; bound: halves), the
+    deflection fast (bound: quarters)."""
+    L, rA, rhoA, EI = beam.L, beam.rA, beam.rhoA, beam.EI
+    mass = 0.0 if tip is None else tip.mass
+
+    def compliance(xi):
+        return xi**2 * (3 * L - xi) / (6 * EI)
+
+    moment = -rhoA * (rA * L**2 / 2 + L**3 / 3) - mass * (rA + L) * L
+    deflection = quad(lambda xi: -rhoA * (rA + xi) * compliance(xi), 0.0, L)[0] \
+        - mass * (rA + L) * compliance(L)
+    errors = []
+    for n in (5, 10, 20):
+        sm = assemble(beam, tip, n)
+        plant = linear_model(beam, sm, "FOAM", 0.0, "prescribed",
+                             outputs=["root_moment", "tip_deflection"]).to_control()
+        gain = ct.evalfr(plant, 1e-4j).real.ravel()
+        errors.append(np.abs(gain / [moment, deflection] - 1.0))
+    errors = np.array(errors)
+    first = np.sqrt(eigh(sm.K2, sm.M2, eigvals_only=True)[0])  # the held beam's, rad s-1
+    quasi_static = 2 * (1e-4 / first) ** 2
+    assert np.all(errors[1:, 0] <= errors[:-1, 0] / 2 + quasi_static)
+    assert np.all(errors[1:, 1] <= errors[:-1, 1] / 4 + quasi_static)
 
 
 # --- the collocated identity ---------------------------------------------------------------------

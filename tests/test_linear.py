@@ -31,7 +31,7 @@ from scipy.optimize import brentq, linear_sum_assignment
 
 from hubbeam.damping import damping_matrices
 from hubbeam.eigen import critical_speed
-from hubbeam.linear import HUBS, OUTPUTS, linear_model
+from hubbeam.linear import HUBS, OUTPUTS, linear_model, plant
 from hubbeam.linear.jacobian import RELATIVE_STEP, coordinate_scales, jacobian_model
 from hubbeam.linear.statespace import axial_stretch
 from hubbeam.linearised import frequencies
@@ -346,6 +346,9 @@ def test_python_control_accepts_the_model(beam, matrices):
     matplotlib.pyplot.close("all")
     assert sys.poles().size == len(lm.states)
     assert ct.zeros(collocated).size == len(lm.states) - 2  # relative degree two
+    case = plant(beam, "FOAM", 2.0, tip=TIP, damping={"kind": "modal", "axial": 0.0,
+                                                       "transverse": 0.0})
+    np.testing.assert_array_equal(case.A, lm.A)  # zero damping is no damping
     held = linear_model(beam, matrices(TIP), "SFOAM", 1.5, "prescribed").to_control()
     assert held.input_labels == ["hub_acceleration"] and "q1_1" not in held.state_labels
     assert held.name == "SFOAM_prescribed_hub_1p5rad_s"
@@ -366,6 +369,11 @@ def test_bad_input_is_named(beam, matrices, change, message):
     for route in (linear_model, jacobian_model):
         with pytest.raises(ValueError, match=re.escape(message)):
             route(beam, matrices(), **arguments)
+
+
+def test_bad_case_damping_is_named_before_assembly(beam):
+    with pytest.raises(ValueError, match=re.escape("damping.kind = 'viscous'; allowed: one of")):
+        plant(beam, "FOAM", 1.0, damping={"kind": "viscous"})
 
 
 def test_matrices_of_another_beam_are_refused(beam, matrices):

@@ -34,7 +34,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hubbeam.damping import check_damping, damping_matrices
 from hubbeam.linearised import constant_speed_matrices
+from hubbeam.matrices import assemble
 from hubbeam.models import model as model_traits
 from hubbeam.modes import transverse_modes
 
@@ -258,3 +260,20 @@ def state_space(beam, sm, traits, hub, speed, names, q1s, rates) -> LinearModel:
                        C=np.hstack([Cz + Ca @ Az, Cv + Ca @ Av]), D=Ca @ Bu,
                        states=state_names(traits, sm.M2.shape[0]), inputs=(HUBS[hub],),
                        outputs=names)
+
+
+def plant(beam, model: str, speed: float, hub: str = "free", tip=None, n_modes: int = 5,
+          damping=None, outputs=None, n_quad: int = 64):
+    """The python-control ``StateSpace`` of ``model`` for a case's beam, tip mass and damping.
+
+    ``tip``: a ``TipMass`` or None; ``damping``: a case's ``damping`` mapping
+    (``hubbeam.damping``) or None; ``n_modes`` and ``n_quad`` as in
+    :func:`hubbeam.matrices.assemble`. The other arguments as :func:`linear_model`; all are checked
+    before the matrices are assembled.
+    """
+    check_request(model, hub, outputs)
+    check_speed(speed)
+    check_damping(damping, "damping")
+    sm = assemble(beam, tip, n_modes, n_quad)
+    return linear_model(beam, sm, model, speed, hub, damping_matrices(damping, sm),
+                        outputs).to_control()

@@ -332,6 +332,45 @@ def test_tip_acceleration_at_rest_is_the_arc_position_twice_differentiated(beam,
     assert lm.D[1, 0] != 0.0 and lm.D[0, 0] == 0.0
 
 
+@pytest.mark.parametrize("model", MODELS)
+@pytest.mark.parametrize("hub", HUBS)
+def test_tip_acceleration_linearises_the_rotating_frame_kinematics(beam, matrices, model, hub):
+    """Spinning, the accelerometer's row against central differences of the exact kinematics
+    ``a_y = v'' + 2 theta' u' + theta'' (rA + L + u) - theta'^2 v`` at the tip, with the nonlinear
+    kernel's accelerations; same steps and bound as the route test (``100 eps^(2/3)`` of the
+    row's scaled size)."""
+    from hubbeam.linear.jacobian import kernel_model, nonlinear_accelerations, steady_state
+
+    sm = matrices(TIP)
+    traits, speed = MODELS[model], 1.5
+    lm = linear_model(beam, sm, model, speed, hub, outputs=["tip_acceleration"])
+    q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(5)
+    y0, v0, kept = steady_state(sm, traits, speed, q1s)
+    n = 5
+
+    def reading(x, u):
+        y, v = y0.copy(), v0.copy()
+        y[kept] += x[:kept.size]
+        v[kept] += x[kept.size:]
+        a = np.zeros(y.size)
+        a[kept] = nonlinear_accelerations(kernel_model(traits), sm, np.zeros((2, n, n)), hub, y, v,
+                                          u, kept)
+        q1, q2 = slice(1, 1 + n), slice(1 + n, 1 + 2 * n)
+        return (sm.f2L @ a[q2] + 2 * v[0] * sm.f1L @ v[q1]
+                + a[0] * (sm.rA + beam.L + sm.f1L @ y[q1]) - v[0] ** 2 * sm.f2L @ y[q2])
+
+    scales = coordinate_scales(sm)[kept]
+    frequency = np.sqrt(sm.K2[0, 0] / sm.M2[0, 0])
+    steps = RELATIVE_STEP * np.concatenate([scales, scales * frequency])
+    row = np.array([(reading(h * e, 0.0) - reading(-h * e, 0.0)) / (2 * h)
+                    for h, e in zip(steps, np.eye(steps.size))])
+    u = RELATIVE_STEP * frequency**2 * (sm.Jh + sm.Jb if hub == "free" else 1.0)
+    feedthrough = (reading(0 * steps, u) - reading(0 * steps, -u)) / (2 * u)
+    size = np.abs(lm.C[0] * steps).max()
+    assert np.all(np.abs((row - lm.C[0]) * steps) <= 100 * RELATIVE_STEP**2 * size)
+    assert feedthrough == pytest.approx(lm.D[0, 0], rel=100 * RELATIVE_STEP**2)
+
+
 def test_python_control_accepts_the_model(beam, matrices):
     lm = linear_model(beam, matrices(TIP), "FOAM", 2.0)
     sys = lm.to_control()

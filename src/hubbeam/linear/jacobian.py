@@ -9,12 +9,12 @@ other.
 
 Step and error (``docs/linear-models.md``): a central difference of step ``h`` has the truncation
 error ``h^2 |f'''| / 6`` and the rounding error ``~ eps |f| / h``. The equations are at most
-quadratic in the rates and linear in the input, so those columns carry rounding error only; in a
-coordinate the nonlinearity acts on the scale ``s = sqrt(Jb)`` (kg1/2 m: a modal coordinate of the
-size of the beam's radius of gyration about the hub times the square root of its mass), so
-``h = eps^(1/3) s`` balances the two at ``~ eps^(2/3) = 4e-11`` relative. Rates are stepped by
-``h`` times the first bending frequency of the held beam (their scale), the input by the torque
-or the acceleration that gives the hub that frequency squared.
+quadratic in the rates and linear in the input, so those columns carry rounding error only. In
+a coordinate the nonlinear terms match the linear ones at an amplitude ``s``
+(:func:`coordinate_scales`), and ``h = eps^(1/3) s`` balances the two errors at ``~ eps^(2/3) =
+4e-11`` relative. Rates are stepped by ``h`` times the first bending frequency of the held beam
+(their scale), the input by the torque or the acceleration that gives the hub that frequency
+squared.
 """
 
 from __future__ import annotations

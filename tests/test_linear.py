@@ -388,6 +388,8 @@ def test_python_control_accepts_the_model(beam, matrices):
     case = plant(beam, "FOAM", 2.0, tip=TIP, damping={"kind": "modal", "axial": 0.0,
                                                        "transverse": 0.0})
     np.testing.assert_array_equal(case.A, lm.A)  # zero damping is no damping
+    single = linear_model(beam, matrices(TIP), "FOAM", 2.0, outputs="tip_deflection")
+    assert single.outputs == ("tip_deflection",) and single.C.shape == (1, len(lm.states))
     held = linear_model(beam, matrices(TIP), "SFOAM", 1.5, "prescribed").to_control()
     assert held.input_labels == ["hub_acceleration"] and "q1_1" not in held.state_labels
     assert held.name == "SFOAM_prescribed_hub_1p5rad_s"

@@ -94,7 +94,8 @@ def check_request(model: str, hub: str, outputs) -> tuple:
     traits = model_traits(model)
     if hub not in HUBS:
         raise ValueError(f"hub = {hub!r}; allowed: one of {', '.join(HUBS)}")
-    names = tuple(OUTPUTS) if outputs is None else tuple(outputs)
+    names = tuple(OUTPUTS) if outputs is None else (
+        (outputs,) if isinstance(outputs, str) else tuple(outputs))
     unknown = [name for name in names if name not in OUTPUTS]
     if unknown or not names:
         raise ValueError(f"outputs = {list(names)!r}; allowed: a non-empty list of "
@@ -237,8 +238,8 @@ def linear_model(beam, sm, model: str, speed: float, hub: str = "free", damping=
     ``beam`` (``BeamParameters`` or ``BeamSections``) and ``sm`` (``hubbeam.matrices.assemble``
     of it, with the tip mass as configured); ``hub``: ``"free"`` (input hub torque) or
     ``"prescribed"`` (input hub angular acceleration); ``damping``: the ``(2, n, n)`` matrices of
-    ``hubbeam.damping.damping_matrices`` or None; ``outputs``: names of :data:`OUTPUTS` (all by
-    default). Every argument is checked before anything is computed. A TLAM operating point
+    ``hubbeam.damping.damping_matrices`` or None; ``outputs``: a name or a list of names of
+    :data:`OUTPUTS` (all by default). Every argument is checked before anything is computed. A TLAM operating point
     above its critical speed is a valid, unstable plant.
     """
     traits, names = check_request(model, hub, outputs)

@@ -26,13 +26,24 @@ import matplotlib.pyplot
 import numpy as np
 import pytest
 from scipy.integrate import quad
+from scipy.io import loadmat
 from scipy.linalg import eig, eigh
 from scipy.optimize import brentq, linear_sum_assignment
 
+from benchmarks.linear import linear_rows
 from hubbeam.damping import damping_matrices
 from hubbeam.eigen import critical_speed
+from hubbeam.io import open_result
 from hubbeam.linear import HUBS, OUTPUTS, linear_model, plant
-from hubbeam.linear.jacobian import RELATIVE_STEP, coordinate_scales, jacobian_model
+from hubbeam.linear.export import to_dataset, write_dataset, write_mat
+from hubbeam.linear.jacobian import (
+    RELATIVE_STEP,
+    coordinate_scales,
+    jacobian_model,
+    kernel_model,
+    nonlinear_accelerations,
+    steady_state,
+)
 from hubbeam.linear.statespace import axial_stretch
 from hubbeam.linearised import frequencies
 from hubbeam.matrices import assemble
@@ -54,12 +65,10 @@ def beam(_study_config):
 def matrices(beam):
     cache = {}
 
-    def get(tip=None, n=5, params=None):
-        params = params or beam
-        key = (tip, n, params)
-        if key not in cache:
-            cache[key] = assemble(params, tip, n)
-        return cache[key]
+    def get(tip=None, n=5):
+        if (tip, n) not in cache:
+            cache[tip, n] = assemble(beam, tip, n)
+        return cache[tip, n]
     return get
 
 
@@ -115,8 +124,6 @@ def test_steady_spin_needs_no_torque(beam, matrices, model, tip):
     vanishes, damping included (it acts on the elastic rates, zero there): what is left is the
     rounding of the cancelling centrifugal and elastic forces, ``eps`` times ``K1 q1s`` over
     the mass."""
-    from hubbeam.linear.jacobian import kernel_model, nonlinear_accelerations, steady_state
-
     sm = matrices(tip)
     C = damping_matrices(MODAL, sm)
     speed = 3.0
@@ -339,8 +346,6 @@ def test_tip_acceleration_linearises_the_rotating_frame_kinematics(beam, matrice
     ``a_y = v'' + 2 theta' u' + theta'' (rA + L + u) - theta'^2 v`` at the tip, with the nonlinear
     kernel's accelerations; same steps and bound as the route test (``100 eps^(2/3)`` of the
     row's scaled size)."""
-    from hubbeam.linear.jacobian import kernel_model, nonlinear_accelerations, steady_state
-
     sm = matrices(TIP)
     traits, speed = MODELS[model], 1.5
     lm = linear_model(beam, sm, model, speed, hub, outputs=["tip_acceleration"])
@@ -492,11 +497,6 @@ def test_linear_model_against_the_nonlinear_kernel(_study_config, beam, model, s
 def test_netcdf_and_mat_files_hold_the_models(beam, matrices, tmp_path):
     """Both files give back, at every speed, the model :func:`linear_model` returns (the netCDF
     float encoding is lossless; the .mat file stores doubles)."""
-    from scipy.io import loadmat
-
-    from hubbeam.io import open_result
-    from hubbeam.linear.export import to_dataset, write_dataset, write_mat
-
     speeds = [0.0, 1.0, 2.5]  # TLAM's critical speed with this tip mass is 1.94 rad s-1
     ds = to_dataset(beam, matrices(TIP), "TLAM", speeds, "free", tip=TIP,
                     damping=damping_matrices(MODAL, matrices(TIP)))
@@ -523,15 +523,11 @@ def test_netcdf_and_mat_files_hold_the_models(beam, matrices, tmp_path):
     ([1.0, float("inf")], "speeds[1] = inf; allowed"),
 ])
 def test_bad_speed_grid_is_named(beam, matrices, speeds, message):
-    from hubbeam.linear.export import to_dataset
-
     with pytest.raises(ValueError, match=re.escape(message)):
         to_dataset(beam, matrices(), "FOAM", speeds)
 
 
 def test_benchmark_rows(_study_config, beam):
-    from benchmarks.linear import linear_rows
-
     rows = linear_rows(_study_config, beam, repeats=1, budget=1.0)
     assert [row["states"] for row in rows] == [42, 42, 42]
     assert all(row["wall_s"] > 0 for row in rows)

@@ -518,9 +518,11 @@ def test_netcdf_and_mat_files_hold_the_models(beam, matrices, tmp_path):
 
 
 @pytest.mark.parametrize(("speeds", "message"), [
-    ([], "speeds = []; allowed: a non-empty list of hub speeds, each finite and >= 0 rad s-1"),
+    ([], "speeds = []; allowed: a non-empty, strictly increasing list of hub speeds, each "
+         "finite and >= 0 rad s-1"),
     ([1.0, -0.5], "speeds[1] = -0.5; allowed"),
     ([1.0, float("inf")], "speeds[1] = inf; allowed"),
+    ([1.0, 2.0, 2.0], "speeds[2] = 2.0 after 2.0; allowed"),
 ])
 def test_bad_speed_grid_is_named(beam, matrices, speeds, message):
     with pytest.raises(ValueError, match=re.escape(message)):

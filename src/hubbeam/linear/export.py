@@ -24,24 +24,10 @@ from hubbeam.linear.statespace import (
     INPUT_UNITS,
     OUTPUTS,
     check_request,
-    check_speed,
+    check_speeds,
     linear_model,
 )
 from hubbeam.provenance import global_attributes
-
-
-def check_speeds(speeds) -> np.ndarray:
-    """The grid ``speeds`` as floats; ``ValueError`` unless non-empty, each finite and >= 0."""
-    allowed = "allowed: a non-empty list of hub speeds, each finite and >= 0 rad s-1"
-    values = np.asarray(speeds).tolist() if np.ndim(speeds) == 1 else []
-    if not values:
-        raise ValueError(f"speeds = {speeds!r}; {allowed}")
-    for k, speed in enumerate(values):
-        try:
-            check_speed(speed)
-        except ValueError:
-            raise ValueError(f"speeds[{k}] = {speed!r}; {allowed}") from None
-    return np.array(values, dtype=float)
 
 
 def _state_units(name: str) -> str:
@@ -134,4 +120,4 @@ def write_mat(ds: xr.Dataset, path: os.PathLike | str) -> Path:
     return path
 
 
-__all__ = ["check_speeds", "to_dataset", "write_dataset", "write_mat"]
+__all__ = ["to_dataset", "write_dataset", "write_mat"]

@@ -112,6 +112,24 @@ def check_speed(speed) -> float:
     return float(speed)
 
 
+def check_speeds(speeds) -> np.ndarray:
+    """The grid ``speeds`` as floats; ``ValueError`` unless a non-empty, strictly increasing list
+    of hub speeds, each finite and >= 0 rad s-1 (the message names the first bad entry)."""
+    allowed = ("allowed: a non-empty, strictly increasing list of hub speeds, each finite and "
+               ">= 0 rad s-1")
+    values = np.asarray(speeds).tolist() if np.ndim(speeds) == 1 else []
+    if not values:
+        raise ValueError(f"speeds = {speeds!r}; {allowed}")
+    for k, speed in enumerate(values):
+        try:
+            check_speed(speed)
+        except ValueError:
+            raise ValueError(f"speeds[{k}] = {speed!r}; {allowed}") from None
+        if k and not speed > values[k - 1]:
+            raise ValueError(f"speeds[{k}] = {speed!r} after {values[k - 1]!r}; {allowed}")
+    return np.array(values, dtype=float)
+
+
 def checked_damping(damping, n: int) -> np.ndarray:
     """``damping`` as ``(2, n, n)`` floats (zeros for None); ``ValueError`` unless usable."""
     if damping is None:

@@ -60,6 +60,7 @@ import pandas as pd
 from benchmarks.cases import HUBBEAM, HUBBEAM_FULL, prepare_case, run_hubbeam
 from benchmarks.compilation import compilation_rows
 from benchmarks.extras import eigen_rows, scaling_rows, sweep_rows
+from benchmarks.linear import linear_rows
 from benchmarks.machine import load_average, machine_info
 from benchmarks.search import benchmark_case, case_methods, python_rhs_row
 from benchmarks.settings import BENCHMARK_CONFIG, STUDY_CONFIG, load_settings
@@ -128,6 +129,8 @@ def run(config_files: Sequence[str], benchmark_file: os.PathLike | str, output: 
                                         output / "scaling.csv")
         written["eigen"] = _write_csv(eigen_rows(cfg, params, repeats, budget),
                                       output / "eigen.csv")
+        written["linear"] = _write_csv(linear_rows(cfg, params, repeats, budget),
+                                       output / "linear.csv")
         if "sweeps" in cfg:
             check = settings["sweep_check"]
             written["sweeps"] = _write_csv(sweep_rows(cfg, params, check["points"], check["rtol"]),

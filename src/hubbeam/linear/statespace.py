@@ -74,8 +74,9 @@ class LinearModel:
 
     @property
     def name(self) -> str:
-        """``<model>_<hub>_hub_<speed>rad_s``, the name of the python-control system."""
-        return f"{self.model}_{self.hub}_hub_{self.speed:g}rad_s"
+        """``<model>_<hub>_hub_<speed>rad_s``, the name of the python-control system (decimal
+        point written ``p``: python-control refuses a ``.`` in a name)."""
+        return f"{self.model}_{self.hub}_hub_{self.speed:g}rad_s".replace(".", "p")
 
     def to_control(self):
         """The model as a :class:`control.StateSpace` with its named states, inputs, outputs."""

@@ -22,6 +22,8 @@ are padded with NaN (``kind`` -1).
 
 from __future__ import annotations
 
+import json
+import re
 from collections.abc import Sequence
 
 import numpy as np
@@ -83,8 +85,6 @@ def _checked(beam, tip_masses, speeds, n_modes, n_quad, damping, outputs=()):
 
 
 def _attributes(beam, n_modes, n_quad, damping, title) -> dict:
-    import json
-
     return {"title": title, "n_modes": int(n_modes), "n_quad_requested": int(n_quad),
             "mode_normalisation": MODE_NORMALISATION, "tip_position_m": float(beam.L),
             "damping": json.dumps(damping or {}, sort_keys=True)} | beam_attributes(beam)
@@ -254,6 +254,15 @@ def mode_shapes(campbell_ds: xr.Dataset, beam, count: int = 4, stations: int = 1
     )
 
 
+def per_unit_input(units: str, input_units: str) -> str:
+    """UDUNITS of an output per unit input: ``("rad", "N m")`` -> ``"rad N-1 m-1"``."""
+    def inverse(token):
+        name, power = re.fullmatch(r"([A-Za-z]+)(-?\d*)", token).groups()
+        exponent = -int(power or 1)
+        return name if exponent == 1 else f"{name}{exponent}"
+    return " ".join([units] + [inverse(token) for token in input_units.split()])
+
+
 def _padded(arrays, width):
     out = np.full((len(arrays), width), np.nan + 0j)
     for k, values in enumerate(arrays):
@@ -360,7 +369,7 @@ def bode(beam, tip_masses, speeds, omega, n_modes, n_quad=64, damping=None,
         units, what = OUTPUTS[output]
         data[f"{output}_magnitude"] = (
             ("model", "tip_mass", "speed", "frequency"), magnitude[..., o, :],
-            {"units": f"({units}) / ({per_input})",
+            {"units": per_unit_input(units, per_input),
              "long_name": f"magnitude of the response of the {what} to the hub torque"})
         data[f"{output}_phase"] = (
             ("model", "tip_mass", "speed", "frequency"), phase[..., o, :],

@@ -136,3 +136,131 @@ def test_unknown_state_names_are_refused(names):
 def test_a_matrix_that_is_not_a_stack_of_mechanical_systems_is_refused():
     with pytest.raises(ValueError, match="expected a stack"):
         tracking.state_modes(np.eye(3)[None])
+
+
+# ---------------------------------------------------------------------------------------------
+# the paper's beam: tracked, damped Campbell diagrams and mode shapes
+
+from hubbeam import eigen  # noqa: E402
+from hubbeam.linear import datasets  # noqa: E402
+from hubbeam.matrices import assemble  # noqa: E402
+from hubbeam.modes import transverse_modes  # noqa: E402
+from hubbeam.paper import TABLE1  # noqa: E402
+from hubbeam.parameters import BeamParameters, TipMass  # noqa: E402
+
+PARAMS = BeamParameters(**TABLE1)
+N_MODES = 4
+MODAL = {"kind": "modal", "axial": 0.01, "transverse": 0.03}
+
+
+@pytest.fixture(scope="module")
+def campbell_ds():
+    return datasets.campbell(PARAMS, [0.0, 0.5], np.linspace(0.0, 4.0, 81), N_MODES,
+                             damping=MODAL)
+
+
+@pytest.mark.parametrize("mass", [0.0, 0.5])
+def test_tlam_becomes_unstable_at_its_critical_speed_to_the_grid_step(campbell_ds, mass):
+    """The first growing mode of TLAM appears at the first grid speed above the exact critical
+    speed of K22 (hubbeam.eigen), held and free hub; FOAM, SFOAM and CFOAM stay stable."""
+    tip = TipMass(mass=mass, position=PARAMS.L) if mass else None
+    critical = eigen.critical_speed("TLAM", PARAMS, tip, N_MODES, 20.0)
+    speeds = campbell_ds.speed.values
+    expected = speeds[speeds > critical][0]
+    for hub in ("held", "free"):
+        assert campbell_ds.unstable_from.sel(model="TLAM", tip_mass=mass, hub=hub) == expected
+        tlam = campbell_ds.sel(model="TLAM", tip_mass=mass, hub=hub)
+        growing = tlam.mode.values[(tlam.stable.sel(speed=expected) == 0).values]
+        assert [str(tlam.mode_label.sel(mode=m).item()) for m in growing] == ["bending 1"]
+        assert tlam.kind.sel(speed=expected, mode=growing[0]) == datasets.KINDS["divergent"]
+    np.testing.assert_allclose(campbell_ds.critical_speed.sel(model="TLAM", tip_mass=mass), critical)
+    assert np.isnan(campbell_ds.unstable_from.sel(model=["FOAM", "SFOAM", "CFOAM"])).all()
+
+
+def test_modal_damping_ratio_is_recovered_with_the_hub_held_at_rest(campbell_ds):
+    """Held hub at rest, modal damping: every bending mode has the transverse ratio and every
+    axial mode the axial one (with and without the tip mass); the rigid hub mode has none."""
+    at_rest = campbell_ds.sel(hub="held", speed=0.0)
+    label = at_rest.mode_label.values
+    ratio = at_rest.damping_ratio.values
+    bending = np.char.startswith(label.astype(str), "bending")
+    axial = np.char.startswith(label.astype(str), "axial")
+    np.testing.assert_allclose(ratio[bending], MODAL["transverse"], rtol=1e-9)
+    np.testing.assert_allclose(ratio[axial], MODAL["axial"], rtol=1e-9)
+    assert np.isnan(ratio[label == "hub"]).all()
+    assert (at_rest.kind.values[label == "hub"] == datasets.KINDS["rigid"]).all()
+    # SFOAM keeps no axial modes: padded
+    assert (at_rest.kind.sel(model="SFOAM").values == datasets.KINDS["none"]).sum() == 2 * N_MODES
+
+
+def test_held_hub_modes_are_the_gyroscopic_eigenvalues_of_eqs_29_to_31():
+    """Undamped, hub held, below TLAM's critical speed: the tracked frequencies of TLAM and FOAM
+    are, as sets, those of hubbeam.eigen's gyroscopic eigenproblem (axial and bending)."""
+    speeds = np.linspace(0.0, 2.8, 15)
+    ds = datasets.campbell(PARAMS, [0.0], speeds, N_MODES).sel(tip_mass=0.0, hub="held")
+    sm = assemble(PARAMS, None, N_MODES)
+    for model in ("TLAM", "FOAM"):
+        tracked = ds.frequency.sel(model=model).where(ds.kind.sel(model=model) == 0).values
+        tracked = np.sort(tracked, axis=-1)[:, :2 * N_MODES] * 2 * np.pi
+        reference = eigen.gyroscopic_frequencies(sm, model, speeds)
+        np.testing.assert_allclose(tracked, reference, rtol=1e-9)
+
+
+def test_tracked_labels_at_rest_follow_the_coordinates_without_tip_mass(campbell_ds):
+    """Without a tip mass and with the hub held at rest, the coordinates are the beam's own modes:
+    by frequency the labels are hub, bending 1..n, axial 1..n; tracking keeps the bending labels
+    over the whole speed range of FOAM (no crossing among its first modes)."""
+    labels = campbell_ds.mode_label.sel(model="FOAM", tip_mass=0.0, hub="held").values.tolist()
+    assert labels == (["hub"] + [f"bending {k}" for k in range(1, N_MODES + 1)]
+                      + [f"axial {k}" for k in range(1, N_MODES + 1)])
+    along = campbell_ds.label.sel(model="FOAM", tip_mass=0.0, hub="held").values
+    assert (along == along[:1]).all()
+
+
+def test_mode_shapes_at_rest_are_the_beam_functions(campbell_ds):
+    """Held hub at rest, no tip mass: mode k's transverse shape is f2_k / max |f2_k|."""
+    shapes = datasets.mode_shapes(campbell_ds, PARAMS, count=3, stations=41)
+    x = shapes.x.values
+    f2 = transverse_modes(x, N_MODES, PARAMS)[:, :3]
+    expected = f2 / f2[np.argmax(np.abs(f2), axis=0), np.arange(3)]
+    for model in shapes.model.values:
+        got = shapes.shape.sel(model=model, tip_mass=0.0, hub="held", speed=0.0).values
+        np.testing.assert_allclose(got, expected.T, atol=1e-9)
+    assert shapes.mode_label.sel(model="TLAM", tip_mass=0.0, hub="free").values.tolist() == \
+        ["bending 1", "bending 2", "bending 3"]
+    assert np.all(np.abs(shapes.shape).max(dim="x") <= 1.0 + 1e-12)
+
+
+def test_campbell_and_shapes_write_as_cf_files_and_draw(tmp_path, campbell_ds):
+    from matplotlib.figure import Figure
+
+    from hubbeam.io import open_result, write_netcdf
+    from hubbeam.plotting import campbell_tracked, linear_mode_shapes
+    from hubbeam.plotting.style import styled
+
+    back = open_result(write_netcdf(campbell_ds, tmp_path / "campbell.nc"))
+    np.testing.assert_array_equal(back.label.values, campbell_ds.label.values)
+    np.testing.assert_array_equal(back.kind.values, campbell_ds.kind.values)
+    shapes = datasets.mode_shapes(back, PARAMS)
+    with styled():
+        fig = campbell_tracked.plot(back, tip_mass=0.5)
+        assert isinstance(fig, Figure) and len(fig.axes) == 4
+        # every bending curve of every model: 4 models x n modes, on each panel
+        assert len(fig.axes[0].get_lines()) >= 4 * N_MODES
+        assert isinstance(linear_mode_shapes.plot(shapes), Figure)
+        with pytest.raises(ValueError, match="tip_mass = 0.2"):
+            campbell_tracked.plot(back, tip_mass=0.2)
+
+
+@pytest.mark.parametrize("speeds, match", [([], "speeds"), ([0.0, -1.0], "speeds"),
+                                           ([1.0, 1.0], "speeds"), ([0.0, np.inf], "speed")])
+def test_bad_speed_grids_are_refused(speeds, match):
+    with pytest.raises(ValueError, match=match):
+        datasets.campbell(PARAMS, [0.0], speeds, 2)
+
+
+def test_bad_damping_and_tip_masses_are_refused():
+    with pytest.raises(ValueError, match="damping.kind"):
+        datasets.campbell(PARAMS, [0.0], [0.0], 2, damping={"kind": "viscous"})
+    with pytest.raises(ValueError, match="tip_masses"):
+        datasets.campbell(PARAMS, [-1.0], [0.0], 2)

@@ -7,7 +7,7 @@ long names over the models of :data:`hubbeam.models.MODELS`; a workflow script a
 attributes (``hubbeam.provenance.global_attributes``) and writes it with
 ``hubbeam.io.write_netcdf``. ``damping`` is a case's ``damping`` mapping (``hubbeam.damping``) or
 None. Models without a mode or a root where others have one (SFOAM keeps no axial coordinates)
-are padded with NaN (``kind`` -1).
+are padded with NaN (``kind`` and ``stable`` -1, ``none``).
 
 * :func:`campbell`: every mode of every model, held (prescribed) and free hub, tracked over the
   speeds by :mod:`hubbeam.linear.tracking`: frequency, damping ratio, growth rate, kind
@@ -42,8 +42,8 @@ from hubbeam.parameters import TipMass
 
 #: the outputs of the transfer functions from the hub torque (free hub)
 TRANSFER_OUTPUTS = ("hub_angle", "tip_deflection", "tip_arc")
-#: mode kinds stored in ``kind`` (flag values)
-KINDS = {"vibration": 0, "divergent": 1, "rigid": 2}
+#: mode kinds stored in ``kind`` (flag values; ``none``: no such mode in this model)
+KINDS = {"none": -1, "vibration": 0, "divergent": 1, "rigid": 2}
 #: hub conditions in the datasets: held = prescribed hub speed, free = torque input
 HUB_NAMES = {"held": "prescribed", "free": "free"}
 HZ = 1.0 / (2.0 * np.pi)
@@ -164,7 +164,7 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
     unstable_from = np.where(growing.any(axis=-1), speeds[np.argmax(growing, axis=-1)], np.nan)
     dims = ("model", "tip_mass", "hub", "speed", "mode")
     flags = {"flag_values": np.array(list(KINDS.values()), dtype=np.int8),
-             "flag_meanings": " ".join(KINDS), "_FillValue": np.int8(-1)}
+             "flag_meanings": " ".join(KINDS)}
     ds = xr.Dataset(
         {
             "frequency": (dims, out["frequency"],
@@ -177,8 +177,8 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
                             {"units": "s-1", "long_name": "Re lambda (> 0: growing)"}),
             "kind": (dims, kind, {"long_name": "kind of mode"} | flags),
             "stable": (dims, stable, {"long_name": "mode does not grow (1) or grows (0)",
-                                      "flag_values": np.array([0, 1], dtype=np.int8),
-                                      "flag_meanings": "unstable stable", "_FillValue": np.int8(-1)}),
+                                      "flag_values": np.array([-1, 0, 1], dtype=np.int8),
+                                      "flag_meanings": "none unstable stable"}),
             "label": (dims, label.astype(str),
                       {"long_name": "dominant content of the mode's shape at this speed"}),
             "mode_label": (dims[:3] + ("mode",), label[..., 0, :].astype(str),

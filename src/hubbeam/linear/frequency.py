@@ -75,7 +75,7 @@ def frequency_response(lm: LinearModel, outputs, omega):
 
 
 def poles(lm: LinearModel) -> np.ndarray:
-    """The poles of the model (the eigenvalues of ``A``), sorted by frequency, then real part."""
+    """The poles of the model (the eigenvalues of ``A``), sorted by :func:`sort_roots`."""
     import control as ct
 
     return sort_roots(ct.poles(lm.to_control()))
@@ -89,9 +89,10 @@ def zeros(lm: LinearModel, output: str) -> np.ndarray:
 
 
 def sort_roots(values) -> np.ndarray:
-    """Complex roots sorted by ``|Im|``, then ``Re``, then ``Im`` (conjugates side by side)."""
+    """Complex roots sorted by ``|Im|``, then ``Im`` (conjugates side by side, the negative one
+    first), then ``Re`` (real roots ascending)."""
     values = np.asarray(values, dtype=complex)
-    return values[np.lexsort((values.imag, values.real, np.abs(values.imag)))]
+    return values[np.lexsort((values.real, values.imag, np.abs(values.imag)))]
 
 
 def alternates(pole_values, zero_values, rtol: float = RELATIVE_TOLERANCE) -> bool:

@@ -74,9 +74,10 @@ class LinearModel:
 
     @property
     def name(self) -> str:
-        """``<model>_<hub>_hub_<speed>rad_s``, the name of the python-control system (decimal
-        point written ``p``: python-control refuses a ``.`` in a name)."""
-        return f"{self.model}_{self.hub}_hub_{self.speed:g}rad_s".replace(".", "p")
+        """``<model>_<hub>_hub_<speed>rad_s`` (``p`` for the decimal point, which python-control
+        does not allow in a name), the name of the python-control system."""
+        speed = f"{self.speed:.10g}".replace(".", "p").replace("+", "")
+        return f"{self.model}_{self.hub}_hub_{speed}rad_s"
 
     def to_control(self):
         """The model as a :class:`control.StateSpace` with its named states, inputs, outputs."""
@@ -108,7 +109,8 @@ def check_speed(speed) -> float:
     return float(speed)
 
 
-def _damping(damping, n):
+def checked_damping(damping, n: int) -> np.ndarray:
+    """``damping`` as ``(2, n, n)`` floats (zeros for None); ``ValueError`` unless usable."""
     if damping is None:
         return np.zeros((2, n, n))
     C = np.asarray(damping, dtype=float)
@@ -139,7 +141,7 @@ def state_names(traits, n: int) -> tuple[str, ...]:
 def second_order(sm, traits, speed: float, damping=None):
     """``(M, G, C, K, q1s)`` of ``M z'' + (G + C) z' + K z = e_theta tau`` (module docstring)."""
     n = sm.M2.shape[0]
-    Cd = _damping(damping, n)
+    Cd = checked_damping(damping, n)
     q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(n)
     Me, Ge, Ke = constant_speed_matrices(sm, traits.linearisation, speed, axial=traits.keeps_axial)
     Ke = np.array(Ke)
@@ -240,13 +242,19 @@ def linear_model(beam, sm, model: str, speed: float, hub: str = "free", damping=
     traits, names = check_request(model, hub, outputs)
     speed = check_speed(speed)
     check_matrices(beam, sm)
-    n = sm.M2.shape[0]
     M, G, C, K, q1s = second_order(sm, traits, speed, damping)
-    Az, Av, Bu = accelerations(M, G, C, K, hub)
-    N = M.shape[0]
+    return state_space(beam, sm, traits, hub, speed, names, q1s, accelerations(M, G, C, K, hub))
+
+
+def state_space(beam, sm, traits, hub, speed, names, q1s, rates) -> LinearModel:
+    """The :class:`LinearModel` with the accelerations ``rates = (Az, Av, Bu)`` of either route
+    (``z'' = Az z + Av z' + Bu u``) and the output rows of :func:`output_rows`."""
+    Az, Av, Bu = rates
+    N = Az.shape[0]
     A = np.block([[np.zeros((N, N)), np.eye(N)], [Az, Av]])
     B = np.vstack([np.zeros((N, 1)), Bu])
     Cz, Cv, Ca = output_rows(beam, sm, traits, speed, q1s, names)
     return LinearModel(model=traits.name, hub=hub, speed=speed, A=A, B=B,
                        C=np.hstack([Cz + Ca @ Az, Cv + Ca @ Av]), D=Ca @ Bu,
-                       states=state_names(traits, n), inputs=(HUBS[hub],), outputs=names)
+                       states=state_names(traits, sm.M2.shape[0]), inputs=(HUBS[hub],),
+                       outputs=names)

@@ -144,8 +144,9 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
     for i, model in enumerate(MODELS):
         for j, (mass, sm) in enumerate(systems):
             tip = TipMass(mass=mass, position=float(beam.L)) if mass > 0 else None
+            # search up to the last speed (a grid of rest alone: the smallest positive speed)
             critical[i, j] = critical_speed(model_traits(model).linearisation, beam, tip, n_modes,
-                                            max(float(speeds[-1]), 1e-300), n_quad)
+                                            max(float(speeds[-1]), np.finfo(float).tiny), n_quad)
             for h, hub in enumerate(HUB_NAMES.values()):
                 modes, names = tracked_modes(beam, sm, model, hub, speeds, _damping(damping, sm))
                 k = modes.eigenvalue.shape[1]

@@ -193,7 +193,9 @@ def coordinate_groups(names) -> list[tuple[str, int]]:
     groups = []
     for name in names:
         prefix, _, index = name.partition("_")
-        if prefix not in GROUPS or (prefix != "theta") == (not index.isdigit()):
+        hub_angle = prefix == "theta" and not index
+        modal = prefix in GROUPS and prefix != "theta" and index.isdigit()
+        if not (hub_angle or modal):
             raise ValueError(f"state name {name!r}: expected theta, q1_<k> or q2_<k>")
         groups.append((GROUPS[prefix], int(index) if index else 0))
     return groups

@@ -46,8 +46,10 @@ def plot(bode: xr.Dataset, tip_mass: float | None = None):
         axes[2 * o, 0].set_ylabel(f"|{OUTPUT_NAMES.get(output, output)} / torque|\n({units_tex(units)})",
                                   fontsize=7)
         axes[2 * o + 1, 0].set_ylabel("phase (deg)", fontsize=7)
-        for ax in axes[2 * o + 1]:
-            ax.set_yticks(np.arange(-720, 181, 180))
+        phase = ds[f"{output}_phase"].values
+        low, high = np.floor(np.nanmin(phase) / 180.0), np.ceil(np.nanmax(phase) / 180.0)
+        step = 180 if high - low <= 6 else 360  # ticks at whole half turns, or whole turns
+        axes[2 * o + 1, 0].set_yticks(np.arange(low * 180, high * 180 + 1, step))
     fig.suptitle(f"hub torque to hub angle, tip deflection and tip arc, free hub, {where}", fontsize=9)
     fig.legend(*axes[0, 0].get_legend_handles_labels(), loc="outside lower center", ncols=4)
     return fig

@@ -242,11 +242,17 @@ def test_campbell_and_shapes_write_as_cf_files_and_draw(tmp_path, campbell_ds):
     np.testing.assert_array_equal(back.label.values, campbell_ds.label.values)
     np.testing.assert_array_equal(back.kind.values, campbell_ds.kind.values)
     shapes = datasets.mode_shapes(back, PARAMS)
+    with pytest.raises(ValueError, match="count = 9"):
+        datasets.mode_shapes(back, PARAMS, count=9)  # SFOAM has 4 bending modes only
     with styled():
         fig = campbell_tracked.plot(back, tip_mass=0.5)
         assert isinstance(fig, Figure) and len(fig.axes) == 4
-        # every bending curve of every model: 4 models x n modes, on each panel
-        assert len(fig.axes[0].get_lines()) >= 4 * N_MODES
+        # every bending curve of every model on the frequency panels, FOAM's first one as stored
+        for ax, hub in zip(fig.axes[:2], ("held", "free")):
+            curves = [line for line in ax.get_lines() if len(line.get_xdata()) == back.speed.size]
+            assert len(curves) == 4 * N_MODES  # beside them: TLAM's critical speed
+            foam = back.frequency.sel(model="FOAM", tip_mass=0.5, hub=hub, mode=2).values
+            assert any(np.array_equal(line.get_ydata(), foam) for line in curves)
         assert isinstance(linear_mode_shapes.plot(shapes), Figure)
         with pytest.raises(ValueError, match="tip_mass = 0.2"):
             campbell_tracked.plot(back, tip_mass=0.2)

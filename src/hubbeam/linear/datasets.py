@@ -226,6 +226,9 @@ def mode_shapes(campbell_ds: xr.Dataset, beam, count: int = 4, stations: int = 1
     ends = campbell_ds.isel(speed=[0, -1])
     q2 = [f"q2_{i}" for i in range(1, n + 1)]
     vibration = (ends["kind"].isel(speed=0) == KINDS["vibration"]).values
+    if count > vibration.sum(axis=-1).min():
+        raise ValueError(f"count = {count!r}; allowed: at most {vibration.sum(axis=-1).min()}, the "
+                         "vibration modes every model has at the first speed")
     first = np.argsort(np.where(vibration, ends["mode"].values, np.iinfo(int).max), axis=-1,
                        kind="stable")[..., :count]
     parts = (ends["shape_real"] + 1j * ends["shape_imag"]).sel(coordinate=q2).values

@@ -4,20 +4,25 @@ Drawn from :func:`hubbeam.linear.datasets.poles_zeros`. Top row, one panel per m
 frequencies ``|Im|`` of the poles (x) and of the collocated zeros (hub torque to hub angle, o,
 which are the poles with the hub held) against speed, and the magnitude of the smallest
 right-half-plane zero of the tip's arc position (black triangle, non-minimum phase). TLAM's first
-pole (and collocated zero) reaches 0 at its critical speed, where a real pair takes over. Bottom
-row: pole-zero maps of the tip arc output at three speeds, all models.
+pole (and collocated zero) reaches 0 at its critical speed, where a real pair takes over (the real
+part of its growing pole: +). Bottom row: pole-zero maps of the tip arc output at three speeds,
+all models.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import xarray as xr
+from matplotlib.lines import Line2D
 
 from hubbeam.plotting.campbell_tracked import one_tip_mass
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
 
 #: the largest |root| drawn (rad s-1): the first bending modes and the lowest tip zeros
 LIMIT = 60.0
+#: real parts above this fraction of the drawn range mark a growing pole (rounding leaves the
+#: real parts of undamped poles at 1e-12 s-1)
+GROWING = 1e-6
 
 
 def _near(values, limit):
@@ -45,6 +50,9 @@ def plot(poles_zeros: xr.Dataset, tip_mass: float | None = None, limit: float = 
                     label="poles" if k == 0 else None)
             ax.plot(np.full(z.size, value), z, "o", mfc="none", color="0.35", markersize=3,
                     markeredgewidth=0.6, label="zeros (hub angle)" if k == 0 else None)
+            growing = _near(poles.real[poles.real > GROWING * limit], limit)
+            ax.plot(np.full(growing.size, value), growing, "+", color="#D55E00", markersize=4,
+                    label="Re of a growing pole" if growing.size else None)
         rhp = one["lowest_rhp_zero"].sel(output="tip_arc")
         ax.plot(speed, rhp.where(rhp <= limit), "^", color="k", markersize=2.5,
                 label="RHP zero (tip arc)")
@@ -68,13 +76,20 @@ def plot(poles_zeros: xr.Dataset, tip_mass: float | None = None, limit: float = 
         ax.set_xlim(-limit, limit)
         ax.set_ylim(-limit, limit)
         ax.set_aspect("equal")
-        panel_title(ax, len(models) + column, rf"hub torque to tip arc, $\Omega$ = {speed[k]:g} rad/s")
+        panel_title(ax, len(models) + column, rf"tip arc, $\Omega$ = {speed[k]:g} rad/s")
         ax.set_xlabel(axis_label("Re s", "rad s-1"))
     axes[1, 0].set_ylabel(axis_label("Im s", "rad s-1"))
     for ax in axes[1, picks.size:]:
         ax.set_visible(False)
-    handles, labels = axes[0, 0].get_legend_handles_labels()
+    # one entry per marker of the top row (in a neutral colour: the panels give the models'
+    # colours), then the models of the maps
+    legend = {}
+    for ax in axes[0]:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            legend.setdefault(label, Line2D([], [], linestyle="none", marker=handle.get_marker(),
+                                            color="0.3", mfc=handle.get_mfc(), markersize=4))
     map_handles, map_labels = axes[1, 0].get_legend_handles_labels()
-    fig.legend(handles + map_handles, labels + [f"{m} (x pole, o zero)" for m in map_labels],
+    fig.legend(list(legend.values()) + map_handles,
+               list(legend) + [f"{m}: x pole, o tip-arc zero" for m in map_labels],
                loc="outside upper center", ncols=4, fontsize=7)
     return fig

@@ -133,13 +133,13 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
     """
     speeds, systems = _checked(beam, tip_masses, speeds, n_modes, n_quad, damping)
     coordinates = _coordinate_names(n_modes)
-    m, s, p = len(coordinates), speeds.size, len(coordinates)
-    shape = (len(MODELS), len(systems), len(HUB_NAMES), s, m)
+    m = len(coordinates)  # modes of the models that keep every coordinate: one per coordinate
+    shape = (len(MODELS), len(systems), len(HUB_NAMES), speeds.size, m)
     out = {name: np.full(shape, np.nan) for name in ("frequency", "damping_ratio", "growth_rate")}
     kind = np.full(shape, -1, dtype=np.int8)
     stable = np.full(shape, -1, dtype=np.int8)
     label = np.full(shape, "", dtype=object)
-    components = np.full(shape + (p,), np.nan + 0j)
+    components = np.full(shape + (m,), np.nan + 0j)
     critical = np.full((len(MODELS), len(systems)), np.nan)
     for i, model in enumerate(MODELS):
         for j, (mass, sm) in enumerate(systems):

@@ -62,6 +62,7 @@ import pandas as pd
 from benchmarks.cases import HUBBEAM, HUBBEAM_FULL, prepare_case, run_hubbeam
 from benchmarks.compilation import compilation_rows
 from benchmarks.extras import eigen_rows, scaling_rows, sweep_rows
+from benchmarks.linear import linear_rows
 from benchmarks.linear_modes import campbell_rows
 from benchmarks.machine import load_average, machine_info
 from benchmarks.search import benchmark_case, case_methods, python_rhs_row
@@ -131,6 +132,8 @@ def run(config_files: Sequence[str], benchmark_file: os.PathLike | str, output: 
                                         output / "scaling.csv")
         written["eigen"] = _write_csv(eigen_rows(cfg, params, repeats, budget),
                                       output / "eigen.csv")
+        written["linear"] = _write_csv(linear_rows(cfg, params, repeats, budget),
+                                       output / "linear.csv")
         written["linear_modes"] = _write_csv(campbell_rows(cfg, params, repeats, budget),
                                              output / "linear_modes.csv")
         if "sweeps" in cfg:

@@ -114,15 +114,15 @@ def test_steady_spin_needs_no_torque(beam, matrices, model, tip):
     vanishes, damping included (it acts on the elastic rates, zero there): what is left is the
     rounding of the cancelling centrifugal and elastic forces, ``eps`` times ``K1 q1s`` over
     the mass."""
-    from hubbeam.linear.jacobian import _accelerations, _state, kernel_model
+    from hubbeam.linear.jacobian import kernel_model, nonlinear_accelerations, steady_state
 
     sm = matrices(tip)
     C = damping_matrices(MODAL, sm)
     speed = 3.0
     traits = MODELS[model]
     q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(5)
-    y, v, kept = _state(sm, traits, speed, q1s)
-    a = _accelerations(kernel_model(traits), sm, C, "free", y, v, 0.0, kept)
+    y, v, kept = steady_state(sm, traits, speed, q1s)
+    a = nonlinear_accelerations(kernel_model(traits), sm, C, "free", y, v, 0.0, kept)
     forces = np.abs(sm.K1) @ np.abs(q1s) + speed**2 * np.abs(sm.V1)
     assert np.all(np.abs(a) <= 100 * EPS * max(forces.max(), EPS))
 
@@ -155,19 +155,24 @@ def _pinned_free_frequencies(beam, count):
     return (np.array(roots) / beam.L) ** 2 * np.sqrt(beam.EI / beam.rhoA)
 
 
+def ritz_errors(params, exact, modes=(5, 10, 20)):
+    """Relative errors of the free hub's first elastic frequencies at rest (no tip mass) against
+    ``exact``, one row per number of modes."""
+    errors = []
+    for n in modes:
+        ritz = elastic_frequencies(linear_model(params, assemble(params, None, n), "FOAM", 0.0),
+                                   rigid=1)
+        errors.append((ritz[:exact.size] - exact) / exact)
+    return np.array(errors)
+
+
 def test_pinned_free_beam(beam):
     """Omega = 0, rA = 0, Jh = 0, no tip mass: the free hub is a pin. The Ritz basis (the rigid
     rotation and clamped-free modes) misses only the pin's zero root moment, a natural condition,
     so the frequencies are upper bounds that converge algebraically: each doubling of n must
     divide the error of the first four by at least 2^4 (measured: 2^7)."""
     pinned = dataclasses.replace(beam, rA=0.0, Jh=0.0)
-    exact = _pinned_free_frequencies(pinned, 4)
-    errors = []
-    for n in (5, 10, 20):
-        ritz = elastic_frequencies(linear_model(pinned, assemble(pinned, None, n), "FOAM", 0.0),
-                                   rigid=1)
-        errors.append((ritz[:4] - exact) / exact)
-    errors = np.array(errors)
+    errors = ritz_errors(pinned, _pinned_free_frequencies(pinned, 4))
     assert np.all(errors > -1e-12)  # upper bounds, up to the rounding of the eigenvalues
     assert np.all(errors[1:] <= errors[:-1] / 2**4)
 
@@ -207,13 +212,7 @@ def test_beam_on_a_hub_of_finite_inertia(beam):
     (Rayleigh-Ritz) whose error falls by at least 2^4 from n = 5 to 10 and by at least 2^3 from 10
     to 20, where the rounding of the eigenvalues (``eps |A| / omega``, 1e-12 relative) starts to
     show (measured: 2^6 and 2^5.4)."""
-    exact = _hub_beam_frequencies(beam, 4)
-    errors = []
-    for n in (5, 10, 20):
-        ritz = elastic_frequencies(linear_model(beam, assemble(beam, None, n), "FOAM", 0.0),
-                                   rigid=1)
-        errors.append((ritz[:4] - exact) / exact)
-    errors = np.array(errors)
+    errors = ritz_errors(beam, _hub_beam_frequencies(beam, 4))
     assert np.all(errors > -1e-12)
     assert np.all(errors[1] <= errors[0] / 2**4)
     assert np.all(errors[2] <= errors[1] / 2**3)
@@ -446,3 +445,11 @@ def test_bad_speed_grid_is_named(beam, matrices, speeds, message):
 
     with pytest.raises(ValueError, match=re.escape(message)):
         to_dataset(beam, matrices(), "FOAM", speeds)
+
+
+def test_benchmark_rows(_study_config, beam):
+    from benchmarks.linear import linear_rows
+
+    rows = linear_rows(_study_config, beam, repeats=1, budget=1.0)
+    assert [row["states"] for row in rows] == [42, 42, 42]
+    assert all(row["wall_s"] > 0 for row in rows)

@@ -57,7 +57,7 @@ def coordinate_scales(sm) -> np.ndarray:
     return np.concatenate([[1.0], np.full(n, scale), q2])
 
 
-def _state(sm, traits, speed, q1s):
+def steady_state(sm, traits, speed, q1s):
     """Full-length ``(y, v)`` of the steady spin and the indices of the model's coordinates."""
     n = sm.M2.shape[0]
     y = np.zeros(1 + 2 * n)
@@ -68,7 +68,7 @@ def _state(sm, traits, speed, q1s):
     return y, v, kept
 
 
-def _accelerations(kernel, sm, C, hub, y, v, u, kept):
+def nonlinear_accelerations(kernel, sm, C, hub, y, v, u, kept):
     """Accelerations of the coordinates ``kept``: ``M a = F`` on the free ones, ``theta'' = u``
     where the hub is prescribed (its torque then follows from the hub row and is not needed)."""
     N = y.size
@@ -90,7 +90,7 @@ def differenced_rates(sm, traits, speed, hub, damping=None):
     n = sm.M2.shape[0]
     C = checked_damping(damping, n)
     q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(n)
-    y0, v0, kept = _state(sm, traits, speed, q1s)
+    y0, v0, kept = steady_state(sm, traits, speed, q1s)
     kernel = kernel_model(traits)
     frequency = np.sqrt(sm.K2[0, 0] / sm.M2[0, 0])
     z_steps = RELATIVE_STEP * coordinate_scales(sm)[kept]
@@ -98,8 +98,8 @@ def differenced_rates(sm, traits, speed, hub, damping=None):
     u_step = RELATIVE_STEP * frequency**2 * (sm.Jh + sm.Jb if hub == "free" else 1.0)
 
     def central(dy, dv, du, step):
-        plus = _accelerations(kernel, sm, C, hub, y0 + dy, v0 + dv, du, kept)
-        minus = _accelerations(kernel, sm, C, hub, y0 - dy, v0 - dv, -du, kept)
+        plus = nonlinear_accelerations(kernel, sm, C, hub, y0 + dy, v0 + dv, du, kept)
+        minus = nonlinear_accelerations(kernel, sm, C, hub, y0 - dy, v0 - dv, -du, kept)
         return (plus - minus) / (2.0 * step)
 
     zero = np.zeros(y0.size)

@@ -15,7 +15,6 @@ from synthetic_results import paper_cases, run_script, simulation_dataset, write
 
 from hubbeam.io import ResultFileError, open_result
 from hubbeam.plotting import draw
-from hubbeam.plotting.figures import FigureDataError
 from hubbeam.plotting.style import styled, units_tex
 from hubbeam.products import (
     EIGEN_FIGURE,
@@ -27,6 +26,7 @@ from hubbeam.products import (
     of_kind,
     product_from_entry,
 )
+from hubbeam.results import DatasetError
 
 
 @pytest.fixture(scope="module")
@@ -172,7 +172,7 @@ def test_diverged_run_is_drawn_up_to_divergence_and_marked(datasets):
 def test_fig03_fails_naming_a_missing_high_order_variable():
     spec = paper_cases()["fig03_cfoam_n1"]
     ds = simulation_dataset("fig03_cfoam_n1", spec, t_end=5.0, dt=0.5).drop_vars("dQ_q2")
-    with styled(), pytest.raises(FigureDataError, match="fig03_cfoam_n1.*'dQ_q2'"):
+    with styled(), pytest.raises(DatasetError, match="fig03_cfoam_n1.*'dQ_q2'"):
         plotter("fig03")({"fig03_cfoam_n1": ds})
 
 

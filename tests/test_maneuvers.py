@@ -20,7 +20,8 @@ from scipy.interpolate import CubicSpline
 
 from hubbeam.matrices import assemble
 from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import SimulationError, check_case, simulate, simulation_inputs
+from hubbeam.results import simulation_inputs
+from hubbeam.simulate import SimulationError, check_case, simulate
 
 
 @pytest.fixture(scope="module")

@@ -26,8 +26,8 @@ import xarray as xr
 
 from hubbeam import measures, paper
 from hubbeam.io import open_result
-from hubbeam.plotting.figures import diverged_at, maneuver_value, n_modes, select, variable
 from hubbeam.products import PAPER_PRODUCTS, Product
+from hubbeam.results import diverged_at, maneuver_value, n_modes, select, times, variable
 from hubbeam.tables import read_csv_rows, table3_rows
 
 CLAIM_COLUMNS = ("id", "claim", "unit", "paper", "computed", "rel_diff", "tolerance", "verdict",
@@ -42,7 +42,7 @@ class ClaimInputError(LookupError):
 def residual(case: str, ds: xr.Dataset, name: str = "tip_transverse") -> tuple[np.ndarray, np.ndarray]:
     """Times and values of ``name`` after the maneuver (``t > t_f``), finite samples only."""
     tf = maneuver_value(case, ds, "tf")
-    t, y = measures.after(ds["time"].values, variable(case, ds, name).values, tf)
+    t, y = measures.after(times(ds), variable(case, ds, name).values, tf)
     if len(t) < 4:
         t_div = diverged_at(case, ds)
         why = f"the run diverged at t = {t_div:g} s" if t_div is not None else "the run ends too early"
@@ -315,7 +315,7 @@ def _fewest_and_most(results, key):
 
 
 def _late_share(case, ds, name):
-    return measures.late_share(ds["time"].values, variable(case, ds, name).values,
+    return measures.late_share(times(ds), variable(case, ds, name).values,
                                maneuver_value(case, ds, "tf"))
 
 

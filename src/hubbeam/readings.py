@@ -35,8 +35,8 @@ from hubbeam.config import case_settings
 from hubbeam.eigen import critical_speed
 from hubbeam.eigen import table2 as eigen_table2
 from hubbeam.parameters import TipMass
-from hubbeam.plotting.figures import maneuver_value, variable
 from hubbeam.products import PAPER_PRODUCTS
+from hubbeam.results import maneuver_value, variable
 from hubbeam.simulate import simulate
 from hubbeam.tables import read_csv_rows
 

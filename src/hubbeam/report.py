@@ -17,8 +17,8 @@ import xarray as xr
 
 from hubbeam import __version__, validity
 from hubbeam.document import render
-from hubbeam.plotting.figures import maneuver, model, n_modes, tip_mass
 from hubbeam.products import PAPER_PRODUCTS, Product
+from hubbeam.results import maneuver, model, n_modes, tip_mass, tip_position
 
 
 def _format(value, digits=4) -> str:
@@ -52,7 +52,7 @@ def runs_markdown(datasets: Mapping[str, xr.Dataset]) -> str:
         man = maneuver(case, ds)
         law = ", ".join(f"{k} = {v:g}" if isinstance(v, (int, float)) else f"{k} = {v}" for k, v in man.items())
         mass = tip_mass(case, ds)
-        where = f"{mass:g} at {float(ds.attrs['tip_position_m']):g}" if mass else "none"
+        where = f"{mass:g} at {tip_position(case, ds):g}" if mass else "none"
         lines.append(f"| {case} | {model(case, ds)} | {n_modes(case, ds)} | {law} | "
                      f"{float(ds['time'].values[-1]):g} | {where} | {validity.describe(ds.attrs)} | "
                      f"{ds.attrs.get('n_steps', '-')} |")

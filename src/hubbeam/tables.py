@@ -22,7 +22,7 @@ import xarray as xr
 
 from hubbeam import paper
 from hubbeam.measures import peak
-from hubbeam.plotting.figures import maneuver_value, model
+from hubbeam.results import maneuver_value, model, n_modes, variable
 
 
 class Text(str):
@@ -227,9 +227,7 @@ def table2(csv_path, speed: float) -> Table:
 
 def max_abs_q_theta(case: str, ds: xr.Dataset) -> float:
     """Largest |Q_theta| (N m) over the run (NaN samples after a divergence ignored)."""
-    if "Q_theta" not in ds.data_vars:
-        raise KeyError(f"dataset of case {case!r} has no variable 'Q_theta' (needed for Table 3)")
-    return peak(ds["Q_theta"].values)
+    return peak(variable(case, ds, "Q_theta").values)
 
 
 def table3_rows(datasets: Mapping[str, xr.Dataset]) -> list[dict]:
@@ -242,7 +240,7 @@ def table3_rows(datasets: Mapping[str, xr.Dataset]) -> list[dict]:
         tau = maneuver_value(case, ds, "tau_max")
         q = max_abs_q_theta(case, ds)
         ref = printed.get(tau, math.nan)
-        rows.append({"tau_max": tau, "case": case, "n_modes": int(ds.attrs["n_modes"]),
+        rows.append({"tau_max": tau, "case": case, "n_modes": n_modes(case, ds),
                      "max_abs_Q_theta": q, "percent_of_tau_max": 100.0 * q / tau,
                      "paper": ref, "rel_diff": (q - ref) / abs(ref) if ref == ref else math.nan})
     if not rows:

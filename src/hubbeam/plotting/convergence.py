@@ -13,15 +13,9 @@ import numpy as np
 import xarray as xr
 
 from hubbeam.measures import after, fit_sinusoid, peak, residual_amplitude
-from hubbeam.plotting.figures import (
-    curve_label,
-    maneuver_value,
-    mark_maneuver_end,
-    n_modes,
-    plot_series,
-    require_datasets,
-)
+from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
+from hubbeam.results import maneuver_value, model, n_modes
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):
@@ -39,7 +33,7 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     ax = axes[0, 1]
     for variant, (case, ds) in enumerate(ordered[:-1]):
         diff = ds["tip_transverse"].interp(time=ref["time"]) - ref["tip_transverse"]
-        ax.plot(ref["time"].values, 1e3 * diff.values, **model_style(ds.attrs["model"], variant),
+        ax.plot(ref["time"].values, 1e3 * diff.values, **model_style(model(case, ds), variant),
                 label=curve_label(case, ds))
     mark_maneuver_end(ax, ref_case, ref)
     panel_title(ax, 1, f"Difference from {curve_label(ref_case, ref)}")
@@ -62,7 +56,7 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     ax.legend(loc="best")
     ax = axes[1, 1]
     frequencies = [residual_frequency(c, d) for c, d in ordered]
-    ax.plot(counts, frequencies, "o-", label=f"{ref.attrs['model']}, dominant residual frequency")
+    ax.plot(counts, frequencies, "o-", label=f"{model(ref_case, ref)}, dominant residual frequency")
     panel_title(ax, 3, "Residual vibration frequency")
     ax.set_ylabel(axis_label("$f$", "Hz"))
     ax.legend(loc="best")

@@ -13,17 +13,10 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (
-    curve_label,
-    maneuver_value,
-    mark_maneuver_end,
-    plot_series,
-    require_datasets,
-    select,
-    variable,
-)
+from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import VARIANT_LINESTYLES as LINESTYLES
 from hubbeam.plotting.style import axis_label, new_figure, panel_title, symbol_tex
+from hubbeam.results import maneuver_value, select, variable
 
 #: (variable, what the panel shows, units used when the dataset states none)
 PANELS = (

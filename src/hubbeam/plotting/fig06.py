@@ -12,16 +12,9 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from hubbeam.plotting.figures import (
-    curve_label,
-    maneuver_value,
-    mark_maneuver_end,
-    n_modes,
-    plot_series,
-    require_datasets,
-    variable,
-)
+from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, number_tex, panel_title
+from hubbeam.results import maneuver_value, n_modes, variable
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):

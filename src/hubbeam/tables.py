@@ -21,6 +21,8 @@ import numpy as np
 import xarray as xr
 
 from hubbeam import paper
+from hubbeam.document import markdown_table
+from hubbeam.formatting import number
 from hubbeam.measures import peak
 from hubbeam.results import maneuver_value, model, n_modes, variable
 
@@ -66,22 +68,15 @@ def _csv_cell(value) -> str:
 
 
 def format_value(value, digits: int | None, *, latex: bool = False) -> str:
-    """``digits`` significant digits; powers of ten as ``x 10^k`` (Markdown) or ``\\times 10^{k}``."""
-    if value is None or (_is_number(value) and math.isnan(float(value))):
-        return "-"
-    if not _is_number(value) or digits is None:
-        if latex and getattr(value, "latex", None):
-            return value.latex
-        text = str(value)
+    """``digits`` significant digits (:func:`hubbeam.formatting.number`); powers of ten as
+    ``x 10^k`` (Markdown) or ``\\times 10^{k}`` (LaTeX); text as it is (escaped for LaTeX, or
+    its own LaTeX spelling); ``-`` when missing."""
+    if latex and getattr(value, "latex", None):
+        return value.latex
+    if digits is None or not _is_number(value):
+        text = number(value)
         return _latex_escape(text) if latex else text
-    if isinstance(value, (int, np.integer)):
-        return str(int(value))
-    text = f"{float(value):.{digits}g}"
-    mantissa, _, exponent = text.partition("e")
-    if not exponent:
-        return text
-    power = int(exponent)
-    return f"${mantissa}\\times10^{{{power}}}$" if latex else f"{mantissa}×10^{power}"
+    return number(value, digits, power="latex" if latex else "unicode")
 
 
 def _latex_escape(text: str) -> str:
@@ -99,18 +94,11 @@ def write_csv(table: Table, path) -> Path:
     return path
 
 
-def _md(text: str) -> str:
-    return text.replace("|", "\\|")
-
-
 def to_markdown(table: Table) -> str:
-    lines = [f"**{table.name}.** {table.caption}", "",
-             "| " + " | ".join(_md(c.title) for c in table.columns) + " |",
-             "|" + "|".join("---" if c.digits is None else "---:" for c in table.columns) + "|"]
-    for row in table.rows:
-        cells = [_md(format_value(row.get(c.key), c.digits)) for c in table.columns]
-        lines.append("| " + " | ".join(cells) + " |")
-    return "\n".join(lines) + "\n"
+    cells = ([format_value(row.get(c.key), c.digits) for c in table.columns] for row in table.rows)
+    align = "".join("l" if c.digits is None else "r" for c in table.columns)
+    return (f"**{table.name}.** {table.caption}\n\n"
+            + markdown_table([c.title for c in table.columns], cells, align) + "\n")
 
 
 def to_latex(table: Table) -> str:

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from hubbeam.document import markdown_to_html, render
-from hubbeam.study.summary import COLUMNS
+from hubbeam.document import markdown_table, markdown_to_html, render
+from hubbeam.formatting import number
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
@@ -20,9 +20,41 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                    eigen_figures: Mapping[str, str]) -> str:
     """The report in Markdown. ``rows`` are summary rows; the figure maps give, per case,
     comparison or eigen figure, the PNG path relative to the report."""
-    return render("study_report.md.j2", study=study, beam=beam, rows=rows, columns=COLUMNS,
+    return render("study_report.md.j2", study=study, beam=beam, rows=rows,
+                  beam_table=beam_markdown(beam), cases_table=cases_markdown(rows),
                   case_figures=case_figures, comparison_figures=comparison_figures,
                   eigen_figures=eigen_figures)
+
+
+#: the columns of a uniform beam's table: title, key of ``beam``
+UNIFORM_BEAM = (("length (m)", "length"), ("density (kg m-3)", "density"), ("area (m2)", "area"),
+                ("E (N m-2)", "youngs_modulus"), ("I (m4)", "second_moment"),
+                ("hub inertia (kg m2)", "hub_inertia"), ("hub radius (m)", "hub_radius"))
+
+
+def beam_markdown(beam: Mapping) -> str:
+    """The beam of the study: its stations (``beam.sections``) or its uniform properties."""
+    if "sections" in beam:
+        sections = beam["sections"]
+        return markdown_table(("x (m)", "rhoA (kg m-1)", "EI (N m2)", "EA (N)"),
+                              zip(*(map(number, sections[key]) for key in ("x", "rhoA", "EI", "EA"))))
+    return markdown_table([title for title, _ in UNIFORM_BEAM], [[number(beam[key]) for _, key in UNIFORM_BEAM]])
+
+
+def cases_markdown(rows: Sequence[Mapping]) -> str:
+    """A line per case: settings, peak and residual tip deflection, validity, convergence check."""
+    def convergence(row):
+        if row["convergence"] == "not checked":
+            return row["convergence"]
+        return (f"{row['convergence']} (tolerance {number(row['convergence_tolerance_diff_m'], 2)} m, "
+                f"modes {number(row['convergence_modes_diff_m'], 2)} m)")
+
+    return markdown_table(
+        ("case", "model", "maneuver", "modes", "tip mass (kg)", "peak v(L) (m)", "at t (s)", "end (s)",
+         "residual (m)", "validity", "convergence check"),
+        ([row["case"], row["model"], row["maneuver"], row["modes"], number(row["tip_mass_kg"]),
+          number(row["peak_tip_deflection_m"]), number(row["peak_time_s"]), number(row["maneuver_end_s"]),
+          number(row["residual_amplitude_m"]), row["validity"], convergence(row)] for row in rows))
 
 
 def study_html(markdown: str, title: str, report_dir) -> str:

@@ -47,6 +47,18 @@ def number(value, digits: int = 4, *, power: str = "e") -> str:
     return f"{mantissa}×10^{int(exponent)}"
 
 
+def csv_cell(value) -> str:
+    """A cell of a result csv: a number in full precision (``repr`` of a float, so that it reads
+    back bit for bit), an empty cell when missing, text unchanged."""
+    if is_missing(value):
+        return ""
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
+    return str(value)
+
+
 def fixed(value, decimals: int, *, signed: bool = False) -> str:
     """``value`` with ``decimals`` digits after the point (``+`` on positive values if
     ``signed``), ``-`` when missing."""

@@ -22,7 +22,7 @@ import xarray as xr
 
 from hubbeam import paper
 from hubbeam.document import markdown_table
-from hubbeam.formatting import number
+from hubbeam.formatting import csv_cell, number
 from hubbeam.measures import peak
 from hubbeam.results import maneuver_value, model, n_modes, variable
 
@@ -60,13 +60,6 @@ def _is_number(value) -> bool:
     return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
 
 
-def _csv_cell(value) -> str:
-    if _is_number(value):
-        return "" if math.isnan(float(value)) else repr(float(value)) if isinstance(
-            value, (float, np.floating)) else str(int(value))
-    return "" if value is None else str(value)
-
-
 def format_value(value, digits: int | None, *, latex: bool = False) -> str:
     """``digits`` significant digits (:func:`hubbeam.formatting.number`); powers of ten as
     ``x 10^k`` (Markdown) or ``\\times 10^{k}`` (LaTeX); text as it is (escaped for LaTeX, or
@@ -84,13 +77,19 @@ def _latex_escape(text: str) -> str:
 
 
 def write_csv(table: Table, path) -> Path:
+    return write_rows(table.rows, path, [c.key for c in table.columns])
+
+
+def write_rows(rows, path, columns) -> Path:
+    """``rows`` (mappings) as csv with ``columns``: numbers in full precision, NaN and None as
+    empty cells (:func:`hubbeam.formatting.csv_cell`)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     with path.open("w", newline="") as handle:
         writer = csv.writer(handle, lineterminator="\n")
-        writer.writerow([c.key for c in table.columns])
-        for row in table.rows:
-            writer.writerow([_csv_cell(row.get(c.key)) for c in table.columns])
+        writer.writerow(columns)
+        for row in rows:
+            writer.writerow([csv_cell(row.get(column)) for column in columns])
     return path
 
 

@@ -12,6 +12,7 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
+from hubbeam.formatting import number
 from hubbeam.plotting.style import mark_time, model_style
 from hubbeam.results import (
     DatasetError,
@@ -35,11 +36,6 @@ def require_datasets(key: str, datasets: Mapping[str, xr.Dataset], what: str) ->
     """Fail when a figure got no dataset for ``what`` (e.g. 'a CFOAM run')."""
     if not datasets:
         raise DatasetError(f"{key}: no dataset for {what}; add a matching case to the config")
-
-
-def format_number(x: float) -> str:
-    """Short number for titles and legends: 2.8, 0.1, 400 (no trailing zeros)."""
-    return f"{x:g}"
 
 
 # --- drawing shared by the time-series figures --------------------------------------------------
@@ -76,7 +72,7 @@ def mark_maneuver_end(ax, case: str, ds: xr.Dataset) -> None:
     """Mark ``t_f``, the end of the spin-up or torque pulse (start of the residual vibration)."""
     tf = maneuver(case, ds).get("tf")
     if tf is not None:
-        mark_time(ax, float(tf), f"$t_f$ = {format_number(float(tf))} s")
+        mark_time(ax, float(tf), f"$t_f$ = {number(float(tf), 6)} s")
 
 
 def limit_to_bounded(ax, datasets: Mapping[str, xr.Dataset], name: str) -> None:

@@ -2,7 +2,8 @@
 and rendered to self-contained HTML (images embedded) by markdown-it-py.
 
 The prose of the reports lives in the templates; the modules that write a report compute its
-numbers and tables and hand them to :func:`render`.
+numbers (written by :mod:`hubbeam.formatting`) and tables (rendered by :func:`markdown_table`, the
+one renderer of a Markdown table) and hand them to :func:`render`.
 """
 
 from __future__ import annotations

@@ -74,7 +74,8 @@ def plot(case: str, ds: xr.Dataset):
     energy = variable(case, ds, "energy").values
     ax.plot(t, energy - energy[0], label="$E(t) - E(0)$", **style)
     if "work" in ds.data_vars:
-        net = ds["work"].values - (ds["dissipated_energy"].values if "dissipated_energy" in ds else 0.0)
+        net = variable(case, ds, "work").values - (
+            variable(case, ds, "dissipated_energy").values if "dissipated_energy" in ds else 0.0)
         ax.plot(t, net, color="0.2", linestyle=":", label="work - dissipated")
         ax.legend(loc="best")
     ax.set_ylabel(axis_label("energy change", "J"))

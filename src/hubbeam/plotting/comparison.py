@@ -30,12 +30,12 @@ def plot(name: str, datasets: Mapping[str, xr.Dataset]):
     fig, axes = new_figure(3, 1, height=6.0)
     axes = axes[:, 0]
     for k, (case, ds) in enumerate(datasets.items()):
-        name = model(case, ds)
-        label = f"{case} ({name}, n = {n_modes(case, ds)})"
+        model_name = model(case, ds)
+        label = f"{case} ({model_name}, n = {n_modes(case, ds)})"
         if attr(case, ds, "validity") != "valid":
             label += f", {validity.describe(ds.attrs)}"
         props = {"color": SEQUENCE_COLORS[k % len(SEQUENCE_COLORS)],
-                 "linestyle": MODEL_STYLE.get(name, {}).get("linestyle", "-")}
+                 "linestyle": MODEL_STYLE.get(model_name, {}).get("linestyle", "-")}
         for index, (series, ylabel) in enumerate(SERIES.values()):
             axes[index].plot(times(ds), variable(case, ds, series).values,
                              label=label if index == 0 else None, **props)

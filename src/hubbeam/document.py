@@ -65,6 +65,7 @@ def _environment() -> jinja2.Environment:
     environment = jinja2.Environment(loader=jinja2.PackageLoader("hubbeam", "templates"),
                                      undefined=jinja2.StrictUndefined, trim_blocks=True,
                                      lstrip_blocks=True, keep_trailing_newline=True, autoescape=False)
+    environment.filters["number"] = number  # a number in the prose, as in the tables
     return environment
 
 

@@ -31,12 +31,11 @@ from hubbeam.core.radau import LEFT_RANGE, NON_FINITE, STEP_UNDERFLOW, SUCCESS
 from hubbeam.damping import damping_matrices
 from hubbeam.matrices import SystemMatrices
 from hubbeam.parameters import BeamParameters
+from hubbeam.settings import simulation_settings
 from hubbeam.simulate import (
     MODEL_IDS,
     build_dataset,
     case_matrices,
-    check_case,
-    check_numerics,
     maneuver_parameters,
     output_times,
     step_stops,
@@ -80,8 +79,7 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     path (and at every row of a maneuver's table). Integrator attributes name scipy, the method and
     its counts (``n_steps`` is not known to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
     """
-    check_case(case)
-    check_numerics(numerics)
+    case, numerics = (item.to_dict() for item in simulation_settings(case, numerics, params.L))
     if method not in METHODS:
         raise ValueError(f"method = {method!r}; allowed: one of {', '.join(METHODS)}")
     sm = case_matrices(case, params, numerics, matrices)

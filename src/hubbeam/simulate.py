@@ -36,28 +36,18 @@ from hubbeam.beam import beam_attributes
 from hubbeam.core import radau
 from hubbeam.core.eom import MODEL_IDS
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
-from hubbeam.damping import check_damping, damping_matrices
-from hubbeam.limits import (
-    MAX_MODES,
-    MAX_QUADRATURE_POINTS,
-    MEMORY_BUDGET_MB,
-    MIN_MODES,
-    MIN_QUADRATURE_POINTS,
-    MIN_RTOL,
-    SMALL_DEFLECTION_LIMIT,
-)
-from hubbeam.maneuvers import check_maneuver, maneuver_parameters, maneuver_stops
+from hubbeam.damping import damping_matrices
+from hubbeam.limits import MAX_MODES, MAX_QUADRATURE_POINTS, MIN_QUADRATURE_POINTS, MIN_RTOL, SMALL_DEFLECTION_LIMIT
+from hubbeam.maneuvers import maneuver_parameters, maneuver_stops
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
+from hubbeam.settings import simulation_settings
 from hubbeam.variables import (
     CUMULATIVE_VARIABLES,
     HIGH_ORDER_VARIABLES,
-    MIB,
     VARIABLES,
-    budget_text,
     output_count,
-    simulation_bytes,
 )
 
 LOG = logging.getLogger(__name__)
@@ -66,85 +56,12 @@ LOG = logging.getLogger(__name__)
 NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
 #: optional numerics keys a simulation reads, with their defaults
 OPTIONAL_NUMERICS = {"small_deflection_limit": SMALL_DEFLECTION_LIMIT}
-#: keys of the optional convergence check (``numerics.convergence_check``, :func:`convergence`)
-CONVERGENCE_KEYS = ("tolerance_factor", "extra_modes", "threshold_m")
 
 INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
 
 
 class SimulationError(ValueError):
     """A case or the numerics cannot be simulated; the message names key, value and allowed."""
-
-
-def check_case(case: Mapping) -> None:
-    """Raise :class:`SimulationError` unless ``case`` is a resolved case that can be run."""
-    name = case.get("name", "<unnamed>")
-    if case.get("model") not in MODEL_IDS:
-        raise SimulationError(f"cases.{name}.model = {case.get('model')!r}; "
-                              f"allowed: one of {', '.join(MODEL_IDS)}")
-    try:
-        check_maneuver(case.get("maneuver"), f"cases.{name}.maneuver")
-        check_damping(case.get("damping"), f"cases.{name}.damping")
-    except ValueError as error:
-        raise SimulationError(str(error)) from error
-    if not _finite(case.get("t_end")) or case["t_end"] <= 0.0:
-        raise SimulationError(f"cases.{name}.t_end = {case.get('t_end')!r}; "
-                              "allowed: a number > 0 s")
-    modes = case.get("modes")
-    if (not isinstance(modes, (int, np.integer)) or isinstance(modes, bool)
-            or not MIN_MODES <= modes <= MAX_MODES):
-        raise SimulationError(f"cases.{name}.modes = {modes!r}; "
-                              f"allowed: an integer in {MIN_MODES}..{MAX_MODES}")
-
-
-def check_numerics(numerics: Mapping) -> None:
-    """Raise :class:`SimulationError` unless ``numerics`` holds usable integrator settings."""
-    for key in NUMERICS_KEYS:
-        value = numerics.get(key)
-        integer = key in ("max_steps", "step_warning")
-        ok = (isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value >= 1
-              if integer else _finite(value) and value > 0.0)
-        if not ok:
-            allowed = "an integer >= 1" if integer else "a finite number > 0"
-            raise SimulationError(f"numerics.{key} = {value!r}; allowed: {allowed}")
-    for key, default in OPTIONAL_NUMERICS.items():
-        value = numerics.get(key, default)
-        if not (_finite(value) and value > 0.0):
-            raise SimulationError(f"numerics.{key} = {value!r}; allowed: a finite number > 0")
-    if numerics["rtol"] < MIN_RTOL:
-        raise SimulationError(f"numerics.rtol = {numerics['rtol']!r}; allowed: a number >= "
-                              f"{MIN_RTOL:.3g} (100 machine epsilons)")
-
-
-def check_memory(case: Mapping, numerics: Mapping) -> None:
-    """Raise :class:`SimulationError` when the outputs of ``case`` would exceed the memory budget
-    ``numerics["memory_budget_mb"]`` (default :data:`hubbeam.limits.MEMORY_BUDGET_MB`), the
-    estimate of :func:`hubbeam.variables.simulation_bytes` the startup checks apply as well."""
-    budget_mb = numerics.get("memory_budget_mb", MEMORY_BUDGET_MB)
-    size = simulation_bytes(case["model"], case["modes"], case["t_end"], numerics["output_step"])
-    if size > budget_mb * MIB:
-        raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.t_end = {case['t_end']!r}: its outputs "
-                              f"would take {budget_text(size, budget_mb)}; allowed: a shorter t_end, a "
-                              "longer numerics.output_step or a larger numerics.memory_budget_mb")
-
-
-def check_convergence_settings(settings: Mapping) -> None:
-    """Raise :class:`SimulationError` unless ``settings`` is a usable convergence check."""
-    where = "numerics.convergence_check"
-    if not isinstance(settings, Mapping):
-        raise SimulationError(f"{where} = {settings!r}; allowed: a mapping with keys "
-                              f"{', '.join(CONVERGENCE_KEYS)}")
-    unknown = sorted(set(settings) - set(CONVERGENCE_KEYS))
-    if unknown:
-        raise SimulationError(f"{where}.{unknown[0]}: unknown key; allowed keys: "
-                              f"{', '.join(CONVERGENCE_KEYS)}")
-    factor, extra, threshold = (settings.get(key) for key in CONVERGENCE_KEYS)
-    if not (_finite(factor) and 0.0 < factor < 1.0):
-        raise SimulationError(f"{where}.tolerance_factor = {factor!r}; allowed: a number > 0 and < 1")
-    if not isinstance(extra, (int, np.integer)) or isinstance(extra, bool) or extra < 1:
-        raise SimulationError(f"{where}.extra_modes = {extra!r}; allowed: an integer >= 1")
-    if not (_finite(threshold) and threshold > 0.0):
-        raise SimulationError(f"{where}.threshold_m = {threshold!r}; allowed: a number > 0 m")
 
 
 def output_times(t_end: float, output_step: float) -> np.ndarray:
@@ -165,10 +82,9 @@ def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
     if matrices is None:
         tip = TipMass(**case["tip_mass"]) if case.get("tip_mass") else None
         quadrature = numerics.get("quadrature_points")
-        if (not isinstance(quadrature, (int, np.integer)) or isinstance(quadrature, bool)
-                or not MIN_QUADRATURE_POINTS <= quadrature <= MAX_QUADRATURE_POINTS):
-            raise SimulationError(f"numerics.quadrature_points = {quadrature!r}; allowed: an "
-                                  f"integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
+        if quadrature is None:
+            raise SimulationError(f"numerics.quadrature_points: missing (required when no matrices are "
+                                  f"given); allowed: an integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
         matrices = assemble(params, tip, n, int(quadrature))
     if np.shape(matrices.K1) != (n, n):
         raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.modes = {n}, but the "
@@ -197,13 +113,13 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
         with more modes and the differences are recorded (:func:`convergence`).
 
     The attribute ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so
-    that :func:`hubbeam.results.simulation_inputs` can rebuild them.
+    that :func:`hubbeam.results.simulation_inputs` can rebuild them. ``case`` and ``numerics`` may
+    be the objects of :mod:`hubbeam.settings`; mappings are checked there once
+    (``hubbeam.config.ConfigError``).
     """
-    check_case(case)
-    check_numerics(numerics)
-    check_memory(case, numerics)
-    if convergence_check is not None:
-        check_convergence_settings(convergence_check)
+    case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
+    convergence_check = numerics.convergence_check and numerics.convergence_check.to_dict()
+    case, numerics = case.to_dict(), numerics.to_dict()  # what the integration below reads
     sm = case_matrices(case, params, numerics, matrices)
     ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm))
     ds.attrs["quadrature_points"] = quadrature_points(sm)
@@ -419,7 +335,3 @@ def cumulative_integral(rate: np.ndarray, t: np.ndarray) -> np.ndarray:
         result[0] = 0.0
     return result
 
-
-def _finite(value) -> bool:
-    return (isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
-            and math.isfinite(value))

@@ -26,10 +26,14 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                   eigen_figures=eigen_figures)
 
 
-#: the columns of a uniform beam's table: title, key of ``beam``
+#: the columns of a uniform beam's table, given by its material and section (title, key of ``beam``)
 UNIFORM_BEAM = (("length (m)", "length"), ("density (kg m-3)", "density"), ("area (m2)", "area"),
                 ("E (N m-2)", "youngs_modulus"), ("I (m4)", "second_moment"),
                 ("hub inertia (kg m2)", "hub_inertia"), ("hub radius (m)", "hub_radius"))
+#: the same, for a uniform beam given by its products ``rhoA``, ``EI``, ``EA``
+UNIFORM_BEAM_PRODUCTS = (("length (m)", "length"), ("rhoA (kg m-1)", "rhoA"), ("EI (N m2)", "EI"),
+                         ("EA (N)", "EA"), ("hub inertia (kg m2)", "hub_inertia"),
+                         ("hub radius (m)", "hub_radius"))
 
 
 def beam_markdown(beam: Mapping) -> str:
@@ -38,7 +42,8 @@ def beam_markdown(beam: Mapping) -> str:
         sections = beam["sections"]
         return markdown_table(("x (m)", "rhoA (kg m-1)", "EI (N m2)", "EA (N)"),
                               zip(*(map(number, sections[key]) for key in ("x", "rhoA", "EI", "EA"))))
-    return markdown_table([title for title, _ in UNIFORM_BEAM], [[number(beam[key]) for _, key in UNIFORM_BEAM]])
+    columns = UNIFORM_BEAM_PRODUCTS if "rhoA" in beam else UNIFORM_BEAM
+    return markdown_table([title for title, _ in columns], [[number(beam[key]) for _, key in columns]])
 
 
 def cases_markdown(rows: Sequence[Mapping]) -> str:

@@ -237,9 +237,9 @@ def eigen_results():
 
 
 # --- independent validation (rules in validate.smk, docs/validation.md) --------------------------
-# The published-table check (it validates the beam model against literature tables) is part of
-# `all` whenever the config has `validation.published` (the paper's), and of the reproduction
-# report. The optional target `validate` builds, under validation/ of the results folder, the
+# The published-table check (it validates the beam model against literature tables of uniform
+# cantilevers, not a study's beam) is one of the paper's products: with `validation.published`, part
+# of `all` and of the reproduction report. The optional target `validate` builds, under validation/ of the results folder, the
 # Exudyn comparison (when the config has a `validation` section) and the non-uniform checks
 # (always), with their report report/validation_exudyn.md/.html.
 
@@ -259,8 +259,8 @@ def validation_config():
 
 def published_validation_inputs():
     """The products of `validate_published` the reproduction report reads, by input name (none
-    when the config has no `validation.published`)."""
-    if "published" not in config.get("validation", {}):
+    without the paper's products or without `validation.published`)."""
+    if not PAPER or "published" not in config.get("validation", {}):
         return {}
     return {
         "published": PATHS.validation("published_comparison.csv"),

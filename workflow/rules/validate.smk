@@ -4,8 +4,8 @@ Builds in validation/ of the results folder (results/validation/ for the paper,
 results/<name>/validation/ for a study):
 * published_comparison.csv, tip_mass_comparison.csv, rotating_eigen.nc, rotating_frequencies.pdf/png:
   the constant-speed linearisation of FOAM against published rotating-cantilever frequencies
-  (rule `validate_published`, seconds, no Exudyn; with `validation.published`, the paper's: part
-  of `all` and of the reproduction report);
+  (rule `validate_published`, seconds, no Exudyn; with the paper's products and
+  `validation.published`: part of `all` and of the reproduction report);
 * exudyn_<case>.nc, exudyn_comparison.csv, exudyn_comparison.pdf/png: FOAM, CFOAM and TLAM tip
   deflections against the Exudyn ANCF reference (runs/ holds the separate runs);
 * exudyn_mode_study.csv: the model-reference differences against the number of assumed modes;

@@ -12,8 +12,9 @@ needs, its caption and the claims of the paper it carries.
 Campbell diagram always; the study report's figures with a ``study`` section);
 :data:`PAPER_PRODUCTS` are the paper's own, built when the configuration asks for them
 (``products: [paper]``, :data:`PRODUCT_SETS`). :func:`products_for` gives a configuration's
-products: the Snakemake rules (targets, inputs, ``snakemake --report`` captions), the reproduction
-report and the study report (figure sections and captions) are derived from it. A new product of
+products: the Snakemake rules (targets, inputs, ``snakemake --report`` captions), the figure
+sections of the reproduction report (with their captions) and of the study report are derived
+from it. A new product of
 every study is one entry of :data:`GENERAL_PRODUCTS` (plus a rule when no rule of its kind exists).
 """
 

@@ -34,10 +34,15 @@ for _key, _product in of_kind(PRODUCTS, CASE_FIGURE).items():
             simulation=PATHS.simulation("{case}"),
             code=script_code("study_figure.py", _product.module),
         output:
-            pdf=PATHS.figure(f"{_key}_{{case}}", "pdf"),
-            png=PATHS.figure(f"{_key}_{{case}}", "png"),
+            pdf=ensure(PATHS.figure(f"{_key}_{{case}}", "pdf"), non_empty=True),
+            png=report(
+                ensure(PATHS.figure(f"{_key}_{{case}}", "png"), non_empty=True),
+                caption=PRODUCT_CAPTION,
+                category=_product.category,
+            ),
         params:
             function=_product.function,
+            caption=_product.caption(),
             per_case=True,
             name=lambda wildcards: wildcards.case,
         log:
@@ -56,10 +61,15 @@ for _key, _product in of_kind(PRODUCTS, COMPARISON_FIGURE).items():
             unpack(comparison_inputs),
             code=script_code("study_figure.py", _product.module),
         output:
-            pdf=PATHS.figure(f"{_key}_{{comparison}}", "pdf"),
-            png=PATHS.figure(f"{_key}_{{comparison}}", "png"),
+            pdf=ensure(PATHS.figure(f"{_key}_{{comparison}}", "pdf"), non_empty=True),
+            png=report(
+                ensure(PATHS.figure(f"{_key}_{{comparison}}", "png"), non_empty=True),
+                caption=PRODUCT_CAPTION,
+                category=_product.category,
+            ),
         params:
             function=_product.function,
+            caption=_product.caption(),
             per_case=False,
             name=lambda wildcards: wildcards.comparison,
         log:

@@ -413,8 +413,9 @@ def sweep_targets(in_all=True):
 
 
 def reading_names():
-    """Names of the configured readings (`readings`), in config order; none without the section."""
-    return list(config.get("readings", {}))
+    """Names of the configured readings (`readings`), in config order; none without the section
+    or without the paper's products (a reading recomputes the paper's claims)."""
+    return list(config.get("readings", {})) if PAPER else []
 
 
 def reading_targets():

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 import yaml
 
+from hubbeam.config import ConfigError, validate_config
 from hubbeam.paths import IN_RESULTS, SHARED, study_paths
 from hubbeam.products import (
     CAMPBELL,
@@ -113,6 +114,14 @@ def test_a_study_may_ask_for_the_paper_products_too():
 def test_an_unknown_product_set_is_named_with_what_is_allowed():
     with pytest.raises(ProductError, match=r"^products: got 'papr'; allowed: paper$"):
         products_for(paper() | {"products": ["papr"]})
+
+
+def test_table2_speed_is_needed_by_the_paper_products_not_by_a_config_without_a_study():
+    with pytest.raises(ConfigError, match=r"eigen.table2_speed: missing \(required for the paper's Table 2"):
+        validate_config(study() | {"products": ["paper"]})
+    cfg = paper()
+    del cfg["products"], cfg["eigen"]["table2_speed"]
+    validate_config(cfg)
 
 
 def test_a_product_is_built_only_with_the_keys_it_needs():

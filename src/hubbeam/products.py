@@ -334,8 +334,10 @@ PAPER_PRODUCTS: Mapping[str, Product] = registry(
         cases=_TAB3),
 )
 
+#: the name of the paper's product set
+PAPER = "paper"
 #: the products a configuration may ask for beside the general ones (``products: [paper]``)
-PRODUCT_SETS: Mapping[str, Mapping[str, Product]] = MappingProxyType({"paper": PAPER_PRODUCTS})
+PRODUCT_SETS: Mapping[str, Mapping[str, Product]] = MappingProxyType({PAPER: PAPER_PRODUCTS})
 
 
 def product_sets(cfg: Mapping) -> list[str]:

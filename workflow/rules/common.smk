@@ -16,7 +16,7 @@ from snakemake.exceptions import WorkflowError
 from hubbeam.config import case_names, case_settings
 from hubbeam.models import FAMILIES, model, wildcard_pattern
 from hubbeam.paths import FIGURE_FORMATS, SHARED, TABLE_FORMATS, study_paths
-from hubbeam.products import (CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, PAPER_PRODUCTS,
+from hubbeam.products import (CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, PAPER, PAPER_PRODUCTS,
                               SIMULATION_FIGURE, TABLE, of_kind, product_cases, product_sets,
                               products_for)
 from hubbeam.sourcedeps import script_dependencies
@@ -28,7 +28,7 @@ PATHS = study_paths(config)
 #: the figures and tables of this configuration
 PRODUCTS = products_for(config)
 #: the paper's own products (Tables 1-3, Figs. 3-10, claims, reproduction report) are asked for
-PAPER = "paper" in product_sets(config)
+WITH_PAPER = PAPER in product_sets(config)
 #: the kernel families, each compiled once (hubbeam.models)
 FAMILY_PATTERN = wildcard_pattern(FAMILIES)
 
@@ -156,7 +156,7 @@ def report_targets():
     paper's products, the study report with a `study` section (its title, description and
     comparisons)."""
     paper = [PATHS.report(name) for name in ("claims.csv", "reproduction.md", "reproduction.html")]
-    return (paper if PAPER else []) + (list(STUDY_REPORT.values()) if "study" in config else [])
+    return (paper if WITH_PAPER else []) + (list(STUDY_REPORT.values()) if "study" in config else [])
 
 
 def archive_inputs(wildcards):
@@ -233,7 +233,7 @@ def matrices_results():
 def eigen_results():
     """The results of the eigen-analysis (netCDF and csv) the products and the claims read."""
     read = {path for product in PRODUCTS.values() for path in product_files(product).values()}
-    return sorted(read | (set(CLAIM_TABLES.values()) if PAPER else set()))
+    return sorted(read | (set(CLAIM_TABLES.values()) if WITH_PAPER else set()))
 
 
 # --- independent validation (rules in validate.smk, docs/validation.md) --------------------------
@@ -260,7 +260,7 @@ def validation_config():
 def published_validation_inputs():
     """The products of `validate_published` the reproduction report reads, by input name (none
     without the paper's products or without `validation.published`)."""
-    if not PAPER or "published" not in config.get("validation", {}):
+    if not WITH_PAPER or "published" not in config.get("validation", {}):
         return {}
     return {
         "published": PATHS.validation("published_comparison.csv"),
@@ -415,7 +415,7 @@ def sweep_targets(in_all=True):
 def reading_names():
     """Names of the configured readings (`readings`), in config order; none without the section
     or without the paper's products (a reading recomputes the paper's claims)."""
-    return list(config.get("readings", {})) if PAPER else []
+    return list(config.get("readings", {})) if WITH_PAPER else []
 
 
 def reading_targets():

@@ -11,6 +11,7 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 
 from hubbeam.config import case_names, case_settings
+from hubbeam.models import FAMILIES, model, wildcard_pattern
 from hubbeam.sourcedeps import script_dependencies
 from hubbeam.study import is_study, logs_dir, results_dir
 
@@ -51,18 +52,13 @@ def script_code(script, *modules):
 
 def simulation_kernel_done(wildcards):
     """Input function of `simulate`: the marker of the compiled kernel of the case's family."""
-    from hubbeam.core.eom import MODEL_IDS
-    from hubbeam.core.integrate import model_family
-
-    family = model_family(MODEL_IDS[case_config(wildcards.case)["model"]])
+    family = model(case_config(wildcards.case)["model"]).family
     return f"logs/simulations/kernel_{family}.done"
 
 
 def simulation_kernels_done(wildcards):
     """Input function of jobs that simulate any model: the markers of every family's kernel."""
-    from hubbeam.core.integrate import FAMILY_KERNELS
-
-    return expand("logs/simulations/kernel_{family}.done", family=sorted(FAMILY_KERNELS))
+    return expand("logs/simulations/kernel_{family}.done", family=FAMILIES)
 
 
 def simulation_results():

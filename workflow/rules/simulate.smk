@@ -21,7 +21,7 @@ rule simulation_kernel:
     params:
         family="{family}",
     wildcard_constraints:
-        family="foam|cfoam",
+        family=wildcard_pattern(FAMILIES),
     # first on the cores of a cold run: every simulation waits for its family's kernel
     priority: 100
     log:

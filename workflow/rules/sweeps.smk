@@ -22,7 +22,7 @@ rule large_sweeps:
 rule sweep_kernel:
     input:
         code=script_code("sweep_compile.py"),
-        simulation_kernels=expand("logs/simulations/kernel_{family}.done", family=("foam", "cfoam")),
+        simulation_kernels=expand("logs/simulations/kernel_{family}.done", family=FAMILIES),
     output:
         "logs/sweeps/kernel.done",
     log:

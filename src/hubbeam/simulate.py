@@ -135,16 +135,19 @@ def check_memory(case: Mapping, numerics: Mapping) -> None:
                               "longer numerics.output_step or a larger numerics.memory_budget_mb")
 
 
+def _check_keys(value, keys, where: str) -> None:
+    """Raise :class:`SimulationError` unless ``value`` is a mapping with no key besides ``keys``."""
+    if not isinstance(value, Mapping):
+        raise SimulationError(f"{where} = {value!r}; allowed: a mapping with keys {', '.join(keys)}")
+    unknown = sorted(set(value) - set(keys))
+    if unknown:
+        raise SimulationError(f"{where}.{unknown[0]}: unknown key; allowed keys: {', '.join(keys)}")
+
+
 def check_convergence_settings(settings: Mapping) -> None:
     """Raise :class:`SimulationError` unless ``settings`` is a usable convergence check."""
     where = "numerics.convergence_check"
-    if not isinstance(settings, Mapping):
-        raise SimulationError(f"{where} = {settings!r}; allowed: a mapping with keys "
-                              f"{', '.join(CONVERGENCE_KEYS)}")
-    unknown = sorted(set(settings) - set(CONVERGENCE_KEYS))
-    if unknown:
-        raise SimulationError(f"{where}.{unknown[0]}: unknown key; allowed keys: "
-                              f"{', '.join(CONVERGENCE_KEYS)}")
+    _check_keys(settings, CONVERGENCE_KEYS, where)
     factor, extra, threshold = (settings.get(key) for key in CONVERGENCE_KEYS)
     if not (_finite(factor) and 0.0 < factor < 1.0):
         raise SimulationError(f"{where}.tolerance_factor = {factor!r}; allowed: a number > 0 and < 1")
@@ -162,13 +165,7 @@ def check_initial(case: Mapping) -> None:
     spec = case.get("initial")
     if spec is None:
         return
-    if not isinstance(spec, Mapping):
-        raise SimulationError(f"{where} = {spec!r}; allowed: a mapping with keys "
-                              f"{', '.join(INITIAL_KEYS)}")
-    unknown = sorted(set(spec) - set(INITIAL_KEYS))
-    if unknown:
-        raise SimulationError(f"{where}.{unknown[0]}: unknown key; allowed keys: "
-                              f"{', '.join(INITIAL_KEYS)}")
+    _check_keys(spec, INITIAL_KEYS, where)
     if "hub_speed" in spec:
         speed = spec["hub_speed"]
         if not _finite(speed):

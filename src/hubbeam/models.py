@@ -16,8 +16,11 @@ Traits of a model (:class:`Model`):
   (CFOAM) instead of its first-order expansion, Eqs. (24)-(34);
 * ``linearisation``: the variant of the constant-speed equations, Eq. (31), that linearises it
   about a steady spin (``hubbeam.linearised.CENTRIFUGAL_TERMS``): TLAM's for TLAM, FOAM's for the
-  others (CFOAM's high-order terms are of second order in the deflection and vanish from the
-  linearisation about ``q2 = 0``, reproduction note 5);
+  others. CFOAM's high-order terms are of second order in the elastic coordinates (reproduction
+  note 5); about ``q2 = 0`` they leave only products of the steady axial stretch ``q1s`` with the
+  deflection, a relative change of the order of the stretch ``f1(L) q1s / L`` (3e-6 for the
+  paper's beam at 2 rad/s; ``tests/test_initial_state.py`` measures it), which FOAM's
+  linearisation neglects;
 * ``high_order_outputs``: the dataset carries CFOAM-minus-FOAM terms along the trajectory
   (``hubbeam.variables.HIGH_ORDER_VARIABLES``).
 

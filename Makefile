@@ -1,20 +1,22 @@
 # hubbeam: the two commands of README.md.
 #   make reproduce   set up .venv (if needed) and run the whole workflow with Snakemake
-#   make test        set up .venv (if needed) and run the test suite (with the import contracts and ruff)
+#   make test        set up .venv (if needed) and run the test suite (with the import contracts and ruff, and
+#                    the independent Exudyn and pyBModes checks of the `validation` extra)
 #   make test-fast   the same without the tests that run Snakemake or kill processes, or are slow
 #                    (-m "not workflow and not slow", see tests/conftest.py)
 #   make test-slurm  bring up the one-node SLURM cluster (profiles/slurm/local-cluster.sh, as root),
 #                    run the workflow on it (pytest -m slurm, tests/test_slurm.py), bring it down
 #   make benchmark   set up .venv (if needed) and time hubbeam against scipy (benchmarks/, results/benchmarks)
 #   make lock        (maintainers) re-resolve pyproject.toml's dependencies into requirements.lock
-# Setup installs hubbeam (editable, with its `test` extra; `validation` is opt-in, see README) constrained to the
-# exact versions of requirements.lock; it reruns only when pyproject.toml or requirements.lock
-# change (stamp file .venv/.hubbeam-installed).
+# Setup installs hubbeam (editable, with its `test` and `validation` extras: the suite runs the independent
+# Exudyn and pyBModes checks) constrained to the exact versions of requirements.lock; it reruns only when
+# pyproject.toml or requirements.lock change, or the extras below (the stamp file names them).
 
 PYTHON ?= python3
 VENV := .venv
 VENV_PYTHON := $(VENV)/bin/python
-STAMP := $(VENV)/.hubbeam-installed
+EXTRAS := test,validation
+STAMP := $(VENV)/.hubbeam-installed-$(EXTRAS)
 
 .PHONY: reproduce test test-fast test-slurm benchmark setup lock
 
@@ -45,7 +47,7 @@ $(VENV_PYTHON):
 	$(PYTHON) -m venv $(VENV)
 
 $(STAMP): pyproject.toml requirements.lock | $(VENV_PYTHON)
-	$(VENV_PYTHON) -m pip install --quiet --constraint requirements.lock --editable ".[test]"
+	$(VENV_PYTHON) -m pip install --quiet --constraint requirements.lock --editable ".[$(EXTRAS)]"
 	$(VENV_PYTHON) -m pip check
 	touch $@
 

@@ -31,7 +31,7 @@ if not is_study(config):
 
 STUDY = is_study(config)
 # Tables given as `file:` (beam sections, maneuver profiles) are read relative to the last config
-# file and inlined; then the schema (workflow/schemas/config.schema.yaml) and the physical checks,
+# file and inlined; then the schema (hubbeam/schemas/config.schema.yaml) and the physical checks,
 # every problem in one message: a bad config stops here, before any rule, without a traceback.
 try:
     config.update(resolve_files(config, Path(workflow.configfiles[-1]).parent))

@@ -28,7 +28,6 @@ from hubbeam.models import model
 from hubbeam.parameters import BeamParameters
 from hubbeam.simulate import (
     case_matrices,
-    check_initial,
     initial_state,
     maneuver_parameters,
     output_times,
@@ -112,7 +111,6 @@ class Run:
 def prepare_case(name: str, case: Mapping, params: BeamParameters, numerics: Mapping,
                  output_step: float) -> BenchmarkCase:
     """A :class:`BenchmarkCase` from a resolved case (``hubbeam.config.case_settings``)."""
-    check_initial(case)
     sm = case_matrices(case, params, numerics)
     kind, mp = maneuver_parameters(case["maneuver"])
     inputs = SimulationInputs(model(case["model"]).traits, kind, mp,

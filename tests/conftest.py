@@ -24,7 +24,7 @@ CONFIG_FILE = REPO_ROOT / "config" / "config.yaml"
 #: names of the calls and signals with which tests interrupt and kill processes
 KILL_NAMES = {"kill", "killpg", "SIGINT", "SIGTERM", "SIGKILL"}
 #: test modules whose every test is slow (but runs no workflow)
-SLOW_MODULES = {"test_reference"}
+SLOW_MODULES = {"test_reference", "test_config_install"}
 
 
 def _names(code: CodeType) -> set[str]:

@@ -183,3 +183,16 @@ def test_sweep_rows_of_a_map_without_residuals(study_config):
     assert [row["sweep"] for row in rows] == ["tlam_vs_foam_3d"]
     assert rows[0]["simulations"] == 2 * 2 ** 3 and math.isnan(rows[0]["max_abs_err_residual_m"])
     assert rows[0]["max_rel_err_peak"] < 1e-3
+
+
+def test_campbell_rows_time_every_model_and_the_dataset(study_config, monkeypatch):
+    """The tracked-Campbell benchmark (shrunk to 5 speeds, 2 modes) times every model's phases
+    and the whole dataset; the state sizes are those of the models."""
+    from benchmarks import linear_modes
+
+    monkeypatch.setattr(linear_modes, "SPEEDS", 5)
+    monkeypatch.setattr(linear_modes, "MODES", 2)
+    rows = linear_modes.campbell_rows(study_config, BeamParameters.from_config(study_config), 1, 1.0)
+    assert [row["model"] for row in rows] == ["TLAM", "FOAM", "SFOAM", "CFOAM", "all"]
+    assert [row.get("states") for row in rows[:4]] == [10, 10, 6, 10]
+    assert all(row["wall_s"] > 0 for row in rows)

@@ -3,13 +3,16 @@ take (``numerics.memory_budget_mb``) and the smallest step budget that can cover
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from hubbeam.config import ConfigError, validate_config
 from hubbeam.core import radau
 from hubbeam.limits import MEMORY_BUDGET_MB, MIN_STEPS
 from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import SimulationError, simulate
+from hubbeam.settings import simulation_settings
+from hubbeam.simulate import simulate
 from hubbeam.variables import simulation_bytes
 
 
@@ -71,7 +74,8 @@ def test_the_estimate_is_the_size_of_the_dataset(model):
                 "divergence_limit": 1.0, "quadrature_points": 16}
     ds = simulate(case, params, numerics)
     assert ds.nbytes == simulation_bytes(model, 2, 0.3, 0.1)
-    with pytest.raises(SimulationError, match=r"cases\.short\.t_end = 0\.3: .*memory_budget_mb = 0\.0001 MiB"):
+    with pytest.raises(ConfigError, match=r"cases\.short\.t_end: got 0\.3 s: .*memory_budget_mb = 0\.0001 MiB; "
+                       r"allowed: a larger numerics\.memory_budget_mb"):
         simulate(case, params, dict(numerics, memory_budget_mb=0.0001))
 
 
@@ -88,7 +92,9 @@ def test_a_step_budget_below_the_fewest_steps_is_rejected_and_cannot_finish(stud
             "tip_mass": {"mass": 0.0, "position": 8.0}}
     numerics = {"rtol": 1e-3, "atol": 1.0, "output_step": 0.5, "step_warning": 1,
                 "divergence_limit": 1.0, "quadrature_points": 8}
-    short = simulate(case, params, dict(numerics, max_steps=MIN_STEPS - 1))
+    # (the objects of hubbeam.settings are not checked again, so the run can be made below the bound)
+    checked_case, checked_numerics = simulation_settings(case, dict(numerics, max_steps=1000), params.L)
+    short = simulate(checked_case, params, dataclasses.replace(checked_numerics, max_steps=MIN_STEPS - 1))
     assert short.attrs["integrator_status"] == radau.STATUS_NAMES[radau.TOO_MANY_STEPS]
     # ... and a run that finishes takes at least MIN_STEPS
     done = simulate(case, params, dict(numerics, max_steps=1000))

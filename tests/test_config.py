@@ -20,7 +20,7 @@ from hubbeam.config import (
     read_config_file,
     validate_config,
 )
-from hubbeam.config_schema import CASE_NAME_PATTERN
+from hubbeam.config_schema import CASE_NAME_PATTERN, SCHEMA
 from hubbeam.paper import TABLE1
 from hubbeam.parameters import BeamParameters, TipMass
 
@@ -133,7 +133,8 @@ BAD_VALUES = [
     ("cases.tab3_foam_tau50.maneuver.tau_max", 0.0, ["got 0.0", "> 0"]),
     ("cases.fig04_foam.model", "FEM", ["got 'FEM'", "one of TLAM, FOAM, SFOAM, CFOAM"]),
     ("cases.fig04_foam.maneuver.kind", "ramp", ["got 'ramp'", "one of prescribed, torque"]),
-    ("cases.fig04_foam.maneuver", "spin-up", ["got 'spin-up' (text)", "a mapping with keys kind, wf, tf, tau_max"]),
+    ("cases.fig04_foam.maneuver", "spin-up", ["got 'spin-up' (text)", "a mapping with a kind (prescribed, "
+                                              "torque, speed_table, torque_table, pd) and the keys of its kind"]),
     ("cases.fig10_foam_mt0p1.tip_mass.position", 8.5, ["got 8.5", "0 <= position <= beam.length = 8.0"]),
     ("cases.fig10_foam_mt0p1.tip_mass.position", -0.1, ["got -0.1", ">= 0"]),
     ("cases.fig10_foam_mt0p1.tip_mass.mass", -0.1, ["got -0.1", "a number >= 0"]),
@@ -238,14 +239,14 @@ def test_tip_mass_beyond_a_shortened_beam(study_config):
 
 MISSING = [
     ("beam.length", ["missing (required)", "a number > 0"]),
-    ("numerics", ["missing (required)", "a mapping with keys modes"]),
+    ("cases", ["missing (required)", "a mapping"]),
     ("cases.fig04_foam.t_end", ["missing (required)", "a number > 0"]),
     ("cases.fig04_foam.model", ["missing (required)", "one of TLAM, FOAM, SFOAM, CFOAM"]),
     ("cases.fig04_foam.maneuver.wf", ["missing (required when kind is 'prescribed')", "a number > 0"]),
     ("cases.fig04_foam.maneuver.kind", ["missing (required)", "one of prescribed, torque"]),
     ("cases.tab3_foam_tau50.maneuver.tau_max", ["missing (required when kind is 'torque')"]),
     ("cases.tab3_foam_tau50.maneuver.tf", ["missing (required when kind is 'torque')"]),
-    ("eigen.speeds.num", ["missing (required)", "an integer >= 2"]),
+    ("eigen.speeds.num", ["missing (required)", "an integer >= 2"]),  # a grid given is given whole
 ]
 
 
@@ -301,14 +302,14 @@ def test_no_cases(study_config):
 def test_every_problem_in_one_message(study_config):
     set_at(study_config, "cases.fig05_tlam_wf2p8.maneuver.wf", -2.8)
     set_at(study_config, "cases.fig10_foam_mt0p5.tip_mass.position", 8.01)
-    delete_at(study_config, "numerics.rtol")
+    set_at(study_config, "numerics.rtol", 2.0)
     with pytest.raises(ConfigError) as caught:
         validate_config(study_config)
     message = str(caught.value)
     assert message.startswith("invalid hubbeam configuration, 3 problems:")
     for fragment in ("cases.fig05_tlam_wf2p8.maneuver.wf: got -2.8",
                      "cases.fig10_foam_mt0p5.tip_mass.position: got 8.01",
-                     "numerics.rtol: missing"):
+                     "numerics.rtol: got 2.0"):
         assert fragment in message
 
 
@@ -447,7 +448,7 @@ def test_schema_takes_its_limits_from_the_limits_module():
     from hubbeam import config_schema, limits, simulate
     from hubbeam.core import radau
 
-    raw = yaml.safe_load(config_schema.SCHEMA_PATH.read_text(encoding="utf-8"))
+    raw = yaml.safe_load(config_schema.SCHEMA_RESOURCE.read_text(encoding="utf-8"))
     for keys, bounds in config_schema.SCHEMA_LIMITS.items():
         raw_node, node = raw, config_schema.SCHEMA
         for key in keys:
@@ -457,3 +458,71 @@ def test_schema_takes_its_limits_from_the_limits_module():
         assert {key: node[key] for key in bounds} == bounds
     assert config_schema.SCHEMA["$defs"]["modes"]["maximum"] == limits.MAX_MODES == simulate.MAX_MODES
     assert limits.MIN_RTOL == 100 * radau.UROUND == simulate.MIN_RTOL
+
+
+#: bad values of every kind of schema rule: (key, value to set, fragment of the one message at the key)
+SCHEMA_RULES = [
+    ("cases.fig04_foam.model", "XFOAM", "allowed: one of TLAM, FOAM, SFOAM, CFOAM"),          # enum
+    ("cases.fig04_foam.maneuver.kind", "ramp", "allowed: one of prescribed, torque"),         # enum of kinds
+    ("cases.fig04_foam.damping", "none", "allowed: a mapping"),                               # type
+    ("cases.fig04_foam.damping", {"kind": "modal", "axial": 0.1}, "required when kind is 'modal'"),
+    ("cases.fig04_foam.maneuver.tau_max", 3.0, "not allowed when kind is 'prescribed'"),     # branch keys
+    ("sweeps.maps.spinup_peak.figure.model", "FOAM", "not allowed when kind is 'peak'"),      # not
+    ("sweeps.maps.spinup_peak.in_all", "yes", "allowed: true or false"),                      # boolean
+    ("study", {"name": "../evil"}, "allowed: letters, digits, '_' and '-' only"),             # pattern
+    ("readings", {"bad name": {}}, "allowed: letters, digits and '_' only"),                  # propertyNames
+]
+
+
+@pytest.mark.parametrize("dotted, value, fragment", SCHEMA_RULES, ids=[rule[0] for rule in SCHEMA_RULES])
+def test_no_message_dumps_the_schema(study_config, dotted, value, fragment):
+    """Every schema rule is told in words: no message shows a piece of the schema as JSON."""
+    set_at(study_config, dotted, value)
+    problems = problems_of(study_config)
+    assert any(fragment in problem for problem in problems), problems
+    assert not [problem for problem in problems
+                if re.search(r'"(type|pattern|description|enum|properties|required)"', problem)], problems
+
+
+@pytest.mark.parametrize("path", ["config/config.yaml", "studies/spinup10m.yaml", "studies/tapered_pd.yaml"])
+def test_a_checked_configuration_becomes_frozen_objects_that_give_back_its_cases(repo_root, path):
+    """hubbeam.settings.from_config: one object per section; each case gives back its resolved
+    mapping (what a dataset records), and no object can be changed."""
+    import dataclasses
+
+    from hubbeam.beam import beam_from_config
+    from hubbeam.settings import Case, from_config, simulation_settings
+    from hubbeam.tabular import resolve_files
+
+    cfg = validate_config(resolve_files(read_config_file(repo_root / path), (repo_root / path).parent))
+    settings = from_config(cfg)
+    assert settings.beam == beam_from_config(cfg["beam"])
+    assert (settings.study is None) == ("study" not in cfg)
+    assert settings.numerics.rtol == cfg["numerics"]["rtol"]
+    assert settings.eigen.speeds.num == cfg["eigen"]["speeds"]["num"]
+    assert sorted(settings.cases) == case_names(cfg)
+    for name, case in settings.cases.items():
+        assert isinstance(case, Case) and case.to_dict() == case_settings(cfg, name)
+        # the API's path from the resolved mapping gives the same object
+        assert simulation_settings(case_settings(cfg, name), cfg["numerics"], settings.beam.L)[0] == case
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        case.t_end = 1.0
+    with pytest.raises(TypeError):
+        settings.cases["x"] = case
+
+
+def test_every_pattern_of_the_schema_is_said_in_words():
+    """explain says a pattern in words (config_schema._PATTERNS): each one the schema uses has them."""
+    from hubbeam.config_schema import _PATTERNS
+
+    def patterns(node):
+        if isinstance(node, dict):
+            yield from ([node["pattern"]] if isinstance(node.get("pattern"), str) else [])
+            for value in node.values():
+                yield from patterns(value)
+        elif isinstance(node, list):
+            for value in node:
+                yield from patterns(value)
+
+    used = set(patterns(SCHEMA))
+    assert used and used <= set(_PATTERNS), used - set(_PATTERNS)

@@ -49,8 +49,15 @@ def _sections(markdown: str) -> dict[str, set[str]]:
 
 
 def _node_at(title: str) -> dict:
-    """The schema mapping a section title names: a dotted path from the top level or from a $def."""
+    """The schema mapping a section title names: a dotted path from the top level or from a $def,
+    or the branch of one kind of such a mapping ("maneuver` when `kind` is `torque")."""
     defs = SCHEMA["$defs"]
+    if "` when `" in title:
+        path, condition = title.split("` when `")
+        key, value = condition.split("` is `")
+        (then,) = [rule["then"] for rule in _node_at(path)["allOf"]
+                   if rule["if"]["properties"][key]["const"] == value]
+        return resolve(then, defs)
     first, *rest = title.split(".")
     node = resolve(SCHEMA["properties"][first] if first in SCHEMA["properties"] else defs[first], defs)
     for part in rest:
@@ -63,7 +70,8 @@ def test_every_section_lists_exactly_the_keys_of_its_mapping():
     sections = _sections(reference())
     assert sections.pop("") == set(SCHEMA["properties"])
     sections.pop("Shared definitions")
-    assert {"beam", "numerics.convergence_check", "case", "maneuver", "sweep.figure"} <= set(sections)
+    assert {"beam", "numerics.convergence_check", "case", "maneuver", "sweep.figure",
+            "maneuver` when `kind` is `pd", "damping` when `kind` is `modal"} <= set(sections)
     for title, keys in sections.items():
         assert keys == set(_node_at(title).get("properties", {})), title
 

@@ -18,9 +18,11 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.interpolate import CubicSpline
 
+from hubbeam.config import ConfigError
 from hubbeam.matrices import assemble
 from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import SimulationError, check_case, simulate, simulation_inputs
+from hubbeam.settings import simulation_settings
+from hubbeam.simulate import simulate, simulation_inputs
 
 
 @pytest.fixture(scope="module")
@@ -134,33 +136,53 @@ def test_a_table_maneuver_reruns_from_the_dataset_attributes(setup):
     assert '"torque_table"' in ds.attrs["maneuver"] and '"modal"' in ds.attrs["damping"]
 
 
+#: bad maneuvers, with the key of the one problem each is reported with and fragments of its message
+#: (the value found and what is allowed)
 BAD = [
     ({"kind": "speed_table", "time": [0.0, 2.0, 1.0], "speed": [0, 1, 2]},
-     "maneuver.time = [0.0, 2.0, 1.0]; allowed: strictly increasing times >= 0 s"),
+     "maneuver.time", ["got [0.0, 2.0, 1.0]", "allowed: strictly increasing values (s)"]),
     ({"kind": "speed_table", "time": [0.0, 1.0, 2.0], "speed": [0, 1]},
-     "maneuver.speed has 2 rows but cases.m.maneuver.time has 3; allowed: one speed per time"),
-    ({"kind": "torque_table", "time": [0.0], "torque": [1.0]},
-     "maneuver.time = [0.0]; allowed: a list of at least 2 finite numbers"),
+     "maneuver.speed", ["got 2 values", "allowed: one per entry of cases.m.maneuver.time (3)"]),
+    ({"kind": "torque_table", "time": [0.0, 1.0], "torque": [1.0]},
+     "maneuver.torque", ["got [1.0]", "allowed: a list of at least 2 values"]),
     ({"kind": "torque_table", "time": [0.0, 1.0], "torque": [1.0, math.nan]},
-     "maneuver.torque = [1.0, nan]; allowed: a list of at least 2 finite numbers"),
+     "maneuver.torque[1]", ["got nan", "allowed: a finite number"]),
     ({"kind": "pd", "kp": -1.0, "kd": 1.0, "reference": KINDS["prescribed"]},
-     "maneuver.kp = -1.0; allowed: a finite number >= 0"),
+     "maneuver.kp", ["got -1.0", "allowed: a number >= 0"]),
     ({"kind": "pd", "kp": 1.0, "kd": -2.0, "reference": KINDS["prescribed"]},
-     "maneuver.kd = -2.0; allowed: a finite number >= 0"),
+     "maneuver.kd", ["got -2.0", "allowed: a number >= 0"]),
     ({"kind": "pd", "kp": 1.0, "kd": 1.0, "reference": {"kind": "speed_table"}},
-     "maneuver.reference.kind = 'speed_table'; allowed: one of prescribed, angle_table"),
+     "maneuver.reference.kind", ["got 'speed_table'", "allowed: one of prescribed, angle_table"]),
     ({"kind": "pd", "kp": 1.0, "kd": 1.0,
       "reference": {"kind": "angle_table", "time": [1.0, 1.0], "angle": [0.0, 1.0]}},
-     "maneuver.reference.time = [1.0, 1.0]; allowed: strictly increasing times >= 0 s"),
-    ({"kind": "ramp"}, ("maneuver.kind = 'ramp'; allowed: one of prescribed, torque, "
-                        "speed_table, torque_table, pd")),
+     "maneuver.reference.time", ["got [1.0, 1.0]", "allowed: strictly increasing values (s)"]),
+    ({"kind": "prescribed", "wf": 2.0},
+     "maneuver.tf", ["missing (required when kind is 'prescribed')", "allowed: a number > 0"]),
+    ({"kind": "ramp"},
+     "maneuver.kind", ["got 'ramp'", "allowed: one of prescribed, torque, speed_table, torque_table, pd"]),
     ({"kind": "torque_table", "time": [0, 1], "torque": [0, 1], "speed": [0, 1]},
-     "maneuver.speed: unknown key for kind 'torque_table'; allowed keys: kind, time, torque"),
+     "maneuver.speed", ["got [0, 1]", "not allowed when kind is 'torque_table' (allowed keys: kind, time, torque)"]),
 ]
 
 
-@pytest.mark.parametrize("maneuver,message", BAD)
-def test_a_bad_maneuver_gives_one_clear_error(maneuver, message):
-    with pytest.raises(SimulationError) as error:
-        check_case(_case(maneuver))
-    assert str(error.value) == "cases.m." + message
+@pytest.mark.parametrize("maneuver,key,fragments", BAD)
+def test_a_bad_maneuver_gives_one_clear_error(setup, maneuver, key, fragments):
+    """The API's bare case is checked by the configuration's one pass: one problem, at the key."""
+    _, numerics = setup
+    with pytest.raises(ConfigError) as error:
+        simulation_settings(_case(maneuver), numerics, 8.0)
+    (problem,) = error.value.problems
+    assert problem.path == "cases.m." + key and all(fragment in problem.text for fragment in fragments), problem
+
+
+def test_the_kernel_layout_of_every_maneuver_kind_has_the_keys_the_schema_declares():
+    """maneuvers.py packs each kind's parameters in the kernel's order; the keys are the schema's."""
+    from hubbeam.config_schema import kind_keys
+    from hubbeam.maneuvers import MANEUVERS, REFERENCES, TABLES
+
+    packed = {kind: set(keys) for kind, (_, keys) in MANEUVERS.items()}
+    packed |= {kind: {"time", column} for kind, (_, column, _) in TABLES.items()}
+    assert {kind: set(keys) for kind, keys in kind_keys("maneuver").items()} == packed | {
+        "pd": {"kp", "kd", "reference"}}
+    assert {kind: set(keys) for kind, keys in kind_keys("reference").items()} == {
+        kind: set(keys) for kind, (_, keys) in REFERENCES.items()}

@@ -184,7 +184,7 @@ def test_dataset_variables_follow_the_high_order_trait():
 
 
 def test_the_schema_allows_exactly_the_models_of_the_table():
-    schema = yaml.safe_load((ROOT / "workflow" / "schemas" / "config.schema.yaml").read_text())
+    schema = yaml.safe_load((PACKAGE / "schemas" / "config.schema.yaml").read_text())
     enums = []
 
     def walk(node):

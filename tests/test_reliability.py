@@ -37,7 +37,7 @@ import xarray as xr
 import yaml
 from synthetic_results import CONFIG_FILE, REPO, run_script, write_eigen, write_simulations
 
-from hubbeam.config import case_settings
+from hubbeam.config import ConfigError, case_settings
 from hubbeam.io import ResultFileError, open_result, staged, write_netcdf
 from hubbeam.matrices import assemble, to_dataset
 from hubbeam.parameters import BeamParameters, TipMass
@@ -168,14 +168,14 @@ def test_bad_convergence_settings_are_rejected_by_simulate(setup):
     case = case_settings(config, "fig05_foam_wf2p8")
     for settings, message in [
         ({"tolerance_factor": 0.0, "extra_modes": 2, "threshold_m": 1e-4},
-         "tolerance_factor = 0.0; allowed: a number > 0 and < 1"),
+         "tolerance_factor: got 0.0; allowed: a number > 0 and < 1"),
         ({"tolerance_factor": 0.1, "extra_modes": 2.0, "threshold_m": 1e-4},
-         "extra_modes = 2.0; allowed: an integer >= 1"),
+         r"extra_modes: got 2.0 \(decimal number\); allowed: an integer >= 1"),
         ({"tolerance_factor": 0.1, "extra_modes": 2, "threshold_m": -1.0},
-         "threshold_m = -1.0; allowed: a number > 0 m"),
+         "threshold_m: got -1.0; allowed: a number > 0"),
         ({"tolerance_factor": 0.1, "extra_modes": 2, "threshold_m": 1e-4, "x": 1}, r"convergence_check.x: unknown key"),
     ]:
-        with pytest.raises(SimulationError, match=message):
+        with pytest.raises(ConfigError, match=message):
             simulate(case, params, numerics, convergence_check=settings)
 
 

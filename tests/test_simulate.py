@@ -12,6 +12,7 @@
 Runs use 2 modes where the purpose allows (the kernel is the same for every mode count).
 """
 
+import dataclasses
 import math
 import os
 import subprocess
@@ -21,11 +22,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import xarray as xr
 from synthetic_results import HIGH_ORDER_VARIABLES, SIMULATION_VARIABLES
 
-from hubbeam.config import case_settings
+from hubbeam.config import ConfigError, case_settings
 from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import SimulationError, simulate
+from hubbeam.simulate import simulate
 
 
 @pytest.fixture(scope="module")
@@ -134,27 +136,50 @@ def test_step_budget_and_step_warning_are_recorded(setup):
     assert np.isnan(float(ds.tip_transverse[-1])) and float(ds.tip_transverse[1]) != 0.0
 
 
-@pytest.mark.parametrize("change, message", [
-    ({"model": "XFOAM"}, "model = 'XFOAM'"),
-    ({"maneuver": {"kind": "prescribed", "wf": 2.0}}, "maneuver.tf = None"),
-    ({"modes": 0}, "modes = 0"),
-    ({"modes": 21}, r"modes = 21; allowed: an integer in 1\.\.20"),
+@pytest.mark.parametrize("change, key, fragments", [
+    ({"model": "XFOAM"}, "model", ["got 'XFOAM'", "allowed: one of TLAM, FOAM, SFOAM, CFOAM"]),
+    ({"maneuver": {"kind": "prescribed", "wf": 2.0}}, "maneuver.tf",
+     ["missing (required when kind is 'prescribed')", "allowed: a number > 0"]),
+    ({"modes": 0}, "modes", ["got 0", "allowed: an integer >= 1 and <= 20"]),
+    ({"modes": 21}, "modes", ["got 21", "allowed: an integer >= 1 and <= 20"]),
+    ({"t_end": 1.0e6}, "t_end", ["got 1e+06 s", "allowed: t_end <= "]),
 ])
-def test_bad_cases_are_rejected_naming_the_key(setup, change, message):
+def test_bad_cases_are_rejected_naming_the_key(setup, change, key, fragments):
+    """simulate checks a bare case by the configuration's one pass: one problem, at the key."""
     params, numerics, config = setup
-    with pytest.raises(SimulationError, match=message):
+    with pytest.raises(ConfigError) as error:
         simulate(case_settings(config, "fig05_foam_wf2p8") | change, params, numerics)
+    (problem,) = error.value.problems
+    assert problem.path == "cases.fig05_foam_wf2p8." + key, problem
+    assert all(fragment in problem.text for fragment in fragments), problem
 
 
-def test_bad_numerics_are_rejected_naming_the_key(setup):
+@pytest.mark.parametrize("change, key, fragments", [
+    ({"rtol": -1.0}, "rtol", ["got -1.0", "allowed: a number >= 2.22"]),
+    ({"rtol": 1e-15}, "rtol", ["got 1e-15", "allowed: a number >= 2.22"]),
+    ({"quadrature_points": 7}, "quadrature_points", ["got 7", "allowed: an integer >= 8 and <= 1000"]),
+    ({"step_warning": 10**9}, "step_warning", ["got 1000000000", "allowed: at most numerics.max_steps"]),
+])
+def test_bad_numerics_are_rejected_naming_the_key(setup, change, key, fragments):
     params, numerics, config = setup
-    with pytest.raises(SimulationError, match="numerics.rtol = -1"):
-        simulate(case_settings(config, "fig05_foam_wf2p8"), params, dict(numerics, rtol=-1.0))
-    with pytest.raises(SimulationError, match=r"numerics.rtol = 1e-15; allowed: a number >= 2.22e-14"):
-        simulate(case_settings(config, "fig05_foam_wf2p8"), params, dict(numerics, rtol=1e-15))
-    with pytest.raises(SimulationError, match=r"quadrature_points = 7; allowed: an integer in 8\.\.1000"):
-        simulate(case_settings(config, "fig05_foam_wf2p8"), params,
-                 dict(numerics, quadrature_points=7))
+    with pytest.raises(ConfigError) as error:
+        simulate(case_settings(config, "fig05_foam_wf2p8"), params, dict(numerics, **change))
+    (problem,) = error.value.problems
+    assert problem.path == "numerics." + key and all(fragment in problem.text for fragment in fragments), problem
+
+
+def test_the_objects_of_a_configuration_run_unchecked_and_give_the_mapping_result(setup):
+    """simulate takes the objects of hubbeam.settings as well; they give the run of the mapping."""
+    from hubbeam.settings import from_config
+
+    params, numerics, config = setup
+    settings = from_config(config)
+    case = dataclasses.replace(settings.cases["fig05_foam_wf2p8"], modes=2, t_end=1.0)
+    assert case.to_dict() == case_settings(config, "fig05_foam_wf2p8") | {"modes": 2, "t_end": 1.0}
+    by_objects = simulate(case, settings.beam, settings.numerics)
+    by_mapping = simulate(case.to_dict(), params, numerics)
+    xr.testing.assert_identical(by_objects.drop_attrs(), by_mapping.drop_attrs())
+    assert by_objects.attrs["case_config"] == by_mapping.attrs["case_config"]
 
 
 def test_workflow_script_writes_the_case_from_the_leading_matrix_blocks(setup, tmp_path):

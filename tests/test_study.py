@@ -127,8 +127,9 @@ def test_a_tiny_study_builds_every_general_product_in_its_own_folder(tmp_path):
     folder = run_study(tmp_path, TINY_STUDY)
     cases = sorted(TINY_STUDY["cases"])
     expected = [f"simulations/{case}.nc" for case in cases] + ["matrices/mt0.nc", "matrices/mt0p1_l2.nc"]
-    expected += ["eigen/campbell.nc", "eigen/critical_speeds.nc"]
-    figures = [f"case_{case}" for case in cases] + ["compare_models", "campbell", "critical_speeds"]
+    expected += ["eigen/campbell.nc", "eigen/critical_speeds.nc", "eigen/beam.nc"]
+    figures = [f"case_{case}" for case in cases] + ["compare_models", "campbell", "critical_speeds",
+                                                    "beam_properties", "mode_shapes"]
     expected += [f"figures/{name}.{ext}" for name in figures for ext in ("pdf", "png")]
     expected += ["report/report.md", "report/report.html", "report/summary.csv", "tiny-results.tar.gz", MARKER]
     written = sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())

@@ -100,7 +100,7 @@ def test_the_paper_keeps_its_folders_and_needs_table2_speed(study):
 @pytest.mark.parametrize("name", ["my study", "a/b", "..", "tiny!", ""])
 def test_a_study_name_that_is_no_folder_name_is_rejected(study, name):
     study["study"]["name"] = name
-    assert_reported(problems_of(study), "study.name", f"got {name!r}", "pattern")
+    assert_reported(problems_of(study), "study.name", f"got {name!r}", "letters, digits, '_' and '-' only")
 
 
 @pytest.mark.parametrize("name", PAPER_FOLDERS)
@@ -164,6 +164,50 @@ def test_a_beam_is_not_both_uniform_and_sectioned(sectioned):
 def test_a_uniform_beam_needs_every_uniform_key(study):
     del study["beam"]["second_moment"]
     assert_reported(problems_of(study), "beam.second_moment", "missing", "uniform beam")
+
+
+@pytest.fixture
+def by_products(study):
+    for key in ("density", "area", "youngs_modulus", "second_moment"):
+        del study["beam"][key]
+    study["beam"] |= {"rhoA": 0.27, "EI": 70.0, "EA": 7.0e6}
+    return study
+
+
+def test_a_uniform_beam_may_be_given_by_its_products(by_products):
+    validate_config(by_products)
+    del by_products["beam"]["EA"]
+    assert_reported(problems_of(by_products), "beam.EA", "missing (required for a uniform beam given by "
+                    "its products)", "a number > 0")
+
+
+@pytest.mark.parametrize("key, value", [("density", 2700.0), ("second_moment", 1e-9)])
+def test_a_beam_is_not_given_both_by_its_factors_and_by_its_products(by_products, key, value):
+    by_products["beam"][key] = value
+    assert_reported(problems_of(by_products), f"beam.{key}", f"got {value}", "not allowed together with "
+                    "beam.rhoA", "density, area, youngs_modulus, second_moment", "rhoA, EI, EA")
+
+
+def test_the_products_give_the_matrices_of_the_factors():
+    """spinup10m gives its beam by the products; the factors it gave before (any area A) assemble
+    the same matrices up to the rounding of the products rho A, E A, E I (a few units in the last
+    place of each entry: every entry is linear in one product)."""
+    import numpy as np
+
+    from hubbeam.beam import beam_attributes, beam_from_attributes, beam_from_config
+    from hubbeam.matrices import assemble
+    from hubbeam.parameters import BeamParameters, BeamProducts, TipMass
+
+    beam = yaml.safe_load((REPO / "studies" / "spinup10m.yaml").read_text())["beam"]
+    products = beam_from_config(beam)
+    assert isinstance(products, BeamProducts)
+    assert beam_from_attributes(beam_attributes(products)) == products
+    factors = BeamParameters(L=10.0, rho=1.2e4, A=1.0e-4, E=2.8e11, I=5.0e-8, Jh=1.0, rA=0.0)
+    tip = TipMass(mass=0.5, position=7.0)
+    for name, a, b in zip(assemble(products, tip, 7, 64)._fields, assemble(products, tip, 7, 64),
+                          assemble(factors, tip, 7, 64)):
+        scale = np.max(np.abs(b)) if np.size(b) else 0.0
+        np.testing.assert_allclose(a, b, rtol=0, atol=16 * np.finfo(float).eps * scale, err_msg=name)
 
 
 # --- maneuvers and damping ---------------------------------------------------------------------

@@ -11,9 +11,11 @@ The admissible functions stay the clamped-free modes of a uniform beam of the sa
 as a Ritz basis; they are normalised to unit modal mass of the uniform beam of the same total mass,
 ``rho A_ref = m_beam / L`` (``BeamSections.rhoA_ref``), so ``M2`` and ``K2`` are no longer diagonal.
 
-The uniform beam of Table 1 is :class:`hubbeam.parameters.BeamParameters`; both classes offer the
-same interface (``L``, ``Jh``, ``rA``, ``beam_mass``, ``rhoA_ref``, ``stations``, ``rhoA_at``,
-``EI_at``, ``EA_at``, ``outboard_moment``), which is all :func:`hubbeam.matrices.assemble` uses.
+A uniform beam is a :class:`hubbeam.parameters.UniformBeam`: by the factors of Table 1
+(:class:`~hubbeam.parameters.BeamParameters`) or by its products
+(:class:`~hubbeam.parameters.BeamProducts`). All offer the same interface (``L``, ``Jh``,
+``rA``, ``beam_mass``, ``rhoA_ref``, ``stations``, ``rhoA_at``, ``EI_at``, ``EA_at``,
+``outboard_moment``), which is all :func:`hubbeam.matrices.assemble` uses.
 """
 
 from __future__ import annotations
@@ -24,14 +26,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubbeam.parameters import CONFIG_KEYS, BeamParameters
+from hubbeam.parameters import CONFIG_KEYS, PRODUCT_KEYS, BeamParameters, BeamProducts, UniformBeam
 
 #: the properties tabulated at the stations, in the order of the config's ``sections``
 SECTION_PROPERTIES = ("rhoA", "EI", "EA")
+#: unit of each sectional property
+SECTION_UNITS = {"rhoA": "kg m-1", "EI": "N m2", "EA": "N"}
 #: keys of a ``beam`` section with ``sections`` (besides ``sections`` itself)
 SECTIONS_BEAM_KEYS = ("length", "hub_inertia", "hub_radius")
 #: config key -> field name
 CONFIG_FIELDS = {key: name for name, key in CONFIG_KEYS.items()}
+#: the uniform beam classes -> their field -> config key
+UNIFORM_KEYS = {BeamParameters: CONFIG_KEYS, BeamProducts: PRODUCT_KEYS}
 
 # two-point Gauss-Legendre rule on [-1, 1]: exact for the cubic rho A(s) (rA + s) on a segment
 _GAUSS2 = np.array([-1.0, 1.0]) / math.sqrt(3.0)
@@ -99,12 +105,11 @@ class BeamSections:
             if not (math.isfinite(x[i]) and x[i] > x[i - 1]):
                 raise ValueError(f"beam.sections.x[{i}] = {x[i]!r}: expected a finite station "
                                  f"> x[{i - 1}] = {x[i - 1]} (strictly increasing)")
-        units = {"rhoA": "kg m-1", "EI": "N m2", "EA": "N"}
         for name in SECTION_PROPERTIES:
             for i, value in enumerate(tables[name]):
                 if not (math.isfinite(value) and value > 0.0):
                     raise ValueError(f"beam.sections.{name}[{i}] = {value!r}: expected a finite "
-                                     f"value > 0 {units[name]}")
+                                     f"value > 0 {SECTION_UNITS[name]}")
         for name, value in (("L", L), ("Jh", Jh), ("rA", rA), *tables.items()):
             object.__setattr__(self, name, value)
 
@@ -160,20 +165,23 @@ class BeamSections:
         return half * np.sum(self.rhoA_at(s) * (self.rA + s), axis=-1)
 
 
-def beam_from_config(beam: Mapping) -> BeamParameters | BeamSections:
-    """The beam of a config's ``beam`` section: uniform keys or inline ``sections``.
+def beam_from_config(beam: Mapping) -> UniformBeam | BeamSections:
+    """The beam of a config's ``beam`` section, in the form its keys select (schema ``beam``).
 
-    Uniform: ``length, density, area, youngs_modulus, second_moment, hub_inertia, hub_radius``
-    (:class:`BeamParameters`). Non-uniform: ``length, hub_inertia, hub_radius`` and ``sections:
-    {x: [...], rhoA: [...], EI: [...], EA: [...]}`` as inline lists (:class:`BeamSections`); a
-    ``sections: {file: ...}`` must have been read into such lists before.
+    Uniform by the factors ``length, density, area, youngs_modulus, second_moment, hub_inertia,
+    hub_radius`` (:class:`BeamParameters`) or by the products ``length, rhoA, EI, EA,
+    hub_inertia, hub_radius`` (:class:`BeamProducts`). Non-uniform: ``length, hub_inertia,
+    hub_radius`` and ``sections: {x: [...], rhoA: [...], EI: [...], EA: [...]}`` as inline lists
+    (:class:`BeamSections`); a ``sections: {file: ...}`` must have been read into such lists before.
     """
     if "sections" not in beam:
-        missing = [key for key in CONFIG_KEYS.values() if key not in beam]
+        cls = BeamProducts if "rhoA" in beam else BeamParameters
+        keys = UNIFORM_KEYS[cls]
+        missing = [key for key in keys.values() if key not in beam]
         if missing:
             raise ValueError(f"beam is missing {', '.join(missing)}: a uniform beam needs "
-                             f"{', '.join(CONFIG_KEYS.values())} (or give sections)")
-        return BeamParameters(**{name: beam[key] for name, key in CONFIG_KEYS.items()})
+                             f"{', '.join(keys.values())} (or give sections)")
+        return cls(**{name: beam[key] for name, key in keys.items()})
     extra = sorted(set(beam) - set(SECTIONS_BEAM_KEYS) - {"sections"})
     if extra:
         raise ValueError(f"beam.{extra[0]} = {beam[extra[0]]!r}: not allowed with sections; "
@@ -192,21 +200,22 @@ def beam_from_config(beam: Mapping) -> BeamParameters | BeamSections:
                         **{name: sections[name] for name in expected})
 
 
-def beam_attributes(params: BeamParameters | BeamSections) -> dict:
+def beam_attributes(params: UniformBeam | BeamSections) -> dict:
     """Dataset attributes describing a beam, under its config keys (``beam`` section).
 
-    Uniform: the seven keys of :data:`hubbeam.parameters.CONFIG_KEYS` as floats. With sections:
-    ``length``, ``hub_inertia``, ``hub_radius`` and the tables as float arrays ``sections_x``,
+    Uniform: the keys of its form (:data:`hubbeam.parameters.CONFIG_KEYS` or
+    :data:`~hubbeam.parameters.PRODUCT_KEYS`) as floats. With sections: ``length``,
+    ``hub_inertia``, ``hub_radius`` and the tables as float arrays ``sections_x``,
     ``sections_rhoA``, ``sections_EI``, ``sections_EA``. :func:`beam_from_attributes` inverts it.
     """
-    if isinstance(params, BeamParameters):
-        return {key: float(getattr(params, name)) for name, key in CONFIG_KEYS.items()}
+    if isinstance(params, UniformBeam):
+        return {key: float(getattr(params, name)) for name, key in UNIFORM_KEYS[type(params)].items()}
     return ({key: float(getattr(params, CONFIG_FIELDS[key])) for key in SECTIONS_BEAM_KEYS}
             | {f"sections_{name}": np.asarray(getattr(params, name), dtype=float)
                for name in ("x",) + SECTION_PROPERTIES})
 
 
-def beam_from_attributes(attrs: Mapping) -> BeamParameters | BeamSections:
+def beam_from_attributes(attrs: Mapping) -> UniformBeam | BeamSections:
     """The beam described by :func:`beam_attributes` (e.g. a dataset's attributes)."""
     if "sections_x" not in attrs:
         return beam_from_config(attrs)

@@ -2,21 +2,25 @@
 
 Validation has two layers, reported together in one :class:`ConfigError`:
 
-1. the JSON schema ``workflow/schemas/config.schema.yaml`` (shape, types, ranges, allowed names);
+1. the JSON schema ``src/hubbeam/schemas/config.schema.yaml`` (shape, types, ranges, allowed names,
+   the keys of each maneuver and damping kind);
 2. checks a schema cannot express: the tip mass lies on the beam (``0 <= l <= L``), every case
    spans at least one output step, grids increase, numbers are finite, case names stay distinct
-   on case-insensitive file systems, keys are text, and no YAML file repeats a key; a beam is
-   either uniform or given by stations (``beam.sections``, from x = 0 to x = L), tables of
-   stations and times increase, a maneuver or damping has only the keys of its kind, a study
+   on case-insensitive file systems, keys are text, and no YAML file repeats a key; a beam has
+   the keys of one form only (the paper's factors, its products, or stations ``beam.sections``
+   from x = 0 to x = L), tables of stations and times increase, a study
    (``study`` section) neither takes a folder of the paper's products nor compares unknown cases,
    and no case, validation run or sweep would need more memory than ``numerics.memory_budget_mb``
    (:mod:`hubbeam.variables`).
 
 Before validation, text that reads as a finite number where the schema wants a number is taken
-as that number (:func:`coerce_numbers`): YAML 1.1 reads ``1e-9`` as text.
+as that number (:func:`coerce_numbers`): YAML 1.1 reads ``1e-9`` as text, and the ``numerics``
+keys left out take their defaults; after it, the ``eigen`` grids left out are derived from the
+study (:mod:`hubbeam.defaults`). The configuration is completed in place.
 
 Every problem names the key path (``cases.fig05_tlam.maneuver.wf``), the offending value and
-what is allowed. :func:`case_settings` resolves one case with the defaults of ``numerics``.
+what is allowed. :func:`case_settings` resolves one case with the defaults of ``numerics``;
+:mod:`hubbeam.settings` turns a checked configuration into frozen objects.
 """
 
 from __future__ import annotations
@@ -39,6 +43,7 @@ from hubbeam.config_schema import (
     key_path,
     show,
 )
+from hubbeam.defaults import fill_eigen, fill_numerics
 
 
 class ConfigError(ValueError):
@@ -111,6 +116,13 @@ def validate_config(cfg: Any, files: Iterable[os.PathLike | str] = ()) -> dict:
     return _validate(cfg, problems, files)
 
 
+def validate_parts(cfg: dict, schema: dict) -> dict:
+    """Check ``cfg``, a configuration of some sections only, against ``schema`` (made of the
+    study schema's sections) and the physical constraints; raise :class:`ConfigError` listing every
+    problem. :mod:`hubbeam.settings` checks the Python API's bare case and numerics so."""
+    return _validate(cfg, [], [], schema=schema)
+
+
 def case_names(cfg: Mapping) -> list[str]:
     """Names of the configured cases, sorted."""
     return sorted(cfg["cases"])
@@ -132,7 +144,7 @@ def case_settings(cfg: Mapping, name: str) -> dict:
         "model": case["model"],
         "maneuver": _floats(case["maneuver"]),
         "t_end": float(case["t_end"]),
-        "modes": int(case.get("modes", cfg["numerics"]["modes"])),
+        "modes": int(case["modes"] if "modes" in case else cfg["numerics"]["modes"]),
         "tip_mass": {
             "mass": float(tip_mass.get("mass", 0.0)),
             "position": float(tip_mass.get("position", cfg["beam"]["length"])),
@@ -140,6 +152,8 @@ def case_settings(cfg: Mapping, name: str) -> dict:
     }
     if "damping" in case:
         settings["damping"] = _floats(case["damping"])
+    if "initial" in case:
+        settings["initial"] = _floats(case["initial"])
     return settings
 
 
@@ -209,16 +223,22 @@ def _update(config: dict, override: Mapping) -> None:
 # validation
 
 
-def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None) -> dict:
-    schema = SCHEMA if section is None else _with_section(section)
+def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section | None = None,
+              schema: dict | None = None) -> dict:
+    whole = schema is None  # a whole configuration, not the API's bare case and numerics
+    schema = schema or (SCHEMA if section is None else _with_section(section))
     coerce_numbers(cfg, schema)
-    found = [problem for error in Validator(schema).iter_errors(cfg) for problem in explain(error, schema)]
-    found += physical_problems(cfg)
+    if isinstance(cfg, dict):
+        fill_numerics(cfg)
+    found = [problem for error in Validator(schema).iter_errors(cfg) for problem in explain(error, schema, cfg)]
+    found += physical_problems(cfg, whole)
     if section is not None and not found:
         found += section.check(cfg)
     problems = list(dict.fromkeys(problems + sorted(found, key=lambda problem: problem.path)))
     if problems:
         raise ConfigError(problems, sources)
+    if whole:
+        fill_eigen(cfg)
     return cfg
 
 

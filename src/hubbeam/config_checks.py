@@ -2,12 +2,12 @@
 
 The tip mass lies on the beam (``0 <= l <= L``), every case spans at least one output step, grids
 increase, numbers are finite, case names stay distinct on case-insensitive file systems, keys are
-text; a beam is either uniform or given by stations (``beam.sections``, from x = 0 to x = L),
-tables of stations and times increase, a maneuver or damping has only the keys of its kind, a
-study (``study`` section) neither takes a folder of the paper's products nor compares unknown
-cases, and no case, validation run or sweep would need more memory than
-``numerics.memory_budget_mb`` (:mod:`hubbeam.variables`). Each check runs only on values the
-schema accepted, and each problem names the key, the value and what is allowed.
+text; a beam has the keys of one form only (the forms and their keys are the schema's), stations
+run from x = 0 to x = L, tables of stations and times increase, a study (``study`` section) neither
+takes a folder of the paper's products nor compares unknown cases, and no case, validation run or
+sweep would need more memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.variables`). Each
+check runs only on values the schema accepted, and each problem names the key, the value and what
+is allowed.
 """
 
 from __future__ import annotations
@@ -19,12 +19,14 @@ from collections.abc import Mapping
 from typing import Any
 
 from hubbeam import limits, variables
-from hubbeam.config_schema import SCHEMA, Problem, allowed, key_path, show, type_name
+from hubbeam.config_schema import SCHEMA, Problem, Validator, allowed, key_path, kind_keys, show, type_name
 from hubbeam.study import PAPER_FOLDERS
 
 
-def physical_problems(cfg: Any) -> list[Problem]:
-    """Checks the schema cannot express; each runs only on values the schema accepted."""
+def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
+    """Checks the schema cannot express; each runs only on values the schema accepted. ``whole``:
+    ``cfg`` is a whole configuration (the paper or a study), not the Python API's bare case and
+    numerics, which have no study to check."""
     if not isinstance(cfg, dict):
         return []
     problems = _non_finite_numbers_and_non_text_keys(cfg, [])
@@ -67,7 +69,8 @@ def physical_problems(cfg: Any) -> list[Problem]:
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
         problems += _case_entry_problems(f"cases.{name}", case)
     problems += _beam_problems(beam, length)
-    problems += _study_problems(cfg, eigen, cases)
+    if whole:
+        problems += _study_problems(cfg, eigen, cases)
     problems += _sweep_problems(_section(cfg, "sweeps"), length)
     problems += _validation_problems(_section(cfg, "validation"), length, output_step)
     problems += _memory_problems(cfg, output_step)
@@ -80,7 +83,7 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
     numerics = _section(cfg, "numerics")
     budget_mb = _positive(numerics.get("memory_budget_mb", limits.MEMORY_BUDGET_MB))
     default_modes = _integer(numerics.get("modes"))
-    if budget_mb is None or output_step is None or default_modes is None:
+    if budget_mb is None or output_step is None:
         return []  # the schema reports it
     budget = budget_mb * variables.MIB
     problems = []
@@ -94,9 +97,11 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
         longest = (math.floor((budget / variables.BYTES_PER_VALUE - modes) / values) - 1) * output_step
         problems.append(Problem(where, f"got {t_end:g} s: {what} ({model}, {modes} modes) would store "
                                 f"{count} output times x {values} values x {variables.BYTES_PER_VALUE} "
-                                f"bytes = {variables.budget_text(size, budget_mb)}; allowed: t_end <= "
-                                f"{longest:.6g} s at numerics.output_step = {output_step:g} s (or a "
-                                "longer output step, or a larger numerics.memory_budget_mb)"))
+                                f"bytes = {variables.budget_text(size, budget_mb)}; allowed: " + (
+                                    f"t_end <= {longest:.6g} s at numerics.output_step = {output_step:g} s "
+                                    "(or a longer output step, or a larger numerics.memory_budget_mb)"
+                                    if longest >= 0 else "a larger numerics.memory_budget_mb (it holds not "
+                                    "even the first output time)")))
 
     for name, case in _section(cfg, "cases").items():
         case = case if isinstance(case, dict) else {}
@@ -107,10 +112,10 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
     models = [m for m in validation.get("models", []) if isinstance(m, str)] if isinstance(
         validation.get("models"), list) else []
     study = validation.get("mode_study") if isinstance(validation.get("mode_study"), list) else []
-    modes = max([default_modes, *(m for m in study if _integer(m) is not None)])
+    modes = max((m for m in [default_modes, *study] if _integer(m) is not None), default=None)
     for name, case in _section(validation, "cases").items():
         t_end = _positive(case.get("t_end")) if isinstance(case, dict) else None
-        if t_end is not None and models:
+        if t_end is not None and models and modes is not None:
             model = max(models, key=lambda m: variables.values_per_time(m, modes))
             check_run(f"validation.cases.{name}.t_end", f"validation run {name}", model, modes, t_end)
     problems += _sweep_memory_problems(_section(cfg, "sweeps"), default_modes, budget_mb)
@@ -147,32 +152,9 @@ def _sweep_memory_problems(sweeps: Mapping, default_modes: int, budget_mb: float
 
 
 #: maneuver parameters of each kind (a sweep gives each of the first two kinds either fixed or swept)
-MANEUVER_PARAMETERS = {"prescribed": ("wf", "tf"), "torque": ("tau_max", "tf"),
-                       "speed_table": ("time", "speed"), "torque_table": ("time", "torque"),
-                       "pd": ("kp", "kd", "reference")}
-
-
+MANEUVER_PARAMETERS = kind_keys("maneuver")
 #: parameters of each kind of a pd maneuver's reference motion
-REFERENCE_PARAMETERS = {"prescribed": ("wf", "tf"), "angle_table": ("time", "angle")}
-
-
-#: parameters of each kind of damping
-DAMPING_PARAMETERS = {"modal": ("axial", "transverse"),
-                      "rayleigh": ("mass_coefficient", "stiffness_coefficient")}
-
-
-#: beam keys of a uniform beam, replaced by ``sections`` for a non-uniform one
-UNIFORM_BEAM_KEYS = ("density", "area", "youngs_modulus", "second_moment")
-
-
-def _kind_problems(where: str, entry: Mapping, parameters: Mapping[str, tuple]) -> list[Problem]:
-    """Keys of ``entry`` that do not belong to its ``kind`` (the schema checks the required ones)."""
-    allowed = parameters.get(entry.get("kind"))
-    if allowed is None:
-        return []
-    return [Problem(f"{where}.{key}", f"got {show(value)}; not allowed when kind is "
-                    f"{entry['kind']!r} (allowed keys: {', '.join(['kind', *allowed])})")
-            for key, value in entry.items() if key not in ("kind", *allowed)]
+REFERENCE_PARAMETERS = kind_keys("reference")
 
 
 def _table_problems(where: str, entry: Mapping, abscissa: str, columns: tuple[str, ...],
@@ -185,20 +167,18 @@ def _table_problems(where: str, entry: Mapping, abscissa: str, columns: tuple[st
                         f"values ({unit})")] if any(b <= a for a, b in itertools.pairwise(first)) else []
     for column in columns:
         values = entry.get(column)
-        if isinstance(values, list) and len(values) != len(first):
+        if isinstance(values, list) and len(values) != len(first) and len(values) >= 2:  # shorter: minItems
             problems.append(Problem(f"{where}.{column}", f"got {len(values)} values; allowed: one "
                                     f"per entry of {where}.{abscissa} ({len(first)})"))
     return problems
 
 
 def _case_entry_problems(where: str, case: Mapping) -> list[Problem]:
-    """The maneuver, its pd reference and the damping have only their kind's keys; time tables
-    start at t >= 0 and increase."""
-    maneuver, damping = _section(case, "maneuver"), _section(case, "damping")
-    problems = _kind_problems(f"{where}.maneuver", maneuver, MANEUVER_PARAMETERS)
-    problems += _kind_problems(f"{where}.damping", damping, DAMPING_PARAMETERS)
+    """The time tables of a maneuver and of its pd reference start at t >= 0 and increase (the
+    schema checks each kind's keys)."""
+    maneuver = _section(case, "maneuver")
     reference = _section(maneuver, "reference")
-    problems += _kind_problems(f"{where}.maneuver.reference", reference, REFERENCE_PARAMETERS)
+    problems = []
     for path, entry, kinds in ((f"{where}.maneuver", maneuver, MANEUVER_PARAMETERS),
                                (f"{where}.maneuver.reference", reference, REFERENCE_PARAMETERS)):
         columns = kinds.get(entry.get("kind"), ())
@@ -211,15 +191,20 @@ def _case_entry_problems(where: str, case: Mapping) -> list[Problem]:
     return problems
 
 
+#: the forms of a beam (schema ``beam.allOf``): (condition, title, the keys of the form)
+BEAM_FORMS = tuple((rule["if"], rule["then"]["title"], tuple(rule["then"]["required"]))
+                   for rule in SCHEMA["properties"]["beam"]["allOf"])
+
+
 def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
-    """A beam is uniform (all of UNIFORM_BEAM_KEYS) or given by stations from 0 to L, not both."""
-    if "sections" not in beam:
-        return [Problem(f"beam.{key}", f"missing (required for a uniform beam, i.e. without "
-                        f"beam.sections); allowed: {allowed(['beam', key], SCHEMA)}")
-                for key in UNIFORM_BEAM_KEYS if key not in beam]
-    problems = [Problem(f"beam.{key}", f"got {show(beam[key])}; not allowed together with "
-                        "beam.sections (allowed: either the uniform keys or sections)")
-                for key in UNIFORM_BEAM_KEYS if key in beam]
+    """A beam has the keys of one form only (:data:`BEAM_FORMS`; the schema requires the form's
+    keys); stations run from 0 to L."""
+    own = next((keys for condition, _, keys in BEAM_FORMS if Validator(condition).is_valid(beam)), ())
+    given = next((key for key in own if key in beam), None)
+    forms = "; ".join(f"{title.removeprefix('for ')}: {', '.join(keys)}" for _, title, keys in BEAM_FORMS)
+    problems = [Problem(f"beam.{key}", f"got {show(beam[key])}; not allowed together with beam.{given} "
+                        f"(allowed: the keys of one form of the beam -- {forms})")
+                for _, _, keys in BEAM_FORMS if keys is not own for key in keys if key in beam and given]
     sections = _section(beam, "sections")
     problems += _table_problems("beam.sections", sections, "x", ("rhoA", "EI", "EA"), "m")
     x = sections.get("x")
@@ -237,7 +222,7 @@ def _study_problems(cfg: Mapping, eigen: Mapping, cases: Mapping) -> list[Proble
     """A study keeps out of the paper's folders, compares its own cases and ends its eigen grid of
     positions at the tip; the paper (no ``study``) needs ``eigen.table2_speed`` for Table 2."""
     if "study" not in cfg:
-        if "table2_speed" in eigen or not eigen:
+        if "table2_speed" in eigen:
             return []
         return [Problem("eigen.table2_speed", "missing (required for the paper's Table 2, i.e. "
                         f"without a study section); allowed: {allowed(['eigen', 'table2_speed'], SCHEMA)}")]

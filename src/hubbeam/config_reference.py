@@ -1,6 +1,6 @@
 """The configuration reference ``docs/configuration.md``, generated from the config schema.
 
-Every key of ``workflow/schemas/config.schema.yaml`` is listed with its type, whether it is
+Every key of the schema ``src/hubbeam/schemas/config.schema.yaml`` is listed with its type, whether it is
 required, its default, what is allowed and its description, all taken from the schema alone.
 The hand-written prose around the reference (where the configuration lives, how YAML numbers
 are written, an example) is the template ``docs/templates/configuration.md``; the generated
@@ -22,10 +22,13 @@ import json
 import re
 import sys
 from collections.abc import Mapping
+from pathlib import Path
 
-from hubbeam.config_schema import SCHEMA, SCHEMA_PATH
+from hubbeam.config_schema import SCHEMA
 
-ROOT = SCHEMA_PATH.parents[2]
+#: the source tree (the reference is written there, by a developer)
+ROOT = Path(__file__).resolve().parents[2]
+SCHEMA_PATH = ROOT / "src" / "hubbeam" / "schemas" / "config.schema.yaml"
 TEMPLATE_PATH = ROOT / "docs" / "templates" / "configuration.md"
 DOC_PATH = ROOT / "docs" / "configuration.md"
 MARKER = "<!-- reference -->"
@@ -132,12 +135,16 @@ def _allowed(node: Mapping, defs: Mapping) -> list[str]:
     return allowed
 
 
-def _condition(rule: Mapping) -> tuple[tuple[str, object], dict]:
-    """One ``if``/``then`` rule of ``allOf`` as ((key, value) tested, then-part)."""
+def _condition(rule: Mapping) -> tuple[tuple[str | None, object], dict]:
+    """One ``if``/``then`` rule of ``allOf`` as ((key, value) tested, then-part); a then-part with a
+    ``title`` (a form of the beam) as ((None, title), then-part)."""
     tests = rule["if"].get("properties", {})
+    if set(rule) == {"if", "then"} and "title" in rule["then"]:
+        return (None, rule["then"]["title"]), rule["then"]
     if set(rule) != {"if", "then"} or len(tests) != 1 or "const" not in next(iter(tests.values())):
         raise ValueError(f"config schema: conditional {rule!r} is not supported; allowed: "
-                         "if: {properties: {<key>: {const: <value>}}} with a then: part")
+                         "if: {properties: {<key>: {const: <value>}}} with a then: part, or a then: part "
+                         "with a title")
     (key, test), = tests.items()
     return (key, test["const"]), rule["then"]
 
@@ -149,12 +156,16 @@ def _forbidden(then: Mapping) -> list[str]:
     return [key for alternative in alternatives for key in alternative.get("required", [])]
 
 
-def _when(conditions: list[tuple[str, object]]) -> str:
-    """'when `kind` is `a` or `b`' for conditions on one key (several keys joined by 'or')."""
+def _when(conditions: list[tuple[str | None, object]]) -> str:
+    """'when `kind` is `a` or `b`' for conditions on one key (several keys joined by 'or'); the
+    titles of forms as they are."""
     values: dict[str, list] = {}
     for key, value in conditions:
-        values.setdefault(key, []).append(_value(value))
-    return "when " + " or ".join(f"`{key}` is {' or '.join(vals)}" for key, vals in values.items())
+        if key is not None:
+            values.setdefault(key, []).append(_value(value))
+    titles = [value for key, value in conditions if key is None]
+    kinds = ["when " + " or ".join(f"`{key}` is {' or '.join(vals)}" for key, vals in values.items())] if values else []
+    return " or ".join(kinds + titles)
 
 
 def _conditional(node: Mapping) -> tuple[dict, dict]:
@@ -163,7 +174,7 @@ def _conditional(node: Mapping) -> tuple[dict, dict]:
     forbidden: dict[str, list] = {}
     for rule in node.get("allOf", []):
         condition, then = _condition(rule)
-        for key in then.get("required", []):
+        for key in then.get("required", []) if "$ref" not in then else ():
             required.setdefault(key, []).append(condition)
         for key in _forbidden(then):
             forbidden.setdefault(key, []).append(condition)
@@ -201,6 +212,13 @@ class _Writer:
         for name, sub in node.get("properties", {}).items():
             if _linked_definition(sub, self.defs) is None and resolve(sub, self.defs).get("type") == "object":
                 self.section(f"{title}.{name}", sub, min(level + 1, 6))
+        for rule in node.get("allOf", []):  # the keys of each kind, a branch of their own
+            (key, value), then = _condition(rule)
+            only = node.get("properties", {}).get(key, {}).get("const", value)  # a kind narrowed to one
+            if "$ref" in then and only == value:
+                selector = {"properties": {key: {"description": f"{value}: the keys of this section"}}}
+                self.section(f"{title}` when `{key}` is `{value}", _overlay(resolve(then, self.defs), selector),
+                             min(level + 1, 6))
 
     def map_entries(self, title: str, node: Mapping, entries: Mapping, level: int) -> None:
         rules = _allowed(node.get("propertyNames", {}), self.defs) + _allowed(node, self.defs)

@@ -1,11 +1,13 @@
 """The configuration schema and how its violations are told to the user.
 
-``workflow/schemas/config.schema.yaml`` (JSON schema, draft 2020-12) describes the shape, types,
-ranges and allowed names of a configuration. The bounds of :mod:`hubbeam.limits` are filled into it
-when it is read (:data:`SCHEMA_LIMITS`), so the file states none of them. :func:`explain` turns one
-schema error into :class:`Problem` entries that name the key path, the value found and what is
-allowed; :func:`coerce_numbers` takes text that reads as a finite number for a number where the
-schema wants one (YAML 1.1 reads ``1e-9`` as text).
+The package data ``hubbeam/schemas/config.schema.yaml`` (JSON schema, draft 2020-12; found through
+:mod:`importlib.resources`, so an installed package checks configurations too) describes the shape,
+types, ranges and allowed names of a configuration. The bounds of :mod:`hubbeam.limits` are filled
+into it when it is read (:data:`SCHEMA_LIMITS`), so the file states none of them. :func:`explain`
+turns one schema error into :class:`Problem` entries that name the key path, the value found and
+what is allowed; :func:`coerce_numbers` takes text that reads as a finite number for a number where
+the schema wants one (YAML 1.1 reads ``1e-9`` as text). Each maneuver, reference and damping kind
+has a branch of its own keys in the schema, selected by ``kind``; :func:`kind_keys` reads them.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import json
 import math
 import os
 from collections.abc import Mapping
+from importlib import resources
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -22,7 +25,8 @@ import yaml
 
 from hubbeam import limits
 
-SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+#: the schema, package data of hubbeam
+SCHEMA_RESOURCE = resources.files("hubbeam") / "schemas" / "config.schema.yaml"
 
 
 _TYPE_NAMES = {bool: "boolean", int: "integer", float: "decimal number", str: "text", dict: "mapping",
@@ -58,15 +62,14 @@ SCHEMA_LIMITS = {
 }
 
 
-def read_schema(path: os.PathLike | str, bounds: Mapping[tuple, Mapping] | None = None) -> dict:
-    """The JSON schema (YAML) at ``path`` with ``bounds`` ({node keys: bounds}, e.g.
-    :data:`SCHEMA_LIMITS`) filled in; a clear error when the file is missing."""
-    path = Path(path)
+def read_schema(path, bounds: Mapping[tuple, Mapping] | None = None) -> dict:
+    """The JSON schema (YAML) at ``path`` (a file or a :mod:`importlib.resources` traversable) with
+    ``bounds`` ({node keys: bounds}, e.g. :data:`SCHEMA_LIMITS`) filled in; a clear error when the
+    file is missing."""
+    path = Path(path) if isinstance(path, (str, os.PathLike)) else path
     if not path.is_file():
-        raise FileNotFoundError(
-            f"the config schema {path} is missing: hubbeam runs from its source tree "
-            "(install it with `pip install -e .`)"
-        )
+        raise FileNotFoundError(f"the config schema {path} is missing: the hubbeam package is incomplete "
+                                "(reinstall it with `pip install .`)")
     schema = yaml.safe_load(path.read_text(encoding="utf-8"))
     for keys, values in (bounds or {}).items():
         node = schema
@@ -76,7 +79,18 @@ def read_schema(path: os.PathLike | str, bounds: Mapping[tuple, Mapping] | None 
     return schema
 
 
-SCHEMA = read_schema(SCHEMA_PATH, SCHEMA_LIMITS)
+SCHEMA = read_schema(SCHEMA_RESOURCE, SCHEMA_LIMITS)
+
+
+def kind_keys(definition: str) -> dict[str, tuple[str, ...]]:
+    """The keys (besides ``kind``) of each kind of the ``$defs`` entry ``definition`` (``maneuver``,
+    ``reference``, ``damping``), read from its per-kind branches: the one statement of them."""
+    keys = {}
+    for rule in SCHEMA["$defs"][definition]["allOf"]:
+        kind = rule["if"]["properties"]["kind"]["const"]
+        branch = _resolve(rule["then"], SCHEMA)
+        keys[kind] = tuple(key for key in branch["properties"] if key != "kind")
+    return keys
 
 
 #: Case names double as wildcards and file names (``results/simulations/<case>.nc``).
@@ -92,7 +106,7 @@ Validator = jsonschema.validators.extend(
 )
 
 
-def coerce_numbers(node: Any, schema: dict, parts: list | None = None) -> None:
+def coerce_numbers(node: Any, schema: dict, parts: list | None = None, root: Any = None) -> None:
     """Replace, in place, every text in ``node`` that stands where ``schema`` wants a number and
     reads as a finite decimal number (``"1e-9"``, ``"2.7667e3"``, ``"2.0"``) by that number.
 
@@ -100,13 +114,13 @@ def coerce_numbers(node: Any, schema: dict, parts: list | None = None) -> None:
     point or without a signed exponent for text; converting it here, before validation, lets the
     rules receive floats. Other text (``"fast"``, ``"nan"``) stays and the schema rejects it.
     """
-    parts = [] if parts is None else parts
+    parts, root = ([], node) if parts is None else (parts, root)
     items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
     for key, value in list(items):
         where = parts + [key]
         if isinstance(value, (dict, list)):
-            coerce_numbers(value, schema, where)
-        elif isinstance(value, str) and _schema_at(where, schema).get("type") == "number":
+            coerce_numbers(value, schema, where, root)
+        elif isinstance(value, str) and _schema_at(where, schema, root).get("type") == "number":
             number = _finite_float(value)
             if number is not None:
                 node[key] = number
@@ -121,27 +135,35 @@ def _finite_float(text: str) -> float | None:
     return number if math.isfinite(number) else None
 
 
-def explain(error: jsonschema.ValidationError, schema: dict) -> list[Problem]:
-    """Turn one schema error into problems that name key, value and what is allowed."""
+def explain(error: jsonschema.ValidationError, schema: dict, root: Any = None) -> list[Problem]:
+    """Turn one schema error into problems that name key, value and what is allowed; ``root`` is
+    the validated instance (it selects the branch of a kind whose keys are described)."""
     parts = list(error.absolute_path)
     kind, instance = error.validator, error.instance
     if "propertyNames" in error.absolute_schema_path:
+        noun = "case name" if parts[-1:] == ["cases"] else "name"
         return [Problem(key_path(parts + [instance]),
-                        f"illegal case name {instance!r}; allowed: letters, digits, '_' and '-' "
-                        f"(pattern {CASE_NAME_PATTERN}), as the name becomes a file name")]
+                        f"illegal {noun} {instance!r}; allowed: {_pattern_words(error.validator_value)}, "
+                        "as the name becomes a file name")]
+    if kind == "pattern":
+        return [Problem(key_path(parts), f"got {show(instance)}; allowed: {_pattern_words(error.validator_value)}")]
+    branch = _branch_condition(error)
     if kind == "required":
-        why = f"required when kind is {instance.get('kind')!r}" if "then" in error.absolute_schema_path else "required"
-        return [Problem(key_path(parts + [key]), f"missing ({why}); allowed: {allowed(parts + [key], schema)}")
+        why = f"required {branch}" if branch else "required"
+        return [Problem(key_path(parts + [key]), f"missing ({why}); allowed: {allowed(parts + [key], schema, root)}")
                 for key in error.validator_value if key not in instance]
-    if kind == "not":  # a maneuver key that belongs to the other kind
-        allowed_keys = ", ".join(["kind", *error.schema["required"]])
-        return [Problem(key_path(parts + [key]), f"got {show(instance[key])}; not allowed when kind is "
-                        f"{instance['kind']!r} (allowed keys: {allowed_keys})")
-                for key in error.validator_value["required"]]
+    if kind == "not":  # keys a branch forbids: not: {required: [...]} or not: {anyOf: [{required: [...]}, ...]}
+        negated = error.validator_value
+        forbidden = [key for rule in negated.get("anyOf", [negated]) for key in rule.get("required", [])]
+        return [Problem(key_path(parts + [key]), f"got {show(instance[key])}; not allowed {branch or 'here'}")
+                for key in forbidden if key in instance]
     if kind == "additionalProperties":
-        known = error.schema.get("properties", {})
+        known = ", ".join(error.schema.get("properties", {}))
+        if branch:
+            return [Problem(key_path(parts + [key]), f"got {show(instance[key])}; not allowed {branch} "
+                            f"(allowed keys: {known})") for key in instance if key not in error.schema["properties"]]
         return [Problem(key_path(parts + [key]), f"unknown key (value {show(instance[key])}); allowed keys "
-                        f"here: {', '.join(known)}") for key in instance if key not in known]
+                        f"here: {known}") for key in instance if key not in error.schema.get("properties", {})]
     if kind == "minProperties":
         return [Problem(key_path(parts), "got no entries; allowed: at least one case")]
     if kind == "uniqueItems":
@@ -149,16 +171,36 @@ def explain(error: jsonschema.ValidationError, schema: dict) -> list[Problem]:
     got = f"got {show(instance)}"
     if kind == "type":
         got += f" ({type_name(instance)})"
-    return [Problem(key_path(parts), f"{got}; allowed: {allowed(parts, schema)}")]
+    return [Problem(key_path(parts), f"{got}; allowed: {allowed(parts, schema, root)}")]
 
 
+#: the patterns of the schema in words
+_PATTERNS = {"^[A-Za-z0-9_-]+$": "letters, digits, '_' and '-' only",
+             "^[A-Za-z0-9_]+$": "letters, digits and '_' only"}
 
 
+def _pattern_words(pattern: str) -> str:
+    """A pattern of the schema said in words (:data:`_PATTERNS`; a test keeps it complete)."""
+    return _PATTERNS.get(pattern, f"text matching the pattern {pattern}")
 
-def _schema_at(parts: list, schema: dict) -> dict:
-    """The schema of the value at ``parts`` ($refs resolved, sibling keys kept), {} if none."""
-    node = _resolve(schema, schema)
+
+def _branch_condition(error: jsonschema.ValidationError) -> str:
+    """The condition of the branch ``error`` arose in: its ``title`` (the beam's forms), "when kind
+    is 'torque'" in the branch of one kind, else ''."""
+    if "then" not in error.absolute_schema_path:
+        return ""
+    if "title" in error.schema:
+        return error.schema["title"]
+    kind = error.instance.get("kind") if isinstance(error.instance, dict) else None
+    return f"when kind is {kind!r}" if kind is not None else ""
+
+
+def _schema_at(parts: list, schema: dict, root: Any = None) -> dict:
+    """The schema of the value at ``parts`` ($refs resolved, sibling keys kept, the branches whose
+    condition the value of ``root`` there meets merged in), {} if none."""
+    node, value = _with_branches(_resolve(schema, schema), root, schema), root
     for part in parts:
+        value = _child(value, part)
         if isinstance(part, int):
             node = node.get("items", {})
         elif part in node.get("properties", {}):
@@ -167,7 +209,24 @@ def _schema_at(parts: list, schema: dict) -> dict:
             node = node["additionalProperties"]
         else:
             return {}
-        node = _resolve(node, schema)
+        node = _with_branches(_resolve(node, schema), value, schema)
+    return node
+
+
+def _child(value: Any, part) -> Any:
+    if isinstance(value, dict):
+        return value.get(part)
+    if isinstance(value, list) and isinstance(part, int) and 0 <= part < len(value):
+        return value[part]
+    return None
+
+
+def _with_branches(node: dict, value: Any, schema: dict) -> dict:
+    """``node`` with the ``then`` part of every ``allOf`` rule whose ``if`` ``value`` meets."""
+    for rule in node.get("allOf", []):
+        if "then" in rule and isinstance(value, dict) and Validator(rule["if"]).is_valid(value):
+            then = _resolve(rule["then"], schema)
+            node = {**node, **then, "properties": {**node.get("properties", {}), **then.get("properties", {})}}
     return node
 
 
@@ -180,9 +239,10 @@ def _resolve(node: dict, schema: dict) -> dict:
     return {**_resolve(target, schema), **{key: value for key, value in node.items() if key != "$ref"}}
 
 
-def allowed(parts: list, schema: dict) -> str:
-    """What the schema allows at ``parts``, followed by the key's description."""
-    node = _schema_at(parts, schema)
+def allowed(parts: list, schema: dict, root: Any = None) -> str:
+    """What the schema allows at ``parts`` (in the instance ``root``, which selects the branches of
+    kinds), followed by the key's description."""
+    node = _schema_at(parts, schema, root)
     text = _allowed_values(node)
     return f"{text} -- {node['description'].strip()}" if "description" in node else text
 
@@ -190,6 +250,8 @@ def allowed(parts: list, schema: dict) -> str:
 def _allowed_values(node: dict) -> str:
     if "enum" in node:
         return "one of " + ", ".join(map(str, node["enum"]))
+    if "const" in node:
+        return f"only {node['const']}"
     kind = node.get("type")
     if kind in ("number", "integer"):
         bounds = [f"{symbol} {node[key]}" for key, symbol in
@@ -197,12 +259,19 @@ def _allowed_values(node: dict) -> str:
                   if key in node]
         return ("an integer" if kind == "integer" else "a number") + (" " + " and ".join(bounds) if bounds else "")
     if kind == "array":
-        return f"a list of at least {node.get('minItems', 0)} distinct values, each {_allowed_values(node['items'])}"
+        distinct = " distinct" if node.get("uniqueItems") else ""
+        return f"a list of at least {node.get('minItems', 0)}{distinct} values, each {_allowed_values(node['items'])}"
+    if kind == "object" and "enum" in node.get("properties", {}).get("kind", {}) and "allOf" in node:
+        return f"a mapping with a kind ({', '.join(node['properties']['kind']['enum'])}) and the keys of its kind"
     if kind == "object" and "properties" in node:
         return "a mapping with keys " + ", ".join(node["properties"])
     if kind == "object":
         return "a mapping"
-    return json.dumps(node)
+    if kind == "string":
+        return _pattern_words(node["pattern"]) if "pattern" in node else "text"
+    if kind == "boolean":
+        return "true or false"
+    return "a value as described in docs/configuration.md"
 
 
 def show(value: Any) -> str:

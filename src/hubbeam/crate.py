@@ -5,7 +5,7 @@ the ``rocrate`` library) that the archive carries at its root. It conforms to th
 Crate profile 0.5 (with Process Run Crate 0.5 and Workflow RO-Crate 1.0) and describes:
 
 - the workflow: ``Snakefile`` (the main entity, a Snakemake ``ComputationalWorkflow`` of the
-  package version and git commit) with every file under ``workflow/`` (rules, scripts, schema,
+  package version and git commit) with every file under ``workflow/`` (rules, scripts, report
   captions) as its parts;
 - the software it ran with (``SoftwareApplication`` entities with ``softwareVersion``: Python,
   hubbeam and :data:`hubbeam.provenance.WORKFLOW_DISTRIBUTIONS`);

@@ -1,4 +1,4 @@
-"""Damping of the elastic coordinates of a case: checks and the damping matrices ``C1, C2``.
+"""Damping of the elastic coordinates of a case: the damping matrices ``C1, C2``.
 
 A case's optional ``damping`` mapping acts on the axial block ``q1`` (mass ``M1``, stiffness
 ``K1``, Eqs. 14, 16) and the transverse block ``q2`` (``M2``, ``K2``, Eqs. 15, 16) separately; the
@@ -11,43 +11,16 @@ damping forces ``-C1 q1'`` and ``-C2 q2'`` join the elastic rows of Eq. (24):
 * ``{kind: rayleigh, mass_coefficient: alpha, stiffness_coefficient: beta}`` (s-1, s; >= 0):
   ``C = alpha M + beta K`` per block.
 
-No ``damping`` (or ``None``) gives zero matrices: the undamped equations, bit for bit.
+No ``damping`` (or ``None``) gives zero matrices: the undamped equations, bit for bit. The keys
+and ranges of each kind are checked with the configuration (schema ``damping``).
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 
 import numpy as np
 from scipy.linalg import eigh
-
-#: damping kinds -> (keys, allowed range text, test of a value)
-KINDS = {
-    "modal": (("axial", "transverse"), "a number >= 0 and < 1", lambda z: 0.0 <= z < 1.0),
-    "rayleigh": (("mass_coefficient", "stiffness_coefficient"), "a finite number >= 0",
-                 lambda c: 0.0 <= c < math.inf),
-}
-
-
-def check_damping(damping, where: str) -> None:
-    """Raise ``ValueError`` unless ``damping`` (config path ``where``) is None or usable."""
-    if damping is None:
-        return
-    kind = damping.get("kind") if isinstance(damping, Mapping) else None
-    if kind not in KINDS:
-        raise ValueError(f"{where}.kind = {kind!r}; allowed: one of {', '.join(KINDS)}")
-    keys, allowed, ok = KINDS[kind]
-    unknown = sorted(set(damping) - {"kind", *keys})
-    if unknown:
-        raise ValueError(f"{where}.{unknown[0]}: unknown key for kind {kind!r}; allowed keys: "
-                         f"kind, {', '.join(keys)}")
-    for key in keys:
-        value = damping.get(key)
-        number = (isinstance(value, (int, float, np.integer, np.floating))
-                  and not isinstance(value, bool) and math.isfinite(value))
-        if not (number and ok(value)):
-            raise ValueError(f"{where}.{key} = {value!r}; allowed: {allowed}")
 
 
 def modal_damping(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:

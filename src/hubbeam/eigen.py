@@ -36,7 +36,7 @@ import xarray as xr
 from hubbeam import linearised, paper
 from hubbeam.beam import beam_attributes
 from hubbeam.matrices import MODE_NORMALISATION, assemble, point_mass_terms
-from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.parameters import TipMass, UniformBeam
 
 #: the models of the eigen-analysis (the variants of Eq. 31 with the axial coupling)
 MODELS = linearised.AXIAL_MODELS
@@ -229,7 +229,7 @@ def critical_speed_sweep(params, masses, positions, n_modes, search_max, n_quad=
     mu = np.stack([_mu_max(bare.K2, linearised.centrifugal_matrix(M2, D, model))
                    for model in MODELS])
     # the continuum frequency equation holds for a uniform beam only: NaN for tabulated sections
-    uniform = isinstance(params, BeamParameters)
+    uniform = isinstance(params, UniformBeam)
     continuum = [
         tip_mass_frequency_roots(m / params.beam_mass, 1)[0] ** 2
         * np.sqrt(params.EI / (params.rhoA * params.L**4)) if uniform else np.nan

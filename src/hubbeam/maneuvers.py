@@ -1,6 +1,7 @@
-"""Hub maneuvers of a case: checks, the kernel's parameter array, the times no step may cross.
+"""Hub maneuvers of a case: the kernel's parameter array and the times no step may cross.
 
-A case's ``maneuver`` mapping has a ``kind``:
+A case's ``maneuver`` (checked with the configuration: schema ``maneuver``, one branch of keys per
+kind) has a ``kind``:
 
 * ``prescribed`` ``{wf, tf}``: the spin-up of Eq. (43); ``torque`` ``{tau_max, tf}``: the torque
   pulse of Eq. (44);
@@ -15,12 +16,10 @@ A case's ``maneuver`` mapping has a ``kind``:
 
 The kernels (:mod:`hubbeam.core.maneuver`) take an integer kind and a float array; the splines'
 coefficients are computed here once per run (scipy's ``CubicSpline``, ``bc_type="clamped"``).
-Every check raises ``ValueError`` naming the key, the value and what is allowed.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 
 import numpy as np
@@ -34,76 +33,9 @@ MANEUVERS = {"prescribed": (kernels.PRESCRIBED, ("wf", "tf")),
 #: tabulated kinds -> (kernel id, value column, interpolation: "spline" or "linear")
 TABLES = {"speed_table": (kernels.SPEED_TABLE, "speed", "spline"),
           "torque_table": (kernels.TORQUE_TABLE, "torque", "linear")}
-#: every maneuver kind a case may name
-KINDS = (*MANEUVERS, *TABLES, "pd")
-#: keys of each kind besides ``kind``
-KEYS = {**{kind: keys for kind, (_, keys) in MANEUVERS.items()},
-        **{kind: ("time", column) for kind, (_, column, _) in TABLES.items()},
-        "pd": ("kp", "kd", "reference")}
-#: reference kinds of ``pd`` -> (kernel id, keys)
+#: reference kinds of ``pd`` -> (kernel id, parameters in the order of the kernel's reference)
 REFERENCES = {"prescribed": (kernels.PRESCRIBED, ("wf", "tf")),
               "angle_table": (kernels.ANGLE_TABLE, ("time", "angle"))}
-
-
-def _finite(value) -> bool:
-    return (isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
-            and math.isfinite(value))
-
-
-def _kind(maneuver, where: str, allowed) -> str:
-    kind = maneuver.get("kind") if isinstance(maneuver, Mapping) else None
-    if kind not in allowed:
-        raise ValueError(f"{where}.kind = {kind!r}; allowed: one of {', '.join(allowed)}")
-    unknown = sorted(set(maneuver) - {"kind", *allowed[kind]})
-    if unknown:
-        raise ValueError(f"{where}.{unknown[0]}: unknown key for kind {kind!r}; allowed keys: "
-                         f"kind, {', '.join(allowed[kind])}")
-    return kind
-
-
-def _check_parameters(maneuver: Mapping, keys, where: str) -> None:
-    for key in keys:
-        value = maneuver.get(key)
-        if not _finite(value) or (key == "tf" and value <= 0.0):
-            raise ValueError(f"{where}.{key} = {value!r}; allowed: a finite "
-                             f"number{' > 0 s' if key == 'tf' else ''}")
-
-
-def _check_table(maneuver: Mapping, column: str, where: str) -> None:
-    time, values = maneuver.get("time"), maneuver.get(column)
-    for key, row in (("time", time), (column, values)):
-        if (not isinstance(row, (list, tuple, np.ndarray)) or len(row) < 2
-                or not all(_finite(value) for value in row)):
-            raise ValueError(f"{where}.{key} = {row!r}; allowed: a list of at least 2 finite "
-                             "numbers")
-    if len(time) != len(values):
-        raise ValueError(f"{where}.{column} has {len(values)} rows but {where}.time has "
-                         f"{len(time)}; allowed: one {column} per time")
-    if time[0] < 0.0 or np.any(np.diff(np.asarray(time, float)) <= 0.0):
-        raise ValueError(f"{where}.time = {list(time)!r}; allowed: strictly increasing times "
-                         ">= 0 s")
-
-
-def check_maneuver(maneuver, where: str) -> None:
-    """Raise ``ValueError`` unless ``maneuver`` (at config path ``where``) can be run."""
-    kind = _kind(maneuver, where, KEYS)
-    if kind in MANEUVERS:
-        _check_parameters(maneuver, KEYS[kind], where)
-    elif kind in TABLES:
-        _check_table(maneuver, TABLES[kind][1], where)
-    else:
-        for key in ("kp", "kd"):
-            value = maneuver.get(key)
-            if not _finite(value) or value < 0.0:
-                raise ValueError(f"{where}.{key} = {value!r}; allowed: a finite number >= 0")
-        reference = maneuver.get("reference")
-        ref_where = f"{where}.reference"
-        ref_kind = _kind(reference, ref_where,
-                         {name: keys for name, (_, keys) in REFERENCES.items()})
-        if ref_kind == "prescribed":
-            _check_parameters(reference, REFERENCES[ref_kind][1], ref_where)
-        else:
-            _check_table(reference, "angle", ref_where)
 
 
 def packed_table(time, values, interpolation: str) -> np.ndarray:

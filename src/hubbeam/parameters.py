@@ -1,4 +1,9 @@
-"""Physical parameters of the hub-beam system (Table 1 of the paper) and of the tip mass."""
+"""Physical parameters of the hub-beam system (Table 1 of the paper) and of the tip mass.
+
+A uniform beam is given either by the paper's factors (:class:`BeamParameters`: density, area,
+Young's modulus, second moment of area) or by the products the equations use
+(:class:`BeamProducts`: ``rho A``, ``E I``, ``E A``); both are a :class:`UniformBeam`.
+"""
 
 from __future__ import annotations
 
@@ -17,10 +22,77 @@ CONFIG_KEYS = {
     "Jh": "hub_inertia",
     "rA": "hub_radius",
 }
+#: BeamProducts field -> key of the ``beam`` section of the config.
+PRODUCT_KEYS = {"L": "length", "rhoA": "rhoA", "EI": "EI", "EA": "EA", "Jh": "hub_inertia", "rA": "hub_radius"}
+
+
+class UniformBeam:
+    """What a uniform beam offers (``hubbeam.matrices`` uses nothing else), from its length ``L``,
+    hub radius ``rA`` and the products ``rhoA``, ``EI``, ``EA`` of a subclass."""
+
+    L: float
+    rA: float
+    rhoA: float
+    EI: float
+    EA: float
+
+    @property
+    def beam_mass(self) -> float:
+        """Mass of the beam, kg."""
+        return self.rhoA * self.L
+
+    @property
+    def rhoA_ref(self) -> float:
+        """Mass per unit length that normalises the admissible functions (``hubbeam.modes``)."""
+        return self.rhoA
+
+    @property
+    def stations(self) -> tuple[float, float]:
+        """Abscissae (m) between which the properties are smooth: the two ends."""
+        return (0.0, self.L)
+
+    def rhoA_at(self, x):
+        """Mass per unit length (kg m-1) at abscissae ``x``: the constant ``rho A``."""
+        return np.full(np.shape(x), self.rhoA)
+
+    def EI_at(self, x):
+        """Bending stiffness (N m2) at abscissae ``x``: the constant ``E I``."""
+        return np.full(np.shape(x), self.EI)
+
+    def EA_at(self, x):
+        """Axial stiffness (N) at abscissae ``x``: the constant ``E A``."""
+        return np.full(np.shape(x), self.EA)
+
+    def outboard_moment(self, x):
+        """``int_x^L rho A (rA + s) ds`` (kg m) at ``x``: the centrifugal tension per ``Omega^2``.
+
+        The weight ``g`` of ``D`` (Eq. 18, order of integration swapped) times ``rho A``.
+        """
+        x = np.asarray(x, dtype=float)
+        return self.rhoA * (self.rA * (self.L - x) + 0.5 * (self.L**2 - x**2))
 
 
 @dataclass(frozen=True)
-class BeamParameters:
+class BeamProducts(UniformBeam):
+    """Uniform Euler-Bernoulli beam clamped radially to a rigid hub, by its products (SI units).
+
+    ``L`` length (m), ``rhoA`` mass per unit length (kg m-1), ``EI`` bending stiffness (N m2),
+    ``EA`` axial stiffness (N), ``Jh`` hub inertia (kg m2), ``rA`` hub radius (m); stored as float.
+    """
+
+    L: float
+    rhoA: float
+    EI: float
+    EA: float
+    Jh: float
+    rA: float
+
+    def __post_init__(self) -> None:
+        _store_floats(self)
+
+
+@dataclass(frozen=True)
+class BeamParameters(UniformBeam):
     """Uniform Euler-Bernoulli beam clamped radially to a rigid hub (Table 1, SI units).
 
     ``L`` length (m), ``rho`` density (kg m-3), ``A`` cross-section area (m2), ``E`` Young's
@@ -60,41 +132,6 @@ class BeamParameters:
     def EA(self) -> float:
         """Axial stiffness, N."""
         return self.E * self.A
-
-    @property
-    def beam_mass(self) -> float:
-        """Mass of the beam, kg."""
-        return self.rhoA * self.L
-
-    @property
-    def rhoA_ref(self) -> float:
-        """Mass per unit length that normalises the admissible functions (``hubbeam.modes``)."""
-        return self.rhoA
-
-    @property
-    def stations(self) -> tuple[float, float]:
-        """Abscissae (m) between which the properties are smooth: the two ends."""
-        return (0.0, self.L)
-
-    def rhoA_at(self, x):
-        """Mass per unit length (kg m-1) at abscissae ``x``: the constant ``rho A``."""
-        return np.full(np.shape(x), self.rhoA)
-
-    def EI_at(self, x):
-        """Bending stiffness (N m2) at abscissae ``x``: the constant ``E I``."""
-        return np.full(np.shape(x), self.EI)
-
-    def EA_at(self, x):
-        """Axial stiffness (N) at abscissae ``x``: the constant ``E A``."""
-        return np.full(np.shape(x), self.EA)
-
-    def outboard_moment(self, x):
-        """``int_x^L rho A (rA + s) ds`` (kg m) at ``x``: the centrifugal tension per ``Omega^2``.
-
-        The weight ``g`` of ``D`` (Eq. 18, order of integration swapped) times ``rho A``.
-        """
-        x = np.asarray(x, dtype=float)
-        return self.rhoA * (self.rA * (self.L - x) + 0.5 * (self.L**2 - x**2))
 
 
 @dataclass(frozen=True)

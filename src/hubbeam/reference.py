@@ -33,12 +33,11 @@ from hubbeam.damping import damping_matrices
 from hubbeam.matrices import SystemMatrices
 from hubbeam.models import model
 from hubbeam.parameters import BeamParameters
+from hubbeam.settings import simulation_settings
 from hubbeam.simulate import (
     build_dataset,
     case_matrices,
-    check_case,
     check_initial,
-    check_numerics,
     initial_state,
     maneuver_parameters,
     output_times,
@@ -84,9 +83,8 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     its counts (``n_steps`` is not known to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
     The run starts from the case's initial state (:func:`hubbeam.simulate.initial_state`).
     """
-    check_case(case)
+    case, numerics = (item.to_dict() for item in simulation_settings(case, numerics, params.L))
     check_initial(case)
-    check_numerics(numerics)
     if method not in METHODS:
         raise ValueError(f"method = {method!r}; allowed: one of {', '.join(METHODS)}")
     sm = case_matrices(case, params, numerics, matrices)

@@ -39,28 +39,18 @@ from hubbeam.core import radau
 from hubbeam.core.inputs import IntegratorSettings, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.core.maneuver import prescribed, prescribed_motion
-from hubbeam.damping import check_damping, damping_matrices
-from hubbeam.limits import (
-    MAX_MODES,
-    MAX_QUADRATURE_POINTS,
-    MEMORY_BUDGET_MB,
-    MIN_MODES,
-    MIN_QUADRATURE_POINTS,
-    MIN_RTOL,
-    SMALL_DEFLECTION_LIMIT,
-)
-from hubbeam.maneuvers import check_maneuver, maneuver_parameters, maneuver_stops
+from hubbeam.damping import damping_matrices
+from hubbeam.limits import MAX_MODES, MAX_QUADRATURE_POINTS, MIN_QUADRATURE_POINTS, MIN_RTOL, SMALL_DEFLECTION_LIMIT
+from hubbeam.maneuvers import maneuver_parameters, maneuver_stops
 from hubbeam.matrices import SystemMatrices, assemble
-from hubbeam.models import FAMILIES, MODELS, family_model, model
+from hubbeam.models import FAMILIES, family_model, model
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
+from hubbeam.settings import simulation_settings
 from hubbeam.variables import (
     CUMULATIVE_VARIABLES,
-    MIB,
-    budget_text,
     dataset_variables,
     output_count,
-    simulation_bytes,
 )
 
 LOG = logging.getLogger(__name__)
@@ -73,8 +63,6 @@ OPTIONAL_NUMERICS = {"small_deflection_limit": SMALL_DEFLECTION_LIMIT}
 INITIAL_KEYS = ("hub_speed", "q1", "q2", "q1_dot", "q2_dot")
 #: the initial modal coordinates and rates among :data:`INITIAL_KEYS` (one value per mode)
 INITIAL_MODAL_KEYS = INITIAL_KEYS[1:]
-#: keys of the optional convergence check (``numerics.convergence_check``, :func:`convergence`)
-CONVERGENCE_KEYS = ("tolerance_factor", "extra_modes", "threshold_m")
 
 INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
 
@@ -83,114 +71,30 @@ class SimulationError(ValueError):
     """A case or the numerics cannot be simulated; the message names key, value and allowed."""
 
 
-def check_case(case: Mapping) -> None:
-    """Raise :class:`SimulationError` unless ``case`` is a resolved case that can be run."""
-    name = case.get("name", "<unnamed>")
-    if case.get("model") not in MODELS:
-        raise SimulationError(f"cases.{name}.model = {case.get('model')!r}; "
-                              f"allowed: one of {', '.join(MODELS)}")
-    try:
-        check_maneuver(case.get("maneuver"), f"cases.{name}.maneuver")
-        check_damping(case.get("damping"), f"cases.{name}.damping")
-    except ValueError as error:
-        raise SimulationError(str(error)) from error
-    if not _finite(case.get("t_end")) or case["t_end"] <= 0.0:
-        raise SimulationError(f"cases.{name}.t_end = {case.get('t_end')!r}; "
-                              "allowed: a number > 0 s")
-    modes = case.get("modes")
-    if (not isinstance(modes, (int, np.integer)) or isinstance(modes, bool)
-            or not MIN_MODES <= modes <= MAX_MODES):
-        raise SimulationError(f"cases.{name}.modes = {modes!r}; "
-                              f"allowed: an integer in {MIN_MODES}..{MAX_MODES}")
-
-
-def check_numerics(numerics: Mapping) -> None:
-    """Raise :class:`SimulationError` unless ``numerics`` holds usable integrator settings."""
-    for key in NUMERICS_KEYS:
-        value = numerics.get(key)
-        integer = key in ("max_steps", "step_warning")
-        ok = (isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value >= 1
-              if integer else _finite(value) and value > 0.0)
-        if not ok:
-            allowed = "an integer >= 1" if integer else "a finite number > 0"
-            raise SimulationError(f"numerics.{key} = {value!r}; allowed: {allowed}")
-    for key, default in OPTIONAL_NUMERICS.items():
-        value = numerics.get(key, default)
-        if not (_finite(value) and value > 0.0):
-            raise SimulationError(f"numerics.{key} = {value!r}; allowed: a finite number > 0")
-    if numerics["rtol"] < MIN_RTOL:
-        raise SimulationError(f"numerics.rtol = {numerics['rtol']!r}; allowed: a number >= "
-                              f"{MIN_RTOL:.3g} (100 machine epsilons)")
-
-
-def check_memory(case: Mapping, numerics: Mapping) -> None:
-    """Raise :class:`SimulationError` when the outputs of ``case`` would exceed the memory budget
-    ``numerics["memory_budget_mb"]`` (default :data:`hubbeam.limits.MEMORY_BUDGET_MB`), the
-    estimate of :func:`hubbeam.variables.simulation_bytes` the startup checks apply as well."""
-    budget_mb = numerics.get("memory_budget_mb", MEMORY_BUDGET_MB)
-    size = simulation_bytes(case["model"], case["modes"], case["t_end"], numerics["output_step"])
-    if size > budget_mb * MIB:
-        raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.t_end = {case['t_end']!r}: its outputs "
-                              f"would take {budget_text(size, budget_mb)}; allowed: a shorter t_end, a "
-                              "longer numerics.output_step or a larger numerics.memory_budget_mb")
-
-
-def _check_keys(value, keys, where: str) -> None:
-    """Raise :class:`SimulationError` unless ``value`` is a mapping with no key besides ``keys``."""
-    if not isinstance(value, Mapping):
-        raise SimulationError(f"{where} = {value!r}; allowed: a mapping with keys {', '.join(keys)}")
-    unknown = sorted(set(value) - set(keys))
-    if unknown:
-        raise SimulationError(f"{where}.{unknown[0]}: unknown key; allowed keys: {', '.join(keys)}")
-
-
-def check_convergence_settings(settings: Mapping) -> None:
-    """Raise :class:`SimulationError` unless ``settings`` is a usable convergence check."""
-    where = "numerics.convergence_check"
-    _check_keys(settings, CONVERGENCE_KEYS, where)
-    factor, extra, threshold = (settings.get(key) for key in CONVERGENCE_KEYS)
-    if not (_finite(factor) and 0.0 < factor < 1.0):
-        raise SimulationError(f"{where}.tolerance_factor = {factor!r}; allowed: a number > 0 and < 1")
-    if not isinstance(extra, (int, np.integer)) or isinstance(extra, bool) or extra < 1:
-        raise SimulationError(f"{where}.extra_modes = {extra!r}; allowed: an integer >= 1")
-    if not (_finite(threshold) and threshold > 0.0):
-        raise SimulationError(f"{where}.threshold_m = {threshold!r}; allowed: a number > 0 m")
-
-
 def check_initial(case: Mapping) -> None:
-    """Raise :class:`SimulationError` unless the optional ``case["initial"]`` is a state the case
-    can start from (:func:`initial_state`); ``case`` must have passed :func:`check_case`."""
-    name = case.get("name", "<unnamed>")
-    where = f"cases.{name}.initial"
-    spec = case.get("initial")
-    if spec is None:
-        return
-    _check_keys(spec, INITIAL_KEYS, where)
-    if "hub_speed" in spec:
-        speed = spec["hub_speed"]
-        if not _finite(speed):
-            raise SimulationError(f"{where}.hub_speed = {speed!r}; allowed: a finite number "
-                                  "(rad s-1)")
-        kind, mp = maneuver_parameters(case["maneuver"])
-        if prescribed(kind):
-            start_speed = float(prescribed_motion(kind, 0.0, mp)[1])
-            if not math.isclose(speed, start_speed, rel_tol=1e-12, abs_tol=1e-12):
-                raise SimulationError(
-                    f"{where}.hub_speed = {speed!r}; allowed: {start_speed!r} rad s-1, the speed "
-                    f"at t = 0 of the prescribed maneuver cases.{name}.maneuver (or no hub_speed)")
+    """Raise :class:`SimulationError` unless the optional ``case["initial"]`` (its keys and types
+    checked by the schema, ``cases.<name>.initial``) is a state the case can start from
+    (:func:`initial_state`): finite values, one per mode, no axial coordinates for a model that
+    keeps none, and for a prescribed hub the maneuver's own speed at ``t = 0``."""
+    spec = case.get("initial") or {}
+    where = f"cases.{case.get('name', '<unnamed>')}.initial"
     n = case["modes"]
-    for key in INITIAL_MODAL_KEYS:
-        value = spec.get(key, [0.0] * n)
-        if (not isinstance(value, (list, tuple, np.ndarray)) or len(value) != n
-                or not all(_finite(x) for x in value)):
-            raise SimulationError(f"{where}.{key} = {value!r}; allowed: a list of {n} finite "
-                                  "numbers, one per mode (kg1/2 m, or kg1/2 m s-1 for rates)")
-    if not model(case["model"]).keeps_axial:
-        for key in ("q1", "q1_dot"):
-            if np.any(np.asarray(spec.get(key, 0.0), dtype=float)):
-                raise SimulationError(f"{where}.{key} = {spec[key]!r}; allowed: zeros or no "
-                                      f"{key}: {case['model']} keeps no axial coordinates "
-                                      "(q1 = 0, Eq. 40)")
+    for key, value in spec.items():
+        values = np.atleast_1d(np.asarray(value, dtype=float))
+        if not np.all(np.isfinite(values)) or (key in INITIAL_MODAL_KEYS and values.size != n):
+            allowed = ("a finite number (rad s-1)" if key == "hub_speed" else
+                       f"a list of {n} finite numbers, one per mode (kg1/2 m, or kg1/2 m s-1 for rates)")
+            raise SimulationError(f"{where}.{key} = {value!r}; allowed: {allowed}")
+        if key in ("q1", "q1_dot") and np.any(values) and not model(case["model"]).keeps_axial:
+            raise SimulationError(f"{where}.{key} = {value!r}; allowed: zeros or no {key}: "
+                                  f"{case['model']} keeps no axial coordinates (q1 = 0, Eq. 40)")
+    kind, mp = maneuver_parameters(case["maneuver"])
+    if "hub_speed" in spec and prescribed(kind):
+        start_speed = float(prescribed_motion(kind, 0.0, mp)[1])
+        if not math.isclose(spec["hub_speed"], start_speed, rel_tol=1e-12, abs_tol=1e-12):
+            raise SimulationError(
+                f"{where}.hub_speed = {spec['hub_speed']!r}; allowed: {start_speed!r} rad s-1, the "
+                f"speed at t = 0 of the prescribed maneuver (or no hub_speed)")
 
 
 def initial_state(case: Mapping, sm: SystemMatrices) -> State:
@@ -241,10 +145,9 @@ def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
     if matrices is None:
         tip = TipMass(**case["tip_mass"]) if case.get("tip_mass") else None
         quadrature = numerics.get("quadrature_points")
-        if (not isinstance(quadrature, (int, np.integer)) or isinstance(quadrature, bool)
-                or not MIN_QUADRATURE_POINTS <= quadrature <= MAX_QUADRATURE_POINTS):
-            raise SimulationError(f"numerics.quadrature_points = {quadrature!r}; allowed: an "
-                                  f"integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
+        if quadrature is None:
+            raise SimulationError(f"numerics.quadrature_points: missing (required when no matrices are "
+                                  f"given); allowed: an integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
         matrices = assemble(params, tip, n, int(quadrature))
     if np.shape(matrices.K1) != (n, n):
         raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.modes = {n}, but the "
@@ -273,14 +176,13 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
         with more modes and the differences are recorded (:func:`convergence`).
 
     The attribute ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so
-    that :func:`simulation_inputs` can rebuild them.
+    that :func:`simulation_inputs` can rebuild them. ``case`` and ``numerics`` may be the objects
+    of :mod:`hubbeam.settings`; mappings are checked there once (``hubbeam.config.ConfigError``).
     """
-    check_case(case)
+    case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
+    convergence_check = numerics.convergence_check and numerics.convergence_check.to_dict()
+    case, numerics = case.to_dict(), numerics.to_dict()  # what the integration below reads
     check_initial(case)
-    check_numerics(numerics)
-    check_memory(case, numerics)
-    if convergence_check is not None:
-        check_convergence_settings(convergence_check)
     sm = case_matrices(case, params, numerics, matrices)
     ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm))
     ds.attrs["quadrature_points"] = quadrature_points(sm)
@@ -527,7 +429,3 @@ def cumulative_integral(rate: np.ndarray, t: np.ndarray) -> np.ndarray:
         result[0] = 0.0
     return result
 
-
-def _finite(value) -> bool:
-    return (isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
-            and math.isfinite(value))

@@ -30,13 +30,14 @@ import numpy as np
 import xarray as xr
 
 from hubbeam import eigen, limits, validity
+from hubbeam.beam import beam_attributes
 from hubbeam.core import radau
 from hubbeam.core import sweep as kernels
 from hubbeam.core.inputs import IntegratorSettings
 from hubbeam.maneuvers import MANEUVERS
 from hubbeam.matrices import SystemMatrices, assemble
 from hubbeam.models import model
-from hubbeam.parameters import CONFIG_KEYS, BeamParameters, TipMass
+from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
 from hubbeam.simulate import INTEGRATOR, kernel_matrices
 
@@ -325,7 +326,7 @@ def build_dataset(sweep: Mapping, params: BeamParameters, results: np.ndarray,
         "n_large_deflection": int((codes == validity.LARGE_DEFLECTION).sum()),
         "small_deflection_limit": float(sweep["small_deflection_limit"]),
         "n_failed": failed,
-        **{key: float(getattr(params, field)) for field, key in CONFIG_KEYS.items()},
+        **beam_attributes(params),
         "warnings": (f"{failed} runs exhausted the step budget max_steps = "
                      f"{numerics['max_steps']} (status too_many_steps)" if failed else ""),
     }

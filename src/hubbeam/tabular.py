@@ -11,8 +11,10 @@ place of inline lists:
 :func:`resolve_files` replaces each such entry by the inline lists before the config is
 validated, so every later step sees one form. A table file is plain CSV: one header line naming
 exactly the columns above (in any order), then one row of numbers per line; blank lines and lines
-starting with ``#`` are skipped. A missing file, a wrong header, a row of the wrong length or a
-value that is not a number is reported with the file and the line.
+starting with ``#`` are skipped; a UTF-8 byte-order mark and CRLF line ends, as spreadsheets
+write them, are accepted. A missing file, a wrong header, a row of the wrong length or a value
+that is not a number is reported with the file and the line, naming a ``;`` separator or a
+decimal comma when one is the cause; characters that would not show are escaped in messages.
 """
 
 from __future__ import annotations
@@ -40,32 +42,60 @@ class TableError(ValueError):
 
 
 def read_table(path: os.PathLike | str, columns: tuple[str, ...]) -> dict[str, list[float]]:
-    """The columns of the CSV file ``path`` as ``{name: [float, ...]}`` (order of the file)."""
+    """The columns of the CSV file ``path`` as ``{name: [float, ...]}`` (order of the file).
+
+    The file is read as a spreadsheet saves "CSV UTF-8": a byte-order mark at its start and
+    CRLF line ends are accepted. Values separated by ``;`` or written with a decimal comma (the
+    "CSV" of several locales) are reported as such, with the line.
+    """
     path = Path(path)
+    where = f"file {_shown(str(path))}"
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")
     except OSError as error:
-        raise TableError(f"file {path}: cannot be read ({error.strerror or error}); allowed: a "
+        raise TableError(f"{where}: cannot be read ({error.strerror or error}); allowed: a "
                          f"readable CSV file with the header {','.join(columns)}") from None
+    except UnicodeDecodeError as error:
+        raise TableError(f"{where}: not UTF-8 text (byte {error.start}); allowed: a CSV file saved "
+                         "as UTF-8 (a spreadsheet's \"CSV UTF-8\")") from None
     rows = [(number, row) for number, row in enumerate(csv.reader(text.splitlines()), start=1)
             if row and not row[0].lstrip().startswith("#") and any(cell.strip() for cell in row)]
     if not rows:
-        raise TableError(f"file {path}: empty; allowed: the header {','.join(columns)} and rows of numbers")
+        raise TableError(f"{where}: empty; allowed: the header {','.join(columns)} and rows of numbers")
     line, header = rows[0]
     header = [cell.strip() for cell in header]
     if sorted(header) != sorted(columns):
-        raise TableError(f"file {path}, line {line}: header {','.join(header)}; allowed: the "
-                         f"columns {','.join(columns)} (any order), each once")
+        raise TableError(f"{where}, line {line}: header {_shown(','.join(header))}; allowed: the "
+                         f"columns {','.join(columns)} (any order), each once"
+                         + _separator_hint(header, len(columns)))
     table: dict[str, list[float]] = {name: [] for name in header}
     for line, row in rows[1:]:
         if len(row) != len(header):
-            raise TableError(f"file {path}, line {line}: {len(row)} values; allowed: "
-                             f"{len(header)} ({','.join(header)})")
+            raise TableError(f"{where}, line {line}: {len(row)} values; allowed: "
+                             f"{len(header)} ({','.join(header)})" + _separator_hint(row, len(header)))
         for name, cell in zip(header, row):
-            table[name].append(_number(cell, f"file {path}, line {line}, column {name}"))
+            table[name].append(_number(cell, f"{where}, line {line}, column {name}"))
     if not rows[1:]:
-        raise TableError(f"file {path}: no rows after the header; allowed: at least one row of numbers")
+        raise TableError(f"{where}: no rows after the header; allowed: at least one row of numbers")
     return {name: table[name] for name in columns}
+
+
+def _separator_hint(cells: list[str], expected: int) -> str:
+    """Why a line of ``cells`` may not split into ``expected`` values: ``;`` separators, or
+    decimal commas that split numbers in two."""
+    if any(";" in cell for cell in cells):
+        return ("; the values are separated by ';': write the file with ',' between values and "
+                "'.' as the decimal point (a spreadsheet's \"CSV UTF-8 (comma delimited)\")")
+    if len(cells) > expected and all(_is_number(cell) for cell in cells):
+        return ("; if a decimal comma split a number in two, write '.' as the decimal point "
+                "(1.2, not 1,2)")
+    return ""
+
+
+def _shown(text: str) -> str:
+    """``text`` with every character that would not show (a byte-order mark, a non-breaking space,
+    a control character) escaped as Python writes it (``\\ufeff``)."""
+    return "".join(char if char.isprintable() else ascii(char)[1:-1] for char in text)
 
 
 def resolve_files(cfg: Any, base_dir: os.PathLike | str) -> dict:
@@ -136,12 +166,23 @@ def _located(source: Any, base_dir) -> Path:
     return Path(base_dir, source)
 
 
+def _is_number(cell: str) -> bool:
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
 def _number(cell: str, where: str) -> float:
+    shown = _shown(cell.strip())
     try:
         value = float(cell)
     except ValueError:
-        raise TableError(f"{where}: {cell.strip()!r} is not a number; allowed: a decimal "
+        comma = (" (a decimal comma: write '.' as the decimal point, 1.2 not 1,2)"
+                 if _is_number(cell.replace(",", ".", 1)) else "")
+        raise TableError(f"{where}: '{shown}' is not a number{comma}; allowed: a decimal "
                          "number such as 1.2e+4") from None
     if not math.isfinite(value):
-        raise TableError(f"{where}: {cell.strip()!r}; allowed: a finite number")
+        raise TableError(f"{where}: '{shown}'; allowed: a finite number")
     return value

@@ -1,8 +1,9 @@
 """Products of a study (a config with a `study` section, docs/studies.md), all under RESULTS =
 results/<name>/: the simulations and matrices (generic rules, simulate.smk and matrices.smk), a
 figure per case, the comparison figures of `study.comparisons`, the eigen-analysis of the study's
-beam (Campbell diagram, critical speeds over tip mass and position), the study report (Markdown,
-HTML, summary.csv) and the archive <name>-results.tar.gz with its SHA-256 manifest.
+beam (Campbell diagram, critical speeds over tip mass and position), the beam itself (its properties
+along the span and its first mode shapes), the study report (Markdown, HTML, summary.csv) and the
+archive <name>-results.tar.gz with its SHA-256 manifest.
 """
 
 STUDY_NAME = config["study"]["name"]
@@ -13,7 +14,11 @@ STUDY_EIGEN_FIGURES = {
     "campbell": ("campbell", {"campbell": f"{RESULTS}/eigen/campbell.nc",
                               "critical": f"{RESULTS}/eigen/critical_speeds.nc"}),
     "critical_speeds": ("study_critical", {"critical": f"{RESULTS}/eigen/critical_speeds.nc"}),
+    "beam_properties": ("beam_properties", {"beam": f"{RESULTS}/eigen/beam.nc"}),
+    "mode_shapes": ("mode_shapes", {"beam": f"{RESULTS}/eigen/beam.nc"}),
 }
+#: transverse mode shapes the study report shows
+STUDY_MODE_SHAPES = 3
 STUDY_EIGEN_MODULES = tuple(f"hubbeam.plotting.{module}" for module, _ in STUDY_EIGEN_FIGURES.values())
 
 
@@ -41,7 +46,7 @@ def study_figures(ext):
 
 
 def study_eigen_results():
-    return [f"{RESULTS}/eigen/campbell.nc", f"{RESULTS}/eigen/critical_speeds.nc"]
+    return [f"{RESULTS}/eigen/campbell.nc", f"{RESULTS}/eigen/critical_speeds.nc", f"{RESULTS}/eigen/beam.nc"]
 
 
 def study_report_results():
@@ -83,6 +88,25 @@ rule study_eigen:
         f"{LOGS}/eigen/study_eigen.log",
     script:
         "../scripts/study_eigen.py"
+
+
+rule study_beam:
+    input:
+        code=script_code("study_beam.py"),
+    output:
+        beam=ensure(f"{RESULTS}/eigen/beam.nc", non_empty=True),
+    params:
+        beam=config["beam"],
+        tips={case: case_config(case)["tip_mass"] for case in cases()},
+        speeds=[0.0, config["eigen"]["speeds"]["stop"]],
+        tip_masses=config["eigen"]["tip_masses"],
+        n_shapes=STUDY_MODE_SHAPES,
+        n_modes=config["numerics"]["modes"],
+        n_quad=config["numerics"]["quadrature_points"],
+    log:
+        f"{LOGS}/eigen/study_beam.log",
+    script:
+        "../scripts/study_beam.py"
 
 
 rule study_case_figure:

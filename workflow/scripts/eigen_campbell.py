@@ -2,13 +2,13 @@
 
 import numpy as np
 
+from hubbeam.beam import beam_from_config
 from hubbeam.eigen import campbell
 from hubbeam.io import write_netcdf
-from hubbeam.parameters import BeamParameters
 from hubbeam.provenance import global_attributes
 
 p = snakemake.params
-params = BeamParameters.from_config({"beam": p.beam})
+params = beam_from_config(p.beam)
 ds = campbell(params, p.tip_masses, np.linspace(**p.speeds), p.n_modes, p.n_quad)
 ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
 write_netcdf(ds, snakemake.output[0])

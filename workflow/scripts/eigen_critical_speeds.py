@@ -2,13 +2,13 @@
 
 import numpy as np
 
+from hubbeam.beam import beam_from_config
 from hubbeam.eigen import critical_speed_sweep, critical_speed_table
 from hubbeam.io import staged, write_netcdf
-from hubbeam.parameters import BeamParameters
 from hubbeam.provenance import global_attributes
 
 p = snakemake.params
-params = BeamParameters.from_config({"beam": p.beam})
+params = beam_from_config(p.beam)
 ds = critical_speed_sweep(params, p.tip_masses, np.linspace(**p.positions), p.n_modes,
                           p.search_max, p.n_quad)
 ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)

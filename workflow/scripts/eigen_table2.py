@@ -1,11 +1,11 @@
 """Snakemake shim: Table 2, natural and TLAM/FOAM frequencies (Hz) beside the printed values."""
 
+from hubbeam.beam import beam_from_config
 from hubbeam.eigen import table2
 from hubbeam.io import staged
-from hubbeam.parameters import BeamParameters
 
 p = snakemake.params
-table = table2(BeamParameters.from_config({"beam": p.beam}), p.speed, p.n_modes, p.n_quad)
+table = table2(beam_from_config(p.beam), p.speed, p.n_modes, p.n_quad)
 with staged(snakemake.output[0]) as (csv,):
     table.to_csv(csv, index=False)
 with open(snakemake.log[0], "w") as log:

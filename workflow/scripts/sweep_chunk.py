@@ -2,12 +2,12 @@
 
 import logging
 
+from hubbeam.beam import beam_from_config
 from hubbeam.io import write_netcdf
-from hubbeam.parameters import BeamParameters
 from hubbeam.sweep import run_chunk
 
 logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
                     format="%(asctime)s %(name)s %(levelname)s %(message)s")
-params = BeamParameters.from_config({"beam": snakemake.params.beam})
+params = beam_from_config(snakemake.params.beam)
 write_netcdf(run_chunk(snakemake.params.sweep, params, int(snakemake.wildcards.chunk),
                        threads=snakemake.threads), snakemake.output[0])

@@ -2,13 +2,13 @@
 
 import logging
 
+from hubbeam.beam import beam_from_config
 from hubbeam.io import open_result, write_netcdf
-from hubbeam.parameters import BeamParameters
 from hubbeam.sweep import gather_chunks
 
 logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
                     format="%(asctime)s %(name)s %(levelname)s %(message)s")
-params = BeamParameters.from_config({"beam": snakemake.params.beam})
+params = beam_from_config(snakemake.params.beam)
 chunks = [open_result(path) for path in snakemake.input.chunks]
 ds = gather_chunks(snakemake.params.sweep, params, chunks)
 write_netcdf(ds, snakemake.output[0])

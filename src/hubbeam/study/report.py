@@ -1,8 +1,10 @@
 """The study report: Markdown from the template ``templates/study_report.md.j2``, HTML from the
 Markdown (``hubbeam.document``).
 
-:func:`study_markdown` lists the study's beam, a row per case (:mod:`hubbeam.study.summary`)
-with links to its figure, the comparison figures and the eigen-analysis figures; paths of
+:func:`study_markdown` summarises the study's beam in a few rows (:func:`beam_summary`; the full
+table of stations stays in the archived configuration) beside the figure of its properties, lists
+a row per case (:mod:`hubbeam.study.summary`) with links to its figure, the comparison figures and
+the eigen-analysis figures (the beam's mode shapes among them); paths of
 figures are given relative to the report's folder, so the Markdown reads the same in the results
 archive. :func:`study_html` renders it into one self-contained page (figures embedded).
 """
@@ -11,8 +13,12 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
+from hubbeam.beam import SECTION_PROPERTIES, SECTION_UNITS, beam_from_config
 from hubbeam.document import markdown_to_html, render
 from hubbeam.study.summary import COLUMNS
+
+#: the eigen figure shown in the report's beam section rather than with the eigen-analysis
+BEAM_FIGURE = "beam_properties"
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
@@ -20,9 +26,23 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                    eigen_figures: Mapping[str, str]) -> str:
     """The report in Markdown. ``rows`` are summary rows; the figure maps give, per case,
     comparison or eigen figure, the PNG path relative to the report."""
-    return render("study_report.md.j2", study=study, beam=beam, rows=rows, columns=COLUMNS,
-                  case_figures=case_figures, comparison_figures=comparison_figures,
-                  eigen_figures=eigen_figures)
+    return render("study_report.md.j2", study=study, beam=beam, beam_rows=beam_summary(beam), rows=rows,
+                  columns=COLUMNS, case_figures=case_figures, comparison_figures=comparison_figures,
+                  beam_figure=eigen_figures.get(BEAM_FIGURE),
+                  eigen_figures={name: path for name, path in eigen_figures.items() if name != BEAM_FIGURE})
+
+
+def beam_summary(beam: Mapping) -> list[dict]:
+    """One row per property of the config's ``beam`` (uniform or by sections): ``name``, ``unit``,
+    its value at the ``root`` and the ``tip``, and its ``min`` and ``max`` over the stations."""
+    params = beam_from_config(beam)
+    stations = params.stations
+    rows = []
+    for name in SECTION_PROPERTIES:
+        values = getattr(params, f"{name}_at")(stations)
+        rows.append({"name": name, "unit": SECTION_UNITS[name], "root": float(values[0]), "tip": float(values[-1]),
+                     "min": float(values.min()), "max": float(values.max())})
+    return rows
 
 
 def study_html(markdown: str, title: str, report_dir) -> str:

@@ -127,7 +127,7 @@ def build_model(params, tip=None, maneuver=None, elements: int = 16) -> HubBeamM
     if isinstance(params, BeamSections):
         raise ValueError("beam.sections: the Exudyn reference models a uniform beam (one "
                          "ObjectANCFCable2D cross-section); allowed with a `validation` section: "
-                         "the uniform beam keys density, area, youngs_modulus, second_moment")
+                         "a uniform beam (its factors or its products)")
     exu = require_exudyn()
     from exudyn.itemInterface import (
         CoordinateConstraint,
@@ -187,7 +187,7 @@ def build_model(params, tip=None, maneuver=None, elements: int = 16) -> HubBeamM
         mbs.AddObject(ObjectANCFCable2D(
             nodeNumbers=[cable_nodes[k], cable_nodes[k + 1]], length=length,
             massPerLength=params.rhoA, bendingStiffness=params.EI,
-            axialStiffness=params.E * params.A, useReducedOrderIntegration=0))
+            axialStiffness=params.EA, useReducedOrderIntegration=0))
 
     # clamp: root position and slope direction locked to the hub
     mbs.AddObject(GenericJoint(

@@ -1,0 +1,123 @@
+"""Linear models over a grid of hub speeds as a CF netCDF dataset and as a MATLAB ``.mat`` file.
+
+The dataset (:func:`to_dataset`) stacks the ``A, B, C, D`` of :func:`hubbeam.linear.linear_model`
+over the dimension ``speed``; the names of the states, inputs and outputs are string coordinates
+(``state`` for the rows of ``A`` and ``B`` and the columns of ``C``, ``state_j`` for the columns of
+``A``, ``input``, ``output``), with their units. ``growth_rate`` (the largest real part of the
+poles) says where a plant is unstable (TLAM above its critical speed): it is not an error. The
+``.mat`` file (:func:`write_mat`) holds the same arrays with the speed last (``A(:, :, k)`` in
+MATLAB), the speed vector and the names as cell arrays. Both are written atomically
+(``hubbeam.io``); ``docs/linear-models.md`` shows how to load each.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from hubbeam.beam import beam_attributes
+from hubbeam.io import staged, write_netcdf
+from hubbeam.linear.statespace import (
+    INPUT_UNITS,
+    OUTPUTS,
+    check_request,
+    check_speeds,
+    linear_model,
+)
+from hubbeam.provenance import global_attributes
+
+
+def _state_units(name: str) -> str:
+    coordinate = "rad" if name.startswith("theta") else "kg1/2 m"
+    return coordinate + (" s-1" if name.endswith("_dot") else "")
+
+
+def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, damping=None,
+               outputs=None) -> xr.Dataset:
+    """The linear models of ``model`` at every speed of ``speeds`` (rad s-1) as a dataset.
+
+    Arguments as :func:`hubbeam.linear.linear_model`; ``tip`` (``TipMass`` or None) is the tip
+    mass ``sm`` was assembled with, recorded in the attributes. Every argument is checked before
+    the first model is computed.
+    """
+    check_request(model, hub, outputs)
+    grid = check_speeds(speeds)
+    models = [linear_model(beam, sm, model, float(speed), hub, damping, outputs) for speed in grid]
+    first = models[0]
+    stack = {name: np.stack([getattr(lm, name) for lm in models]) for name in "ABCD"}
+    growth = np.array([np.max(np.linalg.eigvals(lm.A).real) for lm in models])
+    coords = {
+        "speed": ("speed", grid, {"units": "rad s-1", "long_name": "hub speed of the steady spin"}),
+        "state": ("state", list(first.states), {"long_name": "state (row of A and B, column of C)"}),
+        "state_j": ("state_j", list(first.states), {"long_name": "state (column of A)"}),
+        "input": ("input", list(first.inputs), {"long_name": "input"}),
+        "output": ("output", list(first.outputs), {"long_name": "output"}),
+        "state_units": ("state", [_state_units(name) for name in first.states],
+                        {"long_name": "units of each state"}),
+        "input_units": ("input", [INPUT_UNITS[name] for name in first.inputs],
+                        {"long_name": "units of each input"}),
+        "output_units": ("output", [OUTPUTS[name][0] for name in first.outputs],
+                         {"long_name": "units of each output"}),
+    }
+    data_vars = {
+        "A": (("speed", "state", "state_j"), stack["A"], {"long_name": "state matrix A of x' = A x + B u",
+                                                          "units": "1"}),
+        "B": (("speed", "state", "input"), stack["B"], {"long_name": "input matrix B", "units": "1"}),
+        "C": (("speed", "output", "state"), stack["C"], {"long_name": "output matrix C of y = C x + D u",
+                                                         "units": "1"}),
+        "D": (("speed", "output", "input"), stack["D"], {"long_name": "feedthrough matrix D",
+                                                         "units": "1"}),
+        "growth_rate": ("speed", growth, {"units": "s-1", "long_name": "largest real part of the "
+                                          "poles (> 0: an unstable plant, e.g. TLAM above its "
+                                          "critical speed; about 0 for a free hub's rigid mode)"}),
+    }
+    mass, position = (0.0, float(beam.L)) if tip is None else (float(tip.mass), float(tip.position))
+    attrs = {
+        "title": f"linear models of {first.model}, {hub} hub, about a steady spin",
+        "model": first.model,
+        "hub": hub,
+        "tip_mass_kg": mass,
+        "tip_position_m": position,
+        "n_modes": int(sm.M2.shape[0]),
+        "damped": int(damping is not None and bool(np.any(np.asarray(damping)))),
+        "matrix_units": "A, B: the row state's units s-1 per the column state's or input's; C, "
+                        "D: the output's units per the column state's or input's (state_units, "
+                        "input_units, output_units)",
+    }
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs | beam_attributes(beam))
+
+
+def write_dataset(ds: xr.Dataset, path: os.PathLike | str) -> Path:
+    """Write the dataset of :func:`to_dataset` as CF netCDF with the provenance attributes."""
+    ds = ds.copy()
+    ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
+    return write_netcdf(ds, path)
+
+
+def write_mat(ds: xr.Dataset, path: os.PathLike | str) -> Path:
+    """Write the dataset of :func:`to_dataset` as a MATLAB file (``scipy.io.savemat``): ``A, B, C,
+    D`` with the speed as their last index, ``speed``, the names ``states, inputs, outputs`` as
+    cell arrays, and ``model``, ``hub``, ``tip_mass_kg``, ``tip_position_m``, ``n_modes``."""
+    from scipy.io import savemat
+
+    def cell(names):
+        array = np.empty((len(names), 1), dtype=object)
+        array[:, 0] = [str(name) for name in names]
+        return array
+
+    contents = {name: np.moveaxis(ds[name].values, 0, -1) for name in "ABCD"}
+    contents |= {"speed": ds.speed.values, "growth_rate": ds.growth_rate.values,
+                 "states": cell(ds.state.values), "inputs": cell(ds.input.values),
+                 "outputs": cell(ds.output.values)}
+    contents |= {key: ds.attrs[key] for key in ("model", "hub", "tip_mass_kg", "tip_position_m",
+                                                 "n_modes")}
+    path = Path(path)
+    with staged(path) as (stand_in,):
+        savemat(stand_in, contents, do_compression=True, oned_as="column")
+    return path
+
+
+__all__ = ["to_dataset", "write_dataset", "write_mat"]

@@ -1,0 +1,293 @@
+"""Linear state-space models of TLAM, FOAM, SFOAM and CFOAM about a steady spin (assembled route).
+
+Operating point: the hub spins at ``theta_dot = Omega`` under zero torque, the axial coordinates
+sit at their centrifugal stretch ``q1s = Omega^2 (K1 - Omega^2 M1)^-1 V1`` (models that keep
+``q1``), ``q2 = 0``. Every model's equations of motion (Eq. 24 with Eqs. 25-34; Eq. 40 for SFOAM;
+the exact kinetic energy for CFOAM) linearised about it give, in the deviations
+``z = (theta, [q1 - q1s], q2)`` of the coordinates from the steady spin,
+
+    M z'' + (G + C) z' + K z = b u,
+
+with (``p = V1 + M1 q1s``; derivation in ``docs/linear-models.md``)
+
+* ``M``: ``M_thth = Jh + Jb + 2 V1 q1s + q1s^T M1 q1s`` (Eq. 25 at the operating point),
+  ``M_thq1 = 0``, ``M_thq2 = V2 + R^T q1s`` (Eq. 27), ``diag(M1, M2)`` below;
+* ``G``: Eq. (29) in the elastic block and the hub couplings ``G_thq1 = 2 Omega p^T`` (``Q_theta``
+  of Eq. 32 linearised; deleted with it in SFOAM) and ``G_q1th = -2 Omega p`` (the centrifugal
+  force ``theta_dot^2 p`` of Eq. 33 linearised in the hub speed): skew-symmetric;
+* ``K``: Eqs. (30)-(31), zero hub row and column (theta is cyclic); CFOAM adds
+  ``Omega^2 E(q1s)``, ``E = sum_k w_k (f1(x_k) q1s) S(x_k)``, to ``K22``: the stretch moves the
+  mass outward, which scales its foreshortening term (the one high-order term of first order);
+* ``C``: the damping matrices ``diag(0, C1, C2)`` of ``hubbeam.damping`` (elastic coordinates
+  only, so the steady spin still needs no torque).
+
+Free hub: the input is the hub torque, ``b = e_theta``. Prescribed hub: the input is the hub's
+angular acceleration ``theta'' = u``; ``theta`` and ``theta_dot`` stay states (integrators of the
+input), because a change of hub speed changes the centrifugal force on ``q1`` (``G_q1th``).
+States ``x = (z, z')``, ``x' = A x + B u``, ``y = C x + D u``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from hubbeam.damping import check_damping, damping_matrices
+from hubbeam.linearised import axial_stretch, constant_speed_matrices
+from hubbeam.matrices import assemble
+from hubbeam.models import model as model_traits
+from hubbeam.modes import transverse_modes
+
+#: hub conditions -> name of the input
+HUBS = {"free": "hub_torque", "prescribed": "hub_acceleration"}
+#: outputs -> units (UDUNITS) and long name
+OUTPUTS = {
+    "hub_angle": ("rad", "hub angle from the steady spin theta - Omega t"),
+    "hub_speed": ("rad s-1", "hub speed from the steady spin theta_dot - Omega"),
+    "tip_deflection": ("m", "transverse tip deflection v(L) = f2(L) q2"),
+    "tip_arc": ("m", "arc position of the tip (rA + L) theta + v(L)"),
+    "root_moment": ("N m", "root bending moment EI(0) v''(0)"),
+    "tip_acceleration": ("m s-2", "transverse inertial acceleration of the beam tip"),
+}
+#: units of the inputs
+INPUT_UNITS = {"hub_torque": "N m", "hub_acceleration": "rad s-2"}
+
+
+@dataclass(frozen=True, eq=False)
+class LinearModel:
+    """``x' = A x + B u``, ``y = C x + D u`` of ``model`` about the steady spin at ``speed``.
+
+    The states are deviations from the operating point (module docstring), named in ``states``;
+    ``inputs`` is ``("hub_torque",)`` (free hub) or ``("hub_acceleration",)`` (prescribed hub).
+    """
+
+    model: str
+    hub: str
+    speed: float
+    A: np.ndarray
+    B: np.ndarray
+    C: np.ndarray
+    D: np.ndarray
+    states: tuple[str, ...]
+    inputs: tuple[str, ...]
+    outputs: tuple[str, ...]
+
+    @property
+    def name(self) -> str:
+        """``<model>_<hub>_hub_<speed>rad_s`` (``p`` for the decimal point, which python-control
+        does not allow in a name), the name of the python-control system."""
+        speed = f"{self.speed:.10g}".replace(".", "p").replace("+", "")
+        return f"{self.model}_{self.hub}_hub_{speed}rad_s"
+
+    def to_control(self):
+        """The model as a :class:`control.StateSpace` with its named states, inputs, outputs."""
+        import control as ct
+
+        return ct.ss(self.A, self.B, self.C, self.D, states=list(self.states),
+                     inputs=list(self.inputs), outputs=list(self.outputs), name=self.name)
+
+
+def check_request(model: str, hub: str, outputs) -> tuple:
+    """The model's traits and the output names, after checking every argument by name."""
+    traits = model_traits(model)
+    if hub not in HUBS:
+        raise ValueError(f"hub = {hub!r}; allowed: one of {', '.join(HUBS)}")
+    names = tuple(OUTPUTS) if outputs is None else (
+        (outputs,) if isinstance(outputs, str) else tuple(outputs))
+    unknown = [name for name in names if name not in OUTPUTS]
+    if unknown or not names:
+        raise ValueError(f"outputs = {list(names)!r}; allowed: a non-empty list of "
+                         f"{', '.join(OUTPUTS)}")
+    return traits, names
+
+
+def check_speed(speed) -> float:
+    """``speed`` as a float; ``ValueError`` unless it is a finite number >= 0 (rad s-1)."""
+    number = (isinstance(speed, (int, float, np.integer, np.floating))
+              and not isinstance(speed, bool))
+    if not (number and math.isfinite(speed) and speed >= 0.0):
+        raise ValueError(f"speed = {speed!r}; allowed: a finite hub speed >= 0 rad s-1")
+    return float(speed)
+
+
+def check_speeds(speeds) -> np.ndarray:
+    """The grid ``speeds`` as floats; ``ValueError`` unless a non-empty, strictly increasing list
+    of hub speeds, each finite and >= 0 rad s-1 (the message names the first bad entry)."""
+    allowed = ("allowed: a non-empty, strictly increasing list of hub speeds, each finite and "
+               ">= 0 rad s-1")
+    values = np.asarray(speeds).tolist() if np.ndim(speeds) == 1 else []
+    if not values:
+        raise ValueError(f"speeds = {speeds!r}; {allowed}")
+    for k, speed in enumerate(values):
+        try:
+            check_speed(speed)
+        except ValueError:
+            raise ValueError(f"speeds[{k}] = {speed!r}; {allowed}") from None
+        if k and not speed > values[k - 1]:
+            raise ValueError(f"speeds[{k}] = {speed!r} after {values[k - 1]!r}; {allowed}")
+    return np.array(values, dtype=float)
+
+
+def checked_damping(damping, n: int) -> np.ndarray:
+    """``damping`` as ``(2, n, n)`` floats (zeros for None); ``ValueError`` unless usable."""
+    if damping is None:
+        return np.zeros((2, n, n))
+    C = np.asarray(damping, dtype=float)
+    if C.shape != (2, n, n) or not np.all(np.isfinite(C)):
+        raise ValueError(f"damping of shape {C.shape}; allowed: the finite (2, {n}, {n}) "
+                         "matrices [C1, C2] of hubbeam.damping.damping_matrices")
+    return C
+
+
+def stretch_foreshortening(sm, q1s: np.ndarray) -> np.ndarray:
+    """``E(q1s) = sum_k w_k (f1(x_k) q1s) S(x_k)`` over the point cloud: the foreshortening of the
+    exact kinetic energy (Eqs. 8-9) weighted by the stretch; CFOAM's ``K22`` gains ``Omega^2 E``."""
+    return np.einsum("k,k,kij->ij", sm.w, sm.F1 @ q1s, sm.S)
+
+
+def state_names(traits, n: int) -> tuple[str, ...]:
+    """``theta``, ``q1_1..q1_n`` (models that keep q1), ``q2_1..q2_n``, then their rates ``*_dot``."""
+    blocks = ("q1", "q2") if traits.keeps_axial else ("q2",)
+    coordinates = ("theta",) + tuple(f"{b}_{i}" for b in blocks for i in range(1, n + 1))
+    return coordinates + tuple(f"{c}_dot" for c in coordinates)
+
+
+def second_order(sm, traits, speed: float, damping=None):
+    """``(M, G, C, K, q1s)`` of ``M z'' + (G + C) z' + K z = e_theta tau`` (module docstring)."""
+    n = sm.M2.shape[0]
+    Cd = checked_damping(damping, n)
+    q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(n)
+    Me, Ge, Ke = constant_speed_matrices(sm, traits.linearisation, speed, axial=traits.keeps_axial)
+    Ke = np.array(Ke)
+    if traits.exact_kinetic_energy:  # Eqs. 8-9
+        Ke[-n:, -n:] += speed**2 * stretch_foreshortening(sm, q1s)
+    Ce = np.zeros_like(Me)
+    if traits.keeps_axial:
+        Ce[:n, :n] = Cd[0]
+    Ce[-n:, -n:] = Cd[1]
+    N = 1 + Me.shape[0]
+    M, G, C, K = (np.zeros((N, N)) for _ in range(4))
+    M[1:, 1:], G[1:, 1:], C[1:, 1:], K[1:, 1:] = Me, Ge, Ce, Ke
+    M[0, 0] = sm.Jh + sm.Jb + 2.0 * sm.V1 @ q1s + q1s @ sm.M1 @ q1s
+    M[0, -n:] = M[-n:, 0] = sm.V2 + sm.R.T @ q1s
+    if traits.keeps_axial:
+        p = sm.V1 + sm.M1 @ q1s
+        G[1:1 + n, 0] = -2.0 * speed * p
+        if traits.hub_velocity_force:
+            G[0, 1:1 + n] = 2.0 * speed * p
+    return M, G, C, K, q1s
+
+
+def accelerations(M, G, C, K, hub: str):
+    """``(Az, Av, Bu)`` of the accelerations ``z'' = Az z + Av z' + Bu u`` for the hub condition.
+
+    Free hub: ``M z'' = -K z - (G + C) z' + e_theta tau``. Prescribed hub: ``theta'' = u`` and the
+    elastic rows ``M_qq q'' = -K_q z - (G + C)_q z' - M_qtheta u``.
+    """
+    N = M.shape[0]
+    E = G + C
+    if hub == "free":
+        Az, Av, Bu = np.split(np.linalg.solve(M, np.hstack([-K, -E, np.eye(N)[:, :1]])),
+                              [N, 2 * N], axis=1)
+        return Az, Av, Bu
+    Az, Av, Bu = np.zeros((N, N)), np.zeros((N, N)), np.zeros((N, 1))
+    Bu[0, 0] = 1.0
+    solved = np.linalg.solve(M[1:, 1:], np.hstack([-K[1:], -E[1:], -M[1:, :1]]))
+    Az[1:], Av[1:], Bu[1:] = np.split(solved, [N, 2 * N], axis=1)
+    return Az, Av, Bu
+
+
+def check_matrices(beam, sm) -> None:
+    """``ValueError`` unless ``sm`` was assembled for ``beam`` (its hub radius and tip modes)."""
+    n = sm.M2.shape[0]
+    same = (float(sm.rA) == float(beam.rA)
+            and np.allclose(sm.f2L, transverse_modes(beam.L, n, beam)[0], rtol=1e-12, atol=0.0))
+    if not same:
+        raise ValueError("sm: system matrices assembled for another beam; allowed: "
+                         "hubbeam.matrices.assemble(beam, tip, n_modes) of this beam")
+
+
+def output_rows(beam, sm, traits, speed: float, q1s, names):
+    """``(Cz, Cv, Ca)``: each output is ``Cz z + Cv z' + Ca z''`` (rows in the order of ``names``).
+
+    The tip's transverse acceleration in the rotating frame is ``a_y = v'' + 2 theta' u' +
+    theta'' (rA + L + u) - theta'^2 v`` at ``x = L``, linearised about the steady spin:
+    ``f2(L) q2'' + 2 Omega f1(L) q1' + (rA + L + f1(L) q1s) theta'' - Omega^2 f2(L) q2``
+    (``u = f1 q1``; the foreshortening part of the axial displacement is of second order).
+    """
+    n = sm.M2.shape[0]
+    N = 1 + (2 if traits.keeps_axial else 1) * n
+    q2 = slice(N - n, N)
+    q1 = slice(1, 1 + n)
+    lever = sm.rA + beam.L
+    curvature = float(beam.EI_at(0.0)) * transverse_modes(0.0, n, beam, derivative=2)[0]
+    rows = {name: (np.zeros(N), np.zeros(N), np.zeros(N)) for name in names}
+    for name, (z, v, a) in rows.items():
+        if name == "hub_angle":
+            z[0] = 1.0
+        elif name == "hub_speed":
+            v[0] = 1.0
+        elif name == "tip_deflection":
+            z[q2] = sm.f2L
+        elif name == "tip_arc":
+            z[0], z[q2] = lever, sm.f2L
+        elif name == "root_moment":
+            z[q2] = curvature
+        else:  # tip_acceleration
+            a[0] = lever + sm.f1L @ q1s
+            a[q2] = sm.f2L
+            z[q2] = -speed**2 * sm.f2L
+            if traits.keeps_axial:
+                v[q1] = 2.0 * speed * sm.f1L
+    return tuple(np.array([rows[name][k] for name in names]) for k in range(3))
+
+
+def linear_model(beam, sm, model: str, speed: float, hub: str = "free", damping=None,
+                 outputs=None) -> LinearModel:
+    """The :class:`LinearModel` of ``model`` about the steady spin at ``speed`` (rad s-1).
+
+    ``beam`` (``BeamParameters`` or ``BeamSections``) and ``sm`` (``hubbeam.matrices.assemble``
+    of it, with the tip mass as configured); ``hub``: ``"free"`` (input hub torque) or
+    ``"prescribed"`` (input hub angular acceleration); ``damping``: the ``(2, n, n)`` matrices of
+    ``hubbeam.damping.damping_matrices`` or None; ``outputs``: a name or a list of names of
+    :data:`OUTPUTS` (all by default). Every argument is checked before anything is computed. A TLAM operating point
+    above its critical speed is a valid, unstable plant.
+    """
+    traits, names = check_request(model, hub, outputs)
+    speed = check_speed(speed)
+    check_matrices(beam, sm)
+    M, G, C, K, q1s = second_order(sm, traits, speed, damping)
+    return state_space(beam, sm, traits, hub, speed, names, q1s, accelerations(M, G, C, K, hub))
+
+
+def state_space(beam, sm, traits, hub, speed, names, q1s, rates) -> LinearModel:
+    """The :class:`LinearModel` with the accelerations ``rates = (Az, Av, Bu)`` of either route
+    (``z'' = Az z + Av z' + Bu u``) and the output rows of :func:`output_rows`."""
+    Az, Av, Bu = rates
+    N = Az.shape[0]
+    A = np.block([[np.zeros((N, N)), np.eye(N)], [Az, Av]])
+    B = np.vstack([np.zeros((N, 1)), Bu])
+    Cz, Cv, Ca = output_rows(beam, sm, traits, speed, q1s, names)
+    return LinearModel(model=traits.name, hub=hub, speed=speed, A=A, B=B,
+                       C=np.hstack([Cz + Ca @ Az, Cv + Ca @ Av]), D=Ca @ Bu,
+                       states=state_names(traits, sm.M2.shape[0]), inputs=(HUBS[hub],),
+                       outputs=names)
+
+
+def plant(beam, model: str, speed: float, hub: str = "free", tip=None, n_modes: int = 5,
+          damping=None, outputs=None, n_quad: int = 64):
+    """The python-control ``StateSpace`` of ``model`` for a case's beam, tip mass and damping.
+
+    ``tip``: a ``TipMass`` or None; ``damping``: a case's ``damping`` mapping
+    (``hubbeam.damping``) or None; ``n_modes`` and ``n_quad`` as in
+    :func:`hubbeam.matrices.assemble`. The other arguments as :func:`linear_model`; all are checked
+    before the matrices are assembled.
+    """
+    check_request(model, hub, outputs)
+    check_speed(speed)
+    check_damping(damping, "damping")
+    sm = assemble(beam, tip, n_modes, n_quad)
+    return linear_model(beam, sm, model, speed, hub, damping_matrices(damping, sm),
+                        outputs).to_control()

@@ -1,0 +1,15 @@
+"""Snakemake shim: the study's beam as data, its properties and first mode shapes (``hubbeam.shapes``)."""
+
+from hubbeam.beam import beam_from_config
+from hubbeam.io import write_netcdf
+from hubbeam.parameters import TipMass
+from hubbeam.provenance import global_attributes
+from hubbeam.shapes import beam_dataset
+
+p = snakemake.params
+ds = beam_dataset(beam_from_config(p.beam), {case: TipMass(**tip) for case, tip in p.tips.items()},
+                  p.speeds, p.tip_masses, p.n_shapes, p.n_modes, p.n_quad)
+ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
+write_netcdf(ds, snakemake.output.beam)
+with open(snakemake.log[0], "w") as log:
+    print(f"beam: {dict(ds.sizes)} -> {snakemake.output.beam}", file=log)

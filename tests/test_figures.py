@@ -15,7 +15,6 @@ from synthetic_results import paper_cases, run_script, simulation_dataset, write
 
 from hubbeam.io import ResultFileError, open_result
 from hubbeam.plotting import draw
-from hubbeam.plotting.figures import FigureDataError
 from hubbeam.plotting.style import styled, units_tex
 from hubbeam.products import (
     EIGEN_FIGURE,
@@ -27,6 +26,7 @@ from hubbeam.products import (
     of_kind,
     product_from_entry,
 )
+from hubbeam.results import DatasetError
 
 
 @pytest.fixture(scope="module")
@@ -169,10 +169,22 @@ def test_diverged_run_is_drawn_up_to_divergence_and_marked(datasets):
     assert ax.get_ylim() == pytest.approx((foam.min() - span, foam.max() + span))
 
 
+def test_a_study_comparison_is_titled_by_its_name_and_labels_each_run(datasets):
+    from hubbeam.plotting import comparison
+
+    runs = {case: datasets[case] for case in ("fig05_tlam_wf3p5", "fig05_foam_wf3p5")}
+    with styled():
+        fig = comparison.plot("spin_models", runs)
+    assert fig.axes[0].get_title(loc="left") == "(a) comparison spin_models"
+    labels = [line.get_label() for line in fig.axes[0].get_lines()]
+    assert labels[1] == "fig05_foam_wf3p5 (FOAM, n = 5)"
+    assert labels[0].startswith("fig05_tlam_wf3p5 (TLAM, n = 5), diverged at ")
+
+
 def test_fig03_fails_naming_a_missing_high_order_variable():
     spec = paper_cases()["fig03_cfoam_n1"]
     ds = simulation_dataset("fig03_cfoam_n1", spec, t_end=5.0, dt=0.5).drop_vars("dQ_q2")
-    with styled(), pytest.raises(FigureDataError, match="fig03_cfoam_n1.*'dQ_q2'"):
+    with styled(), pytest.raises(DatasetError, match="fig03_cfoam_n1.*'dQ_q2'"):
         plotter("fig03")({"fig03_cfoam_n1": ds})
 
 
@@ -300,7 +312,7 @@ def test_fig03_panels_draw_the_high_order_terms_they_name(datasets):
     runs = group(datasets, "fig03")
     with styled():
         fig = plotter("fig03")(runs)
-    for ax, (name, _, _) in zip(fig.axes, PANELS):
+    for ax, (name, _) in zip(fig.axes, PANELS):
         curves = list(_model_curves(ax))
         assert curves
         for line, model, modes, label in curves:

@@ -19,7 +19,8 @@ from hubbeam import linearised
 from hubbeam.config import ConfigError
 from hubbeam.models import MODELS
 from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import SimulationError, case_matrices, simulate, simulation_inputs
+from hubbeam.results import simulation_inputs
+from hubbeam.simulate import SimulationError, case_matrices, simulate
 
 SPEED = 2.0  # rad s-1, below TLAM's critical speed (2.91 rad/s without tip mass)
 

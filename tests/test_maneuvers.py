@@ -21,8 +21,9 @@ from scipy.interpolate import CubicSpline
 from hubbeam.config import ConfigError
 from hubbeam.matrices import assemble
 from hubbeam.parameters import BeamParameters
+from hubbeam.results import simulation_inputs
 from hubbeam.settings import simulation_settings
-from hubbeam.simulate import simulate, simulation_inputs
+from hubbeam.simulate import simulate
 
 
 @pytest.fixture(scope="module")

@@ -238,7 +238,8 @@ def test_eigen_analysis_of_a_non_uniform_beam():
 
 @pytest.mark.parametrize("model", ["TLAM", "FOAM", "SFOAM", "CFOAM"])
 def test_every_model_simulates_a_non_uniform_beam_and_reruns_from_its_attributes(model):
-    from hubbeam.simulate import simulate, simulation_inputs
+    from hubbeam.results import simulation_inputs
+    from hubbeam.simulate import simulate
 
     numerics = {"rtol": 1e-7, "atol": 1e-9, "output_step": 0.1, "max_steps": 100_000,
                 "step_warning": 100_000, "divergence_limit": 1.0, "quadrature_points": 64}

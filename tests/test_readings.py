@@ -22,7 +22,6 @@ from hubbeam.beam import beam_from_config
 from hubbeam.config import case_names, case_settings, load_config
 from hubbeam.eigen import critical_speed_table, table2
 from hubbeam.io import write_netcdf
-from hubbeam.plotting.figures import maneuver
 from hubbeam.readings import (
     VERDICT_FLAGS,
     ReadingError,
@@ -34,6 +33,7 @@ from hubbeam.readings import (
     reading_case,
     reading_cases,
 )
+from hubbeam.results import maneuver
 from hubbeam.simulate import simulate
 
 

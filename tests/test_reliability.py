@@ -43,7 +43,8 @@ from hubbeam.matrices import assemble, to_dataset
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.plotting.style import styled
 from hubbeam.products import PAPER_PRODUCTS
-from hubbeam.simulate import SimulationError, compile_kernels, simulate, simulation_inputs
+from hubbeam.results import DatasetError, simulation_inputs
+from hubbeam.simulate import compile_kernels, simulate
 
 SNAKEFILE = REPO / "Snakefile"
 
@@ -557,7 +558,7 @@ def test_a_dataset_without_the_rerun_attributes_is_named(setup):
     params, numerics, config = setup
     ds = simulate(case_settings(config, "fig05_foam_wf2p8") | {"t_end": 0.1}, params, numerics)
     del ds.attrs["quadrature_points"]
-    with pytest.raises(SimulationError, match="dataset attribute 'quadrature_points' is missing"):
+    with pytest.raises(DatasetError, match="dataset attribute 'quadrature_points' is missing"):
         simulation_inputs(ds.attrs)
 
 

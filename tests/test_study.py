@@ -16,9 +16,10 @@ import pytest
 import xarray as xr
 import yaml
 
+from hubbeam.results import maneuver_end
 from hubbeam.study import MARKER
 from hubbeam.study.report import study_html, study_markdown
-from hubbeam.study.summary import COLUMNS, case_summary, maneuver_end
+from hubbeam.study.summary import COLUMNS, case_summary
 
 REPO = Path(__file__).resolve().parents[1]
 

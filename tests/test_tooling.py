@@ -1,5 +1,6 @@
 """The static checks of ``make test``: the import contracts of pyproject.toml (``lint-imports``:
-the numba core stands alone, plotting does not reach into the report, the package's layers) and
+the numba core stands alone, plotting does not reach into the report, the report side reads
+results without the plotting package, the package's layers) and
 ``ruff check`` over every Python source of the repository."""
 
 import subprocess

@@ -15,7 +15,6 @@ numbers carry ~1e-4 relative uncertainty before any modelling choice).
 
 from __future__ import annotations
 
-import csv
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -26,9 +25,9 @@ import xarray as xr
 
 from hubbeam import measures, paper
 from hubbeam.io import open_result
-from hubbeam.plotting.figures import diverged_at, maneuver_value, n_modes, select, variable
 from hubbeam.products import PAPER_PRODUCTS, Product
-from hubbeam.tables import read_csv_rows, table3_rows
+from hubbeam.results import diverged_at, maneuver_value, n_modes, select, times, variable
+from hubbeam.tables import read_csv_rows, table3_rows, write_rows
 
 CLAIM_COLUMNS = ("id", "claim", "unit", "paper", "computed", "rel_diff", "tolerance", "verdict",
                  "source")
@@ -42,7 +41,7 @@ class ClaimInputError(LookupError):
 def residual(case: str, ds: xr.Dataset, name: str = "tip_transverse") -> tuple[np.ndarray, np.ndarray]:
     """Times and values of ``name`` after the maneuver (``t > t_f``), finite samples only."""
     tf = maneuver_value(case, ds, "tf")
-    t, y = measures.after(ds["time"].values, variable(case, ds, name).values, tf)
+    t, y = measures.after(times(ds), variable(case, ds, name).values, tf)
     if len(t) < 4:
         t_div = diverged_at(case, ds)
         why = f"the run diverged at t = {t_div:g} s" if t_div is not None else "the run ends too early"
@@ -315,7 +314,7 @@ def _fewest_and_most(results, key):
 
 
 def _late_share(case, ds, name):
-    return measures.late_share(ds["time"].values, variable(case, ds, name).values,
+    return measures.late_share(times(ds), variable(case, ds, name).values,
                                maneuver_value(case, ds, "tf"))
 
 
@@ -394,25 +393,7 @@ def evaluate(results: Results, selected: list[Claim] | None = None, strict: bool
 
 
 def write_claims(rows: list[dict], path) -> Path:
-    return write_table(rows, path, CLAIM_COLUMNS)
-
-
-def write_table(rows: list[dict], path, columns) -> Path:
-    """``rows`` as csv with ``columns``: floats by ``repr``, NaN and None as empty cells."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-
-    def cell(value):
-        if value is None or (isinstance(value, float) and math.isnan(value)):
-            return ""
-        return repr(value) if isinstance(value, float) else str(value)
-
-    with path.open("w", newline="") as handle:
-        writer = csv.writer(handle, lineterminator="\n")
-        writer.writerow(columns)
-        for row in rows:
-            writer.writerow([cell(row[c]) for c in columns])
-    return path
+    return write_rows(rows, path, CLAIM_COLUMNS)
 
 
 NUMERIC_CLAIM_COLUMNS = ("paper", "computed", "rel_diff", "tolerance")

@@ -2,19 +2,22 @@
 and rendered to self-contained HTML (images embedded) by markdown-it-py.
 
 The prose of the reports lives in the templates; the modules that write a report compute its
-numbers and tables and hand them to :func:`render`.
+numbers (written by :mod:`hubbeam.formatting`) and tables (rendered by :func:`markdown_table`, the
+one renderer of a Markdown table) and hand them to :func:`render`.
 """
 
 from __future__ import annotations
 
 import base64
 import html
-import math
+from collections.abc import Iterable, Sequence
 from functools import cache
 from pathlib import Path
 
 import jinja2
 from markdown_it import MarkdownIt
+
+from hubbeam.formatting import number
 
 #: the templates :func:`render` reads (package data: the rules that render them depend on them)
 PACKAGE_DATA = ("templates/*.j2",)
@@ -25,14 +28,36 @@ CSS = ("body{font-family:sans-serif;max-width:60rem;margin:2rem auto;padding:0 1
        "code{background:#f5f5f5;padding:0 .2rem}")
 
 
-def number(value, digits: int = 4) -> str:
-    """A table cell (the templates' ``number`` filter): ``-`` for NaN, ``yes``/``no`` for flags,
-    ``digits`` significant figures for other floats."""
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if isinstance(value, float):
-        return "-" if math.isnan(value) else f"{value:.{digits}g}"
-    return str(value)
+#: column alignments of :func:`markdown_table`: left, right, centre
+ALIGNMENTS = {"l": "---", "r": "---:", "c": ":---:"}
+
+
+def markdown_table(columns: Sequence[str], rows: Iterable[Sequence], align: str | None = None) -> str:
+    """The one renderer of a Markdown (pipe) table: a header row of ``columns``, the separator
+    and one line per row, without a trailing newline.
+
+    ``align`` gives one letter of :data:`ALIGNMENTS` per column (default: all left). A cell that is
+    not text is written by :func:`hubbeam.formatting.number` (4 significant figures, ``-`` when
+    missing); ``|`` in a cell is escaped and a line break becomes a space, so a cell never splits
+    the table.
+    """
+    align = align or "l" * len(columns)
+    if len(align) != len(columns) or set(align) - set(ALIGNMENTS):
+        raise ValueError(f"align: got {align!r} for {len(columns)} columns; allowed: one of "
+                         f"{', '.join(ALIGNMENTS)} per column")
+    lines = [_row(columns), "|" + "|".join(ALIGNMENTS[a] for a in align) + "|"]
+    for row in rows:
+        row = list(row)
+        if len(row) != len(columns):
+            raise ValueError(f"table row {row!r}: {len(row)} cells; allowed: {len(columns)} "
+                             f"({', '.join(columns)})")
+        lines.append(_row(row))
+    return "\n".join(lines)
+
+
+def _row(cells) -> str:
+    text = (cell if isinstance(cell, str) else number(cell) for cell in cells)
+    return "| " + " | ".join(" ".join(t.replace("|", "\\|").splitlines()) for t in text) + " |"
 
 
 @cache
@@ -40,7 +65,7 @@ def _environment() -> jinja2.Environment:
     environment = jinja2.Environment(loader=jinja2.PackageLoader("hubbeam", "templates"),
                                      undefined=jinja2.StrictUndefined, trim_blocks=True,
                                      lstrip_blocks=True, keep_trailing_newline=True, autoescape=False)
-    environment.filters["number"] = number
+    environment.filters["number"] = number  # a number in the prose, as in the tables
     return environment
 
 

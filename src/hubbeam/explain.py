@@ -16,6 +16,8 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
+from hubbeam.formatting import number, percent
+
 EXPLAINED = "explained by a reading"
 MISPRINT = "likely misprint"
 UNEXPLAINED = "not explained by any reading tried"
@@ -42,9 +44,9 @@ def _swaps(printed: str) -> Iterable[Misprint]:
 def misprints(printed: float) -> list[Misprint]:
     """Simple misprints of ``printed`` (three significant figures): exponent off by one either
     way, and every swap of two adjacent differing digits."""
-    text = f"{printed:.3g}"
-    return [Misprint(printed * 10.0, f"exponent off by one: {printed * 10:.3g} printed as {text}"),
-            Misprint(printed / 10.0, f"exponent off by one: {printed / 10:.3g} printed as {text}"),
+    text = number(float(printed), 3)
+    return [Misprint(printed * 10.0, f"exponent off by one: {number(printed * 10.0, 3)} printed as {text}"),
+            Misprint(printed / 10.0, f"exponent off by one: {number(printed / 10.0, 3)} printed as {text}"),
             *_swaps(text)]
 
 
@@ -80,23 +82,23 @@ def conclude(default: Mapping, trials: Mapping[str, Mapping]) -> Conclusion:
     explaining = sorted(name for name, row in trials.items() if row["verdict"] == "agrees")
     if explaining:
         best = min(explaining, key=lambda name: _distance(trials[name]))
-        text = (f"explained by reading {', '.join(explaining)}: computed {trials[best]['computed']:.4g} "
-                f"against the printed {default['paper']:.4g} ({_percent(trials[best])})")
+        text = (f"explained by reading {', '.join(explaining)}: computed {number(trials[best]['computed'])} "
+                f"against the printed {number(default['paper'])} ({_percent(trials[best])})")
         return Conclusion(default["id"], EXPLAINED, text, best, closest_distance, base, tuple(trials),
                           tuple(explaining))
     if default.get("rel_diff") is not None and math.isfinite(default["rel_diff"]):
         for hypothesis in misprints(default["paper"]):
             rel = (default["computed"] - hypothesis.value) / abs(hypothesis.value)
             if abs(rel) <= default["tolerance"]:
-                text = (f"likely misprint ({hypothesis.description}): computed {default['computed']:.4g} "
-                        f"is within {100 * abs(rel):.2g} % of {hypothesis.value:.4g}")
+                text = (f"likely misprint ({hypothesis.description}): computed {number(default['computed'])} "
+                        f"is within {percent(abs(rel))} of {number(hypothesis.value)}")
                 return Conclusion(default["id"], MISPRINT, text, closest, closest_distance, base,
                                   tuple(trials))
     if closest is None:
         text = "no reading recomputes this claim"
     elif closest_distance < base:
-        text = (f"closest reading {closest}: {trials[closest]['computed']:.4g} against the printed "
-                f"{default['paper']:.4g} ({_percent(trials[closest])}; default {_percent(default)})")
+        text = (f"closest reading {closest}: {number(trials[closest]['computed'])} against the printed "
+                f"{number(default['paper'])} ({_percent(trials[closest])}; default {_percent(default)})")
     else:
         text = f"no reading tried comes closer than the default ({_percent(default)})"
     return Conclusion(default["id"], UNEXPLAINED, text, closest, closest_distance, base, tuple(trials))
@@ -105,8 +107,8 @@ def conclude(default: Mapping, trials: Mapping[str, Mapping]) -> Conclusion:
 def _percent(row: Mapping) -> str:
     rel = row.get("rel_diff")
     if rel is not None and math.isfinite(rel):
-        return f"{100 * rel:+.3g} %"
-    return f"max difference {row['computed']:.3g} of the peak"
+        return percent(rel, 3, signed=True)
+    return f"max difference {number(row['computed'], 3)} of the peak"
 
 
 def side_effects(default_rows: Mapping[str, Mapping], reading_rows: Iterable[Mapping]) -> dict[str, dict]:

@@ -29,14 +29,14 @@ import numpy as np
 import xarray as xr
 
 from hubbeam import claims as claim_defs
-from hubbeam import measures
+from hubbeam import measures, tables
 from hubbeam.beam import beam_from_config
 from hubbeam.config import case_settings
 from hubbeam.eigen import critical_speed
 from hubbeam.eigen import table2 as eigen_table2
 from hubbeam.parameters import TipMass
-from hubbeam.plotting.figures import maneuver_value, variable
 from hubbeam.products import PAPER_PRODUCTS
+from hubbeam.results import maneuver_value, variable
 from hubbeam.simulate import simulate
 from hubbeam.tables import read_csv_rows
 
@@ -298,7 +298,7 @@ def reading_rows(name: str, rows: list[dict], default_rows: Mapping[str, Mapping
 
 def write_rows(rows: list[dict], path) -> None:
     """The rows as csv (empty cell for NaN or None)."""
-    claim_defs.write_table(rows, path, READING_COLUMNS)
+    tables.write_rows(rows, path, READING_COLUMNS)
 
 
 def read_rows(path) -> list[dict]:

@@ -8,7 +8,6 @@ The claims are evaluated by :mod:`hubbeam.claims` (``claims.csv``), the captions
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Mapping
 from pathlib import Path
@@ -16,47 +15,38 @@ from pathlib import Path
 import xarray as xr
 
 from hubbeam import __version__, validity
-from hubbeam.document import render
-from hubbeam.plotting.figures import maneuver, model, n_modes, tip_mass
+from hubbeam.document import markdown_table, render
+from hubbeam.formatting import number, percent
 from hubbeam.products import PAPER_PRODUCTS, Product
-
-
-def _format(value, digits=4) -> str:
-    if value is None or value == "" or (isinstance(value, float) and math.isnan(value)):
-        return "-"
-    if isinstance(value, float):
-        return f"{value:.{digits}g}"
-    return str(value)
-
-
-def _md_cell(text: str) -> str:
-    return str(text).replace("|", "\\|")
+from hubbeam.results import maneuver, model, n_modes, times, tip_mass, tip_position
 
 
 def claims_markdown(rows: list[dict]) -> str:
-    lines = ["| id | claim | unit | paper | computed | rel. diff. | verdict |",
-             "|---|---|---|---:|---:|---:|---|"]
-    for row in rows:
-        rel = row.get("rel_diff")
-        rel_text = "-" if rel in ("", None) or (isinstance(rel, float) and math.isnan(rel)) else f"{100 * rel:+.2f} %"
-        lines.append(f"| `{row['id']}` | {_md_cell(row['claim'])} | {row['unit']} | {_format(row['paper'])} | "
-                     f"{_format(row['computed'])} | {rel_text} | **{row['verdict']}** |")
-    return "\n".join(lines)
+    return markdown_table(("id", "claim", "unit", "paper", "computed", "rel. diff.", "verdict"),
+                          ([f"`{row['id']}`", row["claim"], row["unit"], number(row["paper"]),
+                            number(row["computed"]), percent(row.get("rel_diff"), decimals=2, signed=True),
+                            f"**{row['verdict']}**"] for row in rows), "lllrrrl")
 
 
 def runs_markdown(datasets: Mapping[str, xr.Dataset]) -> str:
     """The settings of every simulation run, read from the datasets' attributes."""
-    lines = ["| case | model | n | maneuver | t_end (s) | tip mass (kg) at l (m) | validity | steps |",
-             "|---|---|---:|---|---:|---|---|---:|"]
+    rows = []
     for case, ds in sorted(datasets.items()):
-        man = maneuver(case, ds)
-        law = ", ".join(f"{k} = {v:g}" if isinstance(v, (int, float)) else f"{k} = {v}" for k, v in man.items())
+        law = ", ".join(f"{key} = {number(value, 6) if isinstance(value, (int, float)) else value}"
+                        for key, value in maneuver(case, ds).items())
         mass = tip_mass(case, ds)
-        where = f"{mass:g} at {float(ds.attrs['tip_position_m']):g}" if mass else "none"
-        lines.append(f"| {case} | {model(case, ds)} | {n_modes(case, ds)} | {law} | "
-                     f"{float(ds['time'].values[-1]):g} | {where} | {validity.describe(ds.attrs)} | "
-                     f"{ds.attrs.get('n_steps', '-')} |")
-    return "\n".join(lines)
+        where = f"{number(mass, 6)} at {number(tip_position(case, ds), 6)}" if mass else "none"
+        rows.append([case, model(case, ds), n_modes(case, ds), law, number(float(times(ds)[-1]), 6), where,
+                     validity.describe(ds.attrs), number(ds.attrs.get("n_steps"))])
+    return markdown_table(("case", "model", "n", "maneuver", "t_end (s)", "tip mass (kg) at l (m)",
+                           "validity", "steps"), rows, "llrlrllr")
+
+
+def readings_markdown(readings: list[dict]) -> str:
+    """The readings tested (:func:`hubbeam.explain.section`): what each changes, its notes and
+    how many claims it recomputes."""
+    return markdown_table(("Reading", "Changes", "Notes", "Claims recomputed"),
+                          ([f"`{r['name']}`", r["why"], r["notes"], r["claims"]] for r in readings))
 
 
 def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Path],
@@ -84,7 +74,7 @@ def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Pa
             "title": product.title, "paper": product.paper, "ours": product.ours,
             "link": Path(os.path.relpath(Path(figures[key]).resolve(), report_dir)).as_posix(),
             "claims": claims_markdown(listed) if listed else ""})
-    differing = [{"id": row["id"], "paper": _format(row["paper"]), "computed": _format(row["computed"]),
+    differing = [{"id": row["id"], "paper": number(row["paper"]), "computed": number(row["computed"]),
                   "unit": "" if row["unit"] == "1" else f" {row['unit']}"}
                  for row in claim_rows if row["verdict"] == "differs"]
     return render(
@@ -93,4 +83,5 @@ def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Pa
         claims=claim_rows, validation=validation, readings=readings, differing=differing,
         counts={v: sum(r["verdict"] == v for r in claim_rows) for v in ("agrees", "differs", "qualitative")},
         tables=[Path(tables[name]).read_text().strip() for name in sorted(tables)],
-        figures=sections, all_claims=claims_markdown(claim_rows), runs=runs_markdown(datasets))
+        figures=sections, all_claims=claims_markdown(claim_rows), runs=runs_markdown(datasets),
+        readings_table=None if readings is None else readings_markdown(readings["readings"]))

@@ -243,3 +243,17 @@ def simulation_settings(case: Case | Mapping, numerics: Numerics | Mapping, leng
     cfg = copy.deepcopy({"beam": {"length": length}, "numerics": numerics, "cases": {where: case}})
     validate_parts(cfg, SIMULATION_SCHEMA)
     return _case(case_settings(cfg, where)), Numerics.from_mapping(cfg["numerics"])
+
+
+#: the schema of a bare damping mapping (the API's), the configuration's ``damping`` section
+DAMPING_SCHEMA = {"type": "object", "properties": {"damping": {"$ref": "#/$defs/damping"}}, "$defs": SCHEMA["$defs"]}
+
+
+def damping_settings(damping: Damping | Mapping | None) -> Damping | None:
+    """A damping as an object (None: no damping). An object is taken as it is; a mapping is checked
+    in the one pass of the configuration (``ConfigError`` naming ``damping.<key>``) and converted."""
+    if damping is None or isinstance(damping, Maneuver):
+        return damping
+    cfg = {"damping": copy.deepcopy(dict(damping))}
+    validate_parts(cfg, DAMPING_SCHEMA)
+    return Maneuver.from_mapping(cfg["damping"])

@@ -17,8 +17,8 @@ Guard rails written into the dataset's ``warnings`` attribute: more accepted ste
 of the models or diverged, and, when the optional
 convergence check (``numerics.convergence_check``) is given, a tip deflection that changes by more
 than its threshold when the case is rerun at a tighter tolerance or with more modes.
-:func:`simulation_inputs` turns the attributes of a dataset back into the arguments that
-reproduce it.
+:func:`hubbeam.results.simulation_inputs` turns the attributes of a dataset back into the
+arguments that reproduce it.
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ import xarray as xr
 from scipy.integrate import cumulative_simpson
 
 from hubbeam import linearised, validity
-from hubbeam.beam import beam_attributes, beam_from_attributes
+from hubbeam.beam import beam_attributes
 from hubbeam.core import radau
 from hubbeam.core.inputs import IntegratorSettings, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
@@ -176,8 +176,9 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
         with more modes and the differences are recorded (:func:`convergence`).
 
     The attribute ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so
-    that :func:`simulation_inputs` can rebuild them. ``case`` and ``numerics`` may be the objects
-    of :mod:`hubbeam.settings`; mappings are checked there once (``hubbeam.config.ConfigError``).
+    that :func:`hubbeam.results.simulation_inputs` can rebuild them. ``case`` and ``numerics`` may
+    be the objects of :mod:`hubbeam.settings`; mappings are checked there once
+    (``hubbeam.config.ConfigError``).
     """
     case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
     convergence_check = numerics.convergence_check and numerics.convergence_check.to_dict()
@@ -352,31 +353,6 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, sm: 
     title = f"hubbeam simulation {case.get('name', '')}: {case['model']}, {maneuver}"
     attrs = global_attributes(title, case_config=dict(case), extra=attributes)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
-
-
-def simulation_inputs(attrs: Mapping) -> dict:
-    """The arguments of :func:`simulate` that reproduce a simulation dataset, from its attributes.
-
-    ``simulate(**simulation_inputs(ds.attrs))`` reruns the case of ``ds`` (``case_config``) with
-    the beam parameters, integrator settings, Gauss nodes and convergence check recorded in it,
-    assembling the matrices itself. Raises :class:`SimulationError` naming a missing attribute.
-    """
-    def get(key):
-        if key not in attrs:
-            raise SimulationError(f"dataset attribute {key!r} is missing; allowed: the attributes "
-                                  "of a dataset written by hubbeam.simulate.simulate")
-        return attrs[key]
-
-    integers = ("max_steps", "step_warning", "quadrature_points")
-    numerics = {key: int(get(key)) if key in integers else float(get(key))
-                for key in (*NUMERICS_KEYS, *OPTIONAL_NUMERICS, "quadrature_points")}
-    settings = attrs.get("convergence_check")
-    return {
-        "case": json.loads(get("case_config")),
-        "params": beam_from_attributes(attrs),
-        "numerics": numerics,
-        "convergence_check": json.loads(settings) if settings else None,
-    }
 
 
 def compile_kernels(family: str | None = None) -> float:

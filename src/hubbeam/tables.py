@@ -21,8 +21,10 @@ import numpy as np
 import xarray as xr
 
 from hubbeam import paper
+from hubbeam.document import markdown_table
+from hubbeam.formatting import csv_cell, number
 from hubbeam.measures import peak
-from hubbeam.plotting.figures import maneuver_value, model
+from hubbeam.results import maneuver_value, model, n_modes, variable
 
 
 class Text(str):
@@ -58,30 +60,16 @@ def _is_number(value) -> bool:
     return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
 
 
-def _csv_cell(value) -> str:
-    if _is_number(value):
-        return "" if math.isnan(float(value)) else repr(float(value)) if isinstance(
-            value, (float, np.floating)) else str(int(value))
-    return "" if value is None else str(value)
-
-
 def format_value(value, digits: int | None, *, latex: bool = False) -> str:
-    """``digits`` significant digits; powers of ten as ``x 10^k`` (Markdown) or ``\\times 10^{k}``."""
-    if value is None or (_is_number(value) and math.isnan(float(value))):
-        return "-"
-    if not _is_number(value) or digits is None:
-        if latex and getattr(value, "latex", None):
-            return value.latex
-        text = str(value)
+    """``digits`` significant digits (:func:`hubbeam.formatting.number`); powers of ten as
+    ``x 10^k`` (Markdown) or ``\\times 10^{k}`` (LaTeX); text as it is (escaped for LaTeX, or
+    its own LaTeX spelling); ``-`` when missing."""
+    if latex and getattr(value, "latex", None):
+        return value.latex
+    if digits is None or not _is_number(value):
+        text = number(value)
         return _latex_escape(text) if latex else text
-    if isinstance(value, (int, np.integer)):
-        return str(int(value))
-    text = f"{float(value):.{digits}g}"
-    mantissa, _, exponent = text.partition("e")
-    if not exponent:
-        return text
-    power = int(exponent)
-    return f"${mantissa}\\times10^{{{power}}}$" if latex else f"{mantissa}×10^{power}"
+    return number(value, digits, power="latex" if latex else "unicode")
 
 
 def _latex_escape(text: str) -> str:
@@ -89,28 +77,27 @@ def _latex_escape(text: str) -> str:
 
 
 def write_csv(table: Table, path) -> Path:
+    return write_rows(table.rows, path, [c.key for c in table.columns])
+
+
+def write_rows(rows, path, columns) -> Path:
+    """``rows`` (mappings) as csv with ``columns``: numbers in full precision, NaN and None as
+    empty cells (:func:`hubbeam.formatting.csv_cell`)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     with path.open("w", newline="") as handle:
         writer = csv.writer(handle, lineterminator="\n")
-        writer.writerow([c.key for c in table.columns])
-        for row in table.rows:
-            writer.writerow([_csv_cell(row.get(c.key)) for c in table.columns])
+        writer.writerow(columns)
+        for row in rows:
+            writer.writerow([csv_cell(row.get(column)) for column in columns])
     return path
 
 
-def _md(text: str) -> str:
-    return text.replace("|", "\\|")
-
-
 def to_markdown(table: Table) -> str:
-    lines = [f"**{table.name}.** {table.caption}", "",
-             "| " + " | ".join(_md(c.title) for c in table.columns) + " |",
-             "|" + "|".join("---" if c.digits is None else "---:" for c in table.columns) + "|"]
-    for row in table.rows:
-        cells = [_md(format_value(row.get(c.key), c.digits)) for c in table.columns]
-        lines.append("| " + " | ".join(cells) + " |")
-    return "\n".join(lines) + "\n"
+    cells = ([format_value(row.get(c.key), c.digits) for c in table.columns] for row in table.rows)
+    align = "".join("l" if c.digits is None else "r" for c in table.columns)
+    return (f"**{table.name}.** {table.caption}\n\n"
+            + markdown_table([c.title for c in table.columns], cells, align) + "\n")
 
 
 def to_latex(table: Table) -> str:
@@ -227,9 +214,7 @@ def table2(csv_path, speed: float) -> Table:
 
 def max_abs_q_theta(case: str, ds: xr.Dataset) -> float:
     """Largest |Q_theta| (N m) over the run (NaN samples after a divergence ignored)."""
-    if "Q_theta" not in ds.data_vars:
-        raise KeyError(f"dataset of case {case!r} has no variable 'Q_theta' (needed for Table 3)")
-    return peak(ds["Q_theta"].values)
+    return peak(variable(case, ds, "Q_theta").values)
 
 
 def table3_rows(datasets: Mapping[str, xr.Dataset]) -> list[dict]:
@@ -242,7 +227,7 @@ def table3_rows(datasets: Mapping[str, xr.Dataset]) -> list[dict]:
         tau = maneuver_value(case, ds, "tau_max")
         q = max_abs_q_theta(case, ds)
         ref = printed.get(tau, math.nan)
-        rows.append({"tau_max": tau, "case": case, "n_modes": int(ds.attrs["n_modes"]),
+        rows.append({"tau_max": tau, "case": case, "n_modes": n_modes(case, ds),
                      "max_abs_Q_theta": q, "percent_of_tau_max": 100.0 * q / tau,
                      "paper": ref, "rel_diff": (q - ref) / abs(ref) if ref == ref else math.nan})
     if not rows:

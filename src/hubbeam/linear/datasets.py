@@ -30,7 +30,7 @@ import numpy as np
 import xarray as xr
 
 from hubbeam.beam import beam_attributes
-from hubbeam.damping import check_damping, damping_matrices
+from hubbeam.damping import damping_matrices
 from hubbeam.eigen import critical_speed
 from hubbeam.linear import frequency, tracking
 from hubbeam.linear.statespace import HUBS, INPUT_UNITS, OUTPUTS, check_speed, linear_model, second_order
@@ -39,6 +39,7 @@ from hubbeam.models import MODELS
 from hubbeam.models import model as model_traits
 from hubbeam.modes import transverse_modes
 from hubbeam.parameters import TipMass
+from hubbeam.settings import damping_settings
 
 #: the outputs of the transfer functions from the hub torque (free hub)
 TRANSFER_OUTPUTS = ("hub_angle", "tip_deflection", "tip_arc")
@@ -76,7 +77,7 @@ def _damping(damping, sm):
 
 def _checked(beam, tip_masses, speeds, n_modes, n_quad, damping, outputs=()):
     """Every argument checked, then the speeds as an array and the systems (:func:`_systems`)."""
-    check_damping(damping, "damping")
+    damping_settings(damping)  # checked here; the mapping goes on into the attributes
     speeds = check_speeds(speeds)
     unknown = [name for name in outputs if name not in OUTPUTS]
     if unknown:

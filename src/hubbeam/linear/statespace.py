@@ -34,11 +34,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubbeam.damping import check_damping, damping_matrices
+from hubbeam.damping import damping_matrices
 from hubbeam.linearised import axial_stretch, constant_speed_matrices
 from hubbeam.matrices import assemble
 from hubbeam.models import model as model_traits
 from hubbeam.modes import transverse_modes
+from hubbeam.settings import damping_settings
 
 #: hub conditions -> name of the input
 HUBS = {"free": "hub_torque", "prescribed": "hub_acceleration"}
@@ -287,7 +288,7 @@ def plant(beam, model: str, speed: float, hub: str = "free", tip=None, n_modes: 
     """
     check_request(model, hub, outputs)
     check_speed(speed)
-    check_damping(damping, "damping")
+    damping = damping_settings(damping)
     sm = assemble(beam, tip, n_modes, n_quad)
     return linear_model(beam, sm, model, speed, hub, damping_matrices(damping, sm),
                         outputs).to_control()

@@ -11,7 +11,6 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from hubbeam.io import open_result
-from hubbeam.plotting.figures import FigureDataError
 from hubbeam.plotting.style import save_figure, styled
 
 
@@ -28,4 +27,4 @@ def render_files(plot, case_files: Mapping[str, str | Path], pdf_path) -> tuple[
     return draw(plot, pdf_path, {case: open_result(path) for case, path in case_files.items()})
 
 
-__all__ = ["FigureDataError", "draw", "render_files"]
+__all__ = ["draw", "render_files"]

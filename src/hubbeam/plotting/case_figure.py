@@ -18,7 +18,17 @@ from hubbeam.plotting.style import (
     new_figure,
     panel_title,
 )
-from hubbeam.study.summary import dataset_maneuver, maneuver_end
+from hubbeam.results import (
+    attr,
+    diverged_at,
+    left_range_at,
+    maneuver,
+    maneuver_end,
+    model,
+    n_modes,
+    times,
+    variable,
+)
 
 #: quantity drawn per panel -> (variable of the simulation dataset, label with units)
 SERIES = {"tip": ("tip_transverse", axis_label("tip deflection $v(L)$", "m")),
@@ -26,51 +36,55 @@ SERIES = {"tip": ("tip_transverse", axis_label("tip deflection $v(L)$", "m")),
           "torque": ("hub_torque", axis_label(r"hub torque $\tau$", "N m"))}
 
 
-def mark_events(ax, ds: xr.Dataset, end: float) -> None:
+def mark_events(ax, case: str, ds: xr.Dataset, end: float) -> None:
     """Mark the end of the maneuver and, for a run stopped early, its stop: diverged, or left
     the range of the models (:mod:`hubbeam.validity`)."""
-    if end < float(ds["time"].values[-1]):
+    if end < float(times(ds)[-1]):
         mark_time(ax, end, f"maneuver end {end:g} s")
-    if int(ds.attrs["diverged"]) == 1:
-        mark_time(ax, float(ds.attrs["diverged_at_s"]), "diverged", color="#D55E00")
-    if int(ds.attrs["left_range"]) == 1:
-        mark_time(ax, float(ds.attrs["stopped_at_s"]), "left the models' range", color="#D55E00")
+    t_div = diverged_at(case, ds)
+    if t_div is not None:
+        mark_time(ax, t_div, "diverged", color="#D55E00")
+    t_left = left_range_at(case, ds)
+    if t_left is not None:
+        mark_time(ax, t_left, "left the models' range", color="#D55E00")
 
 
-def validity_note(ds: xr.Dataset) -> str:
+def validity_note(case: str, ds: xr.Dataset) -> str:
     """The title's note on a flagged run, e.g. ``" [large deflection: max |v(L)| = 0.54 L]"``."""
-    name = str(ds.attrs["validity"])
+    name = str(attr(case, ds, "validity"))
     if name == "valid":
         return ""
-    ratio = float(ds.attrs["max_deflection_ratio"])
+    ratio = float(attr(case, ds, "max_deflection_ratio"))
     return f" [{name.replace('_', ' ')}: max |v(L)| = {ratio:.2g} L]"
 
 
 def plot(case: str, ds: xr.Dataset):
     """The four-panel figure of simulation ``case`` from its dataset ``ds``."""
-    maneuver = dataset_maneuver(ds)
+    found = maneuver(case, ds)
     fig, axes = new_figure(4, 1, height=7.0)
     axes = axes[:, 0]
-    t = ds["time"].values
-    style = model_style(str(ds.attrs["model"]))
-    end = maneuver_end(maneuver)
+    t = times(ds)
+    style = model_style(model(case, ds))
+    end = maneuver_end(found)
     for index, (name, label) in enumerate(SERIES.values()):
-        axes[index].plot(t, ds[name].values, **style)
+        axes[index].plot(t, variable(case, ds, name).values, **style)
         axes[index].set_ylabel(label)
-        mark_events(axes[index], ds, end)
+        mark_events(axes[index], case, ds, end)
     ax = axes[3]
-    energy = ds["energy"].values
+    energy = variable(case, ds, "energy").values
     ax.plot(t, energy - energy[0], label="$E(t) - E(0)$", **style)
     if "work" in ds.data_vars:
-        net = ds["work"].values - (ds["dissipated_energy"].values if "dissipated_energy" in ds else 0.0)
+        net = variable(case, ds, "work").values - (
+            variable(case, ds, "dissipated_energy").values if "dissipated_energy" in ds else 0.0)
         ax.plot(t, net, color="0.2", linestyle=":", label="work - dissipated")
         ax.legend(loc="best")
     ax.set_ylabel(axis_label("energy change", "J"))
     ax.set_xlabel(axis_label("time $t$", "s"))
-    panel_title(axes[0], 0, f"{case}: {ds.attrs['model']}, n = {int(ds.attrs['n_modes'])}, "
-                f"{maneuver['kind']}{validity_note(ds)}")
-    limit = float(ds.attrs["small_deflection_limit"]) * float(ds.attrs["length"])
-    peak = float(ds.attrs["max_deflection_ratio"]) * float(ds.attrs["length"])
+    panel_title(axes[0], 0, f"{case}: {model(case, ds)}, n = {n_modes(case, ds)}, "
+                f"{found['kind']}{validity_note(case, ds)}")
+    length = float(attr(case, ds, "length"))
+    limit = float(attr(case, ds, "small_deflection_limit")) * length
+    peak = float(attr(case, ds, "max_deflection_ratio")) * length
     if peak > limit:  # hatch the deflections beyond the small-deflection range the run reaches
         for sign in (-1.0, 1.0):
             axes[0].axhspan(sign * limit, sign * peak, facecolor="none", hatch="//",

@@ -22,6 +22,7 @@ from hubbeam.plotting.style import (
     new_figure,
     panel_title,
 )
+from hubbeam.results import attr, model, n_modes, times, variable
 
 
 def plot(name: str, datasets: Mapping[str, xr.Dataset]):
@@ -29,18 +30,18 @@ def plot(name: str, datasets: Mapping[str, xr.Dataset]):
     fig, axes = new_figure(3, 1, height=6.0)
     axes = axes[:, 0]
     for k, (case, ds) in enumerate(datasets.items()):
-        model = str(ds.attrs["model"])
-        label = f"{case} ({model}, n = {int(ds.attrs['n_modes'])})"
-        if ds.attrs["validity"] != "valid":
+        model_name = model(case, ds)
+        label = f"{case} ({model_name}, n = {n_modes(case, ds)})"
+        if attr(case, ds, "validity") != "valid":
             label += f", {validity.describe(ds.attrs)}"
         props = {"color": SEQUENCE_COLORS[k % len(SEQUENCE_COLORS)],
-                 "linestyle": MODEL_STYLE.get(model, {}).get("linestyle", "-")}
-        for index, (variable, ylabel) in enumerate(SERIES.values()):
-            axes[index].plot(ds["time"].values, ds[variable].values, label=label if index == 0 else None,
-                             **props)
+                 "linestyle": MODEL_STYLE.get(model_name, {}).get("linestyle", "-")}
+        for index, (series, ylabel) in enumerate(SERIES.values()):
+            axes[index].plot(times(ds), variable(case, ds, series).values,
+                             label=label if index == 0 else None, **props)
             axes[index].set_ylabel(ylabel)
-    for ax, (variable, _) in zip(axes, SERIES.values()):
-        limit_to_bounded(ax, datasets, variable)
+    for ax, (series, _) in zip(axes, SERIES.values()):
+        limit_to_bounded(ax, datasets, series)
     axes[-1].set_xlabel(axis_label("time $t$", "s"))
     panel_title(axes[0], 0, f"comparison {name}")
     axes[0].legend(loc="best", fontsize=7)

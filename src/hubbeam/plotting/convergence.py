@@ -13,15 +13,9 @@ import numpy as np
 import xarray as xr
 
 from hubbeam.measures import after, fit_sinusoid, peak, residual_amplitude
-from hubbeam.plotting.figures import (
-    curve_label,
-    maneuver_value,
-    mark_maneuver_end,
-    n_modes,
-    plot_series,
-    require_datasets,
-)
+from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
+from hubbeam.results import maneuver_value, model, n_modes, times, variable
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):
@@ -38,8 +32,9 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     ax.legend(loc="best")
     ax = axes[0, 1]
     for variant, (case, ds) in enumerate(ordered[:-1]):
-        diff = ds["tip_transverse"].interp(time=ref["time"]) - ref["tip_transverse"]
-        ax.plot(ref["time"].values, 1e3 * diff.values, **model_style(ds.attrs["model"], variant),
+        diff = (variable(case, ds, "tip_transverse").interp(time=ref["time"])
+                - variable(ref_case, ref, "tip_transverse"))
+        ax.plot(times(ref), 1e3 * diff.values, **model_style(model(case, ds), variant),
                 label=curve_label(case, ds))
     mark_maneuver_end(ax, ref_case, ref)
     panel_title(ax, 1, f"Difference from {curve_label(ref_case, ref)}")
@@ -52,9 +47,10 @@ def plot(datasets: Mapping[str, xr.Dataset]):
         row.set_xlabel(axis_label("Time $t$", "s"))
     counts = np.array([n_modes(c, d) for c, d in ordered])
     ax = axes[1, 0]
-    ax.plot(counts, [peak(d["tip_transverse"].values) for _, d in ordered], "o-", label="peak $|v(L)|$")
-    ax.plot(counts, [residual_amplitude(d["time"].values, d["tip_transverse"].values,
-                                        maneuver_value(c, d, "tf")) for c, d in ordered], "s--",
+    tips = [variable(c, d, "tip_transverse").values for c, d in ordered]
+    ax.plot(counts, [peak(tip) for tip in tips], "o-", label="peak $|v(L)|$")
+    ax.plot(counts, [residual_amplitude(times(d), tip, maneuver_value(c, d, "tf"))
+                     for (c, d), tip in zip(ordered, tips)], "s--",
             label="residual amplitude ($t > t_f$)")
     panel_title(ax, 2, "Tip deflection against mode count")
     ax.set_yscale("log")
@@ -62,7 +58,7 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     ax.legend(loc="best")
     ax = axes[1, 1]
     frequencies = [residual_frequency(c, d) for c, d in ordered]
-    ax.plot(counts, frequencies, "o-", label=f"{ref.attrs['model']}, dominant residual frequency")
+    ax.plot(counts, frequencies, "o-", label=f"{model(ref_case, ref)}, dominant residual frequency")
     panel_title(ax, 3, "Residual vibration frequency")
     ax.set_ylabel(axis_label("$f$", "Hz"))
     ax.legend(loc="best")
@@ -75,4 +71,5 @@ def plot(datasets: Mapping[str, xr.Dataset]):
 def residual_frequency(case: str, ds: xr.Dataset) -> float:
     """Dominant frequency (Hz) of the residual tip deflection (fitted sinusoid after t_f)."""
     tf = maneuver_value(case, ds, "tf")
-    return fit_sinusoid(*after(ds["time"].values, ds["tip_transverse"].values, tf), tf).omega / (2 * np.pi)
+    tip = variable(case, ds, "tip_transverse").values
+    return fit_sinusoid(*after(times(ds), tip, tf), tf).omega / (2 * np.pi)

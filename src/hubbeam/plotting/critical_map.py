@@ -12,8 +12,8 @@ from __future__ import annotations
 import xarray as xr
 
 from hubbeam import paper
-from hubbeam.plotting.figures import FigureDataError
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, panel_title
+from hubbeam.results import DatasetError
 
 MAP_MIN_MASSES = 4
 
@@ -22,7 +22,7 @@ def plot(critical: xr.Dataset, model: str = "TLAM"):
     """The critical-speed figure from the ``critical`` speed sweep of :mod:`hubbeam.eigen`."""
     ds = critical
     if "critical_speed" not in ds.data_vars:
-        raise FigureDataError("critical-speed dataset has no variable 'critical_speed' "
+        raise DatasetError("critical-speed dataset has no variable 'critical_speed' "
                               f"(has: {', '.join(sorted(ds.data_vars))})")
     speed = ds["critical_speed"].sel(model=model)
     masses = speed["tip_mass"].values

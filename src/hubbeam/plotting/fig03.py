@@ -13,24 +13,17 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (
-    curve_label,
-    maneuver_value,
-    mark_maneuver_end,
-    plot_series,
-    require_datasets,
-    select,
-    variable,
-)
+from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import VARIANT_LINESTYLES as LINESTYLES
 from hubbeam.plotting.style import axis_label, new_figure, panel_title, symbol_tex
+from hubbeam.results import maneuver_value, select, units, variable
 
-#: (variable, what the panel shows, units used when the dataset states none)
+#: (variable, what the panel shows)
 PANELS = (
-    ("dM_thth", "rotary inertia $M_{\\theta\\theta}$", "kg m2"),
-    ("dQ_theta", "generalised force of the $\\theta$ equation", "N m"),
-    ("dQ_q1", "axial generalised force $Q_{q_1}$", "N kg-1/2"),
-    ("dQ_q2", "transverse generalised force $Q_{q_2}$", "N kg-1/2"),
+    ("dM_thth", "rotary inertia $M_{\\theta\\theta}$"),
+    ("dQ_theta", "generalised force of the $\\theta$ equation"),
+    ("dQ_q1", "axial generalised force $Q_{q_1}$"),
+    ("dQ_q2", "transverse generalised force $Q_{q_2}$"),
 )
 
 
@@ -39,12 +32,12 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     cfoam = select(datasets, model="CFOAM")
     require_datasets("fig03", cfoam, "a CFOAM run carrying dM_thth, dQ_theta, dQ_q1, dQ_q2")
     for case, ds in cfoam.items():  # fail before drawing anything, naming the missing variable
-        for name, _, _ in PANELS:
+        for name, _ in PANELS:
             variable(case, ds, name)
     fig, axes = new_figure(2, 2, height=4.6, width=7.0)
-    for index, (ax, (name, what, default_units)) in enumerate(zip(axes.flat, PANELS)):
+    for index, (ax, (name, what)) in enumerate(zip(axes.flat, PANELS)):
         for variant, (case, ds) in enumerate(cfoam.items()):
-            da = ds[name]
+            da = variable(case, ds, name)
             if "mode" in da.dims:
                 for k, mode in enumerate(da["mode"].values):
                     dashes = LINESTYLES[(variant + k) % len(LINESTYLES)]
@@ -55,7 +48,7 @@ def plot(datasets: Mapping[str, xr.Dataset]):
         case, ds = next(iter(cfoam.items()))
         mark_maneuver_end(ax, case, ds)
         panel_title(ax, index, what)
-        ax.set_ylabel(axis_label(symbol_tex(name), ds[name].attrs.get("units", default_units)))
+        ax.set_ylabel(axis_label(symbol_tex(name), units(case, ds, name)))
         ax.legend(loc="best")
     for ax in axes[-1]:
         ax.set_xlabel(axis_label("Time $t$", "s"))

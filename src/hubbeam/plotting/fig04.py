@@ -10,16 +10,9 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (
-    curve_label,
-    maneuver_value,
-    mark_maneuver_end,
-    n_modes,
-    plot_series,
-    require_datasets,
-    select,
-)
+from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
+from hubbeam.results import maneuver_value, model, n_modes, select, times, variable
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):
@@ -46,10 +39,11 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     if pairs:
         ax = axes[1, 0]
         for case, ds, (ref_case, ref) in pairs:
-            diff = ds["tip_transverse"] - ref["tip_transverse"].interp(time=ds["time"])
-            ax.plot(ds["time"].values, 1e3 * diff.values,
+            diff = (variable(case, ds, "tip_transverse")
+                    - variable(ref_case, ref, "tip_transverse").interp(time=ds["time"]))
+            ax.plot(times(ds), 1e3 * diff.values,
                     label=f"{curve_label(case, ds)} $-$ {curve_label(ref_case, ref)}",
-                    **model_style(ds.attrs["model"]))
+                    **model_style(model(case, ds)))
         mark_maneuver_end(ax, case, ds)
         panel_title(ax, 1, "Difference of the tip deflections")
         ax.set_ylabel(axis_label("$\\Delta v(L)$", "mm"))

@@ -12,15 +12,9 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (
-    distinct,
-    limit_to_bounded,
-    mark_maneuver_end,
-    plot_series,
-    require_datasets,
-    select,
-)
+from hubbeam.plotting.figures import limit_to_bounded, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
+from hubbeam.results import distinct, select
 
 ROWS = (
     ("tip_transverse", "Transverse tip deflection", "$v(L)$"),

@@ -12,16 +12,9 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from hubbeam.plotting.figures import (
-    curve_label,
-    maneuver_value,
-    mark_maneuver_end,
-    n_modes,
-    plot_series,
-    require_datasets,
-    variable,
-)
+from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, number_tex, panel_title
+from hubbeam.results import maneuver_value, n_modes, times, units, variable
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):
@@ -33,13 +26,13 @@ def plot(datasets: Mapping[str, xr.Dataset]):
     for k, mode in enumerate(q2["mode"].values):
         series = q2.sel(mode=mode).values
         peak = float(np.nanmax(np.abs(series)))
-        ax.plot(ds["time"].values, series, color=SEQUENCE_COLORS[k % len(SEQUENCE_COLORS)],
+        ax.plot(times(ds), series, color=SEQUENCE_COLORS[k % len(SEQUENCE_COLORS)],
                 label=f"$q_{{2,{int(mode)}}}$ (max |q| = {number_tex(peak)})")
     mark_maneuver_end(ax, case, ds)
     wf = maneuver_value(case, ds, "wf")
     panel_title(ax, 0, f"Modal responses, {curve_label(case, ds)}, $\\omega_f$ = {wf:g} rad/s "
                        "(unit modal mass normalisation)")
-    ax.set_ylabel(axis_label("$q_{2,i}$", q2.attrs.get("units", "kg1/2 m")))
+    ax.set_ylabel(axis_label("$q_{2,i}$", units(case, ds, "q2")))
     ax.legend(loc="lower right")  # after t_f every coordinate is near zero: free space
     ax = axes[1, 0]
     ordered = sorted(datasets.items(), key=lambda item: n_modes(*item))

@@ -10,16 +10,9 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (
-    curve_label,
-    distinct,
-    mark_maneuver_end,
-    model,
-    plot_series,
-    require_datasets,
-    select,
-)
+from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, panel_title
+from hubbeam.results import distinct, model, select
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):

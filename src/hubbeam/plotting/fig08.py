@@ -10,15 +10,16 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import FigureDataError, distinct, mark_maneuver_end, model, n_modes, plot_series, select
+from hubbeam.plotting.figures import mark_maneuver_end, plot_series
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
+from hubbeam.results import DatasetError, distinct, model, n_modes, select
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):
     runs = select(datasets, kind="torque")
     taus = [tau for tau in distinct(runs, "tau_max") if len(select(runs, tau_max=tau)) >= 2]
     if not taus:
-        raise FigureDataError("fig08: no torque amplitude has two runs to compare "
+        raise DatasetError("fig08: no torque amplitude has two runs to compare "
                               f"(got {sorted(runs)}); add SFOAM cases named fig08_*")
     fig, axes = new_figure(len(taus), 1, height=2.4 * len(taus) + 0.4)
     for index, tau in enumerate(taus):

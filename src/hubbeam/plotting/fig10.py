@@ -10,18 +10,9 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.plotting.figures import (
-    distinct,
-    limit_to_bounded,
-    maneuver_value,
-    mark_maneuver_end,
-    model,
-    plot_series,
-    require_datasets,
-    select,
-    tip_position,
-)
+from hubbeam.plotting.figures import limit_to_bounded, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
+from hubbeam.results import distinct, maneuver_value, model, select, tip_position
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):

@@ -31,8 +31,8 @@ from matplotlib.patches import Patch
 from matplotlib.ticker import NullFormatter
 
 from hubbeam import validity
-from hubbeam.plotting.figures import FigureDataError
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
+from hubbeam.results import DatasetError
 
 PEAK = "peak_tip_deflection"
 DIVERGED_COLOR = "0.8"
@@ -54,7 +54,7 @@ def plot(sweep: xr.Dataset):
     """The figure of the sweep dataset ``sweep`` (see the module docstring)."""
     for name in (PEAK, "validity", "critical_speed"):
         if name not in sweep.variables:
-            raise FigureDataError(f"sweep dataset has no variable {name!r} "
+            raise DatasetError(f"sweep dataset has no variable {name!r} "
                                   f"(has: {', '.join(sorted(sweep.variables))})")
     config = json.loads(sweep.attrs["sweep_config"])
     figure = config["figure"]
@@ -165,7 +165,7 @@ def _legend(ax, flagged: list[str], critical: bool, extra=(), below=None) -> Non
 def _peak_norm(values: np.ndarray) -> LogNorm:
     finite = values[np.isfinite(values) & (values > 0)]
     if finite.size == 0:
-        raise FigureDataError("sweep dataset has no finite positive peak tip deflection to map")
+        raise DatasetError("sweep dataset has no finite positive peak tip deflection to map")
     return LogNorm(vmin=float(finite.min()), vmax=float(finite.max()))
 
 
@@ -218,7 +218,7 @@ def _departure_map(sweep: xr.Dataset, config: dict, model: str, reference: str,
     ax.set_facecolor(DIVERGED_COLOR)
     finite = departure.values[np.isfinite(departure.values) & (departure.values > 0)]
     if finite.size == 0:
-        raise FigureDataError(f"sweep dataset: no grid point where both {model} and {reference} "
+        raise DatasetError(f"sweep dataset: no grid point where both {model} and {reference} "
                               "completed with different peaks; nothing to map")
     norm = LogNorm(vmin=max(float(finite.min()), 1e-4),
                    vmax=max(float(finite.max()), 10 * threshold))
@@ -270,7 +270,7 @@ def _slices(sweep: xr.Dataset, config: dict):
         field = relative_departure(sweep, figure["model"], figure["reference"])
         values = field.values[np.isfinite(field.values) & (field.values > 0)]
         if values.size == 0:
-            raise FigureDataError("sweep dataset: no grid point where both models completed "
+            raise DatasetError("sweep dataset: no grid point where both models completed "
                                   "with different peaks; nothing to map")
         norm = LogNorm(vmin=max(float(values.min()), 1e-4),
                        vmax=max(float(values.max()), 10 * float(figure["threshold"])))

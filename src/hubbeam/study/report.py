@@ -14,8 +14,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 
 from hubbeam.beam import SECTION_PROPERTIES, SECTION_UNITS, beam_from_config
-from hubbeam.document import markdown_to_html, render
-from hubbeam.study.summary import COLUMNS
+from hubbeam.document import markdown_table, markdown_to_html, render
+from hubbeam.formatting import number
 
 #: the eigen figure shown in the report's beam section rather than with the eigen-analysis
 BEAM_FIGURE = "beam_properties"
@@ -26,8 +26,9 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                    eigen_figures: Mapping[str, str]) -> str:
     """The report in Markdown. ``rows`` are summary rows; the figure maps give, per case,
     comparison or eigen figure, the PNG path relative to the report."""
-    return render("study_report.md.j2", study=study, beam=beam, beam_rows=beam_summary(beam), rows=rows,
-                  columns=COLUMNS, case_figures=case_figures, comparison_figures=comparison_figures,
+    return render("study_report.md.j2", study=study, beam=beam, rows=rows,
+                  beam_table=beam_markdown(beam), cases_table=cases_markdown(rows),
+                  case_figures=case_figures, comparison_figures=comparison_figures,
                   beam_figure=eigen_figures.get(BEAM_FIGURE),
                   eigen_figures={name: path for name, path in eigen_figures.items() if name != BEAM_FIGURE})
 
@@ -43,6 +44,29 @@ def beam_summary(beam: Mapping) -> list[dict]:
         rows.append({"name": name, "unit": SECTION_UNITS[name], "root": float(values[0]), "tip": float(values[-1]),
                      "min": float(values.min()), "max": float(values.max())})
     return rows
+
+
+def beam_markdown(beam: Mapping) -> str:
+    """The beam in a few rows (:func:`beam_summary`): one per property, whatever its stations."""
+    return markdown_table(("property", "unit", "at the root", "at the tip", "min", "max"),
+                          ([row["name"], row["unit"], number(row["root"]), number(row["tip"]),
+                            number(row["min"]), number(row["max"])] for row in beam_summary(beam)))
+
+
+def cases_markdown(rows: Sequence[Mapping]) -> str:
+    """A line per case: settings, peak and residual tip deflection, validity, convergence check."""
+    def convergence(row):
+        if row["convergence"] == "not checked":
+            return row["convergence"]
+        return (f"{row['convergence']} (tolerance {number(row['convergence_tolerance_diff_m'], 2)} m, "
+                f"modes {number(row['convergence_modes_diff_m'], 2)} m)")
+
+    return markdown_table(
+        ("case", "model", "maneuver", "modes", "tip mass (kg)", "peak v(L) (m)", "at t (s)", "end (s)",
+         "residual (m)", "validity", "convergence check"),
+        ([row["case"], row["model"], row["maneuver"], row["modes"], number(row["tip_mass_kg"]),
+          number(row["peak_tip_deflection_m"]), number(row["peak_time_s"]), number(row["maneuver_end_s"]),
+          number(row["residual_amplitude_m"]), row["validity"], convergence(row)] for row in rows))
 
 
 def study_html(markdown: str, title: str, report_dir) -> str:

@@ -34,7 +34,8 @@ import numpy as np
 import pandas as pd
 
 from hubbeam import __version__
-from hubbeam.document import render
+from hubbeam.document import markdown_table, render
+from hubbeam.formatting import fixed, number, percent, scientific
 from hubbeam.io import ResultFileError, open_result
 from hubbeam.validation import nonuniform, published
 from hubbeam.validation.rotating_eigen import allowed_interval
@@ -106,21 +107,9 @@ def _link(path, report_dir) -> str:
 
 # --- formatting -----------------------------------------------------------------------------------
 
-def _g(value, digits: int = 3) -> str:
-    """``value`` to ``digits`` significant figures, '-' for NaN."""
-    value = float(value)
-    return "-" if math.isnan(value) else f"{value:.{digits}g}"
-
-
-def _percent(fraction: float) -> str:
-    """``0.00045`` -> ``"0.045 %"``, ``2.07`` -> ``"207 %"`` (two significant figures below 10 %)."""
-    value = 100.0 * float(fraction)
-    return f"{value:.0f} %" if abs(value) >= 10.0 else f"{value:.2g} %"
-
-
 def _range(values, digits: int = 2, scale: float = 1.0, unit: str = "") -> str:
     """``"a to b"`` (or ``"a"`` when equal at the shown precision) of ``values * scale``."""
-    low, high = (f"{scale * float(v):.{digits}g}" for v in (np.min(values), np.max(values)))
+    low, high = (number(scale * float(v), digits) for v in (np.min(values), np.max(values)))
     return f"{low}{unit}" if low == high else f"{low}{unit} to {high}{unit}"
 
 
@@ -208,6 +197,16 @@ def _uncoupled_chordwise(table: pd.DataFrame, curves) -> list[float]:
     return out
 
 
+def _difference_cells(row) -> list[str]:
+    """Ours minus printed and the interval it must lie in to agree."""
+    low, high = (scientific(row[key], 1, signed=True) for key in ("allowed_low", "allowed_high"))
+    return [scientific(row["difference"], 1, signed=True), f"[{low}, {high}]"]
+
+
+def _verdict(row) -> str:
+    return f"**{'agrees' if row['agrees'] else 'differs'}**"
+
+
 def published_section(comparison_csv, tip_mass_csv, curves_nc, figure, report_dir) -> Section:
     """The "Validation" section of the reproduction report (module docstring)."""
     table = read_result_table(comparison_csv, PUBLISHED_COLUMNS, BUILD_PUBLISHED)
@@ -227,9 +226,9 @@ def published_section(comparison_csv, tip_mass_csv, curves_nc, figure, report_di
     failing = [f"{published.short_name(row['source'])}, {row['direction']} gamma = {row['gamma']:g}: "
                f"printed {row['printed']}, ours {row[ours]:.6f}"
                for _, row in table[~table["agrees"]].iterrows()]
-    loose = [f"{row['direction']} gamma = {row['gamma']:g}: {_g(row['modal_change'])} "
-             f"({_percent(row['modal_change'] / row['published'])} of the value), ours "
-             f"minus printed {_g(row['difference'])}"
+    loose = [f"{row['direction']} gamma = {row['gamma']:g}: {number(row['modal_change'], 3)} "
+             f"({percent(row['modal_change'] / row['published'])} of the value), ours "
+             f"minus printed {number(row['difference'], 3)}"
              for _, row in table[~table.apply(_resolved, axis=1)].iterrows()]
     coupled = table[np.isfinite(table["uncoupled"]) & table.apply(_resolved, axis=1)]
     if len(coupled):
@@ -238,23 +237,24 @@ def published_section(comparison_csv, tip_mass_csv, curves_nc, figure, report_di
                    "printed": row["printed"], "ours": f"{row[ours]:.6f}"}
     else:
         coupled = None
-    rows = []
-    for _, row in table.iterrows():
-        alpha = "-" if math.isnan(float(row["alpha"])) else f"{row['alpha']:g}"
-        uncoupled = "-" if math.isnan(row["uncoupled"]) else f"{row['uncoupled']:.4f}"
-        rows.append(f"| {published.short_name(row['source'])} | {row['direction']} | {row['gamma']:g} | "
-                    f"{alpha} | {row['printed']} | {row['rounding']} | {row[ours]:.6f} | "
-                    f"{row['difference']:+.1e} | [{row['allowed_low']:+.1e}, {row['allowed_high']:+.1e}] | "
-                    f"{uncoupled} | **{'agrees' if row['agrees'] else 'differs'}** |")
-    tip_rows = [f"| {row['mu']:g} | {row['printed']} | {row[tip_ours]:.6f} | {row['difference']:+.1e} | "
-                f"[{row['allowed_low']:+.1e}, {row['allowed_high']:+.1e}] | "
-                f"**{'agrees' if row['agrees'] else 'differs'}** |" for _, row in tip.iterrows()]
+    published_table = markdown_table(
+        ("source", "direction", "gamma", "alpha", "printed", "reading", "ours", "ours - printed",
+         "agreement interval", "no axial coupling", "verdict"),
+        ([published.short_name(row["source"]), row["direction"], number(row["gamma"], 6),
+          number(float(row["alpha"]), 6), row["printed"], row["rounding"], fixed(row[ours], 6),
+          *_difference_cells(row), fixed(row["uncoupled"], 4), _verdict(row)] for _, row in table.iterrows()),
+        "llrrrlrrlrl")
+    tip_table = markdown_table(
+        ("mu", "printed", "ours", "ours - printed", "agreement interval", "verdict"),
+        ([number(row["mu"], 6), row["printed"], fixed(row[tip_ours], 6), *_difference_cells(row), _verdict(row)]
+         for _, row in tip.iterrows()), "rrrrll")
     markdown = render(
         "validation_published.md.j2", sources=[published.short_name(s) for s in sources],
         agree=agree, total=total, tip_agree=tip_agree, tip_total=tip_total, n_ours=n_ours,
         estimate=estimate, failing=failing, evidence=_reading_evidence(table, ours), loose=loose,
-        coupled=coupled, rows=rows, tip_rounding=published.ROUNDING["tip-mass-frequency-equation"],
-        n_tip=n_tip, tip_rows=tip_rows, curve_modes=curves.attrs["n_modes"],
+        coupled=coupled, published_table=published_table,
+        tip_rounding=published.ROUNDING["tip-mass-frequency-equation"], n_tip=n_tip, tip_table=tip_table,
+        curve_modes=curves.attrs["n_modes"],
         alpha=f"{curves.attrs['alpha']:g}", figure=_link(figure, report_dir),
         citations=[published.CITATIONS[key] for key in published.CITATIONS
                    if key in "+".join(table["source"]) or key == "tip-mass-frequency-equation"])
@@ -282,11 +282,11 @@ def exudyn_findings(comparison: pd.DataFrame, mode_study: pd.DataFrame,
     if foam is not None:
         bounded = foam[foam["diverged"] == 0]
         worst = bounded["max_abs_difference_rel_peak"].idxmax()
-        text = (f"**FOAM** stays within {_percent(bounded['max_abs_difference_rel_peak'].max())} of "
+        text = (f"**FOAM** stays within {percent(bounded['max_abs_difference_rel_peak'].max())} of "
                 f"the reference's peak tip deflection in all {len(bounded)} bounded cases (largest "
-                f"difference {_g(bounded['max_abs_difference_m'].max())} m, {_case_label(bounded.loc[worst])}); "
+                f"difference {number(bounded['max_abs_difference_m'].max(), 3)} m, {_case_label(bounded.loc[worst])}); "
                 f"its residual vibration amplitude is within "
-                f"{_percent((bounded['residual_ratio'] - 1.0).abs().max())} of the reference's.")
+                f"{percent((bounded['residual_ratio'] - 1.0).abs().max())} of the reference's.")
         if len(bounded) < len(foam):
             text += f" It diverges in {len(foam) - len(bounded)} case(s)."
         bullets.append(text)
@@ -297,7 +297,7 @@ def exudyn_findings(comparison: pd.DataFrame, mode_study: pd.DataFrame,
             bullets.append(
                 f"**CFOAM**'s largest tip difference from the reference is {_range(ratios.values)} "
                 f"times FOAM's ({len(common)} cases), at most "
-                f"{_percent(cfoam.loc[common, 'max_abs_difference_rel_peak'].max())} of the peak. "
+                f"{percent(cfoam.loc[common, 'max_abs_difference_rel_peak'].max())} of the peak. "
                 f"{_ratio_text(ratios)}")
     tlam = by_model.get("TLAM")
     if tlam is not None:
@@ -329,27 +329,34 @@ def exudyn_findings(comparison: pd.DataFrame, mode_study: pd.DataFrame,
         error = production["max_abs_difference_to_finest_m"].max()
         smallest = foam.loc[foam["diverged"] == 0, "max_abs_difference_m"].min()
         bullets.append(f"**Reference accuracy**: the production Exudyn run differs from the finest run "
-                       f"of each convergence study by at most {_g(error, 2)} m, "
+                       f"of each convergence study by at most {number(error, 2)} m, "
                        f"{smallest / error:.0f} times below FOAM's smallest difference "
-                       f"({_g(smallest)} m).")
+                       f"({number(smallest, 3)} m).")
     return bullets
 
 
 def _convergence_tables(convergence: pd.DataFrame) -> list[str]:
+    """One table per convergence study of the reference."""
     headers = {"elements": "elements", "time_step": "time step (s)",
                "newton_tolerance": "Newton tolerance"}
-    out = []
-    for study, rows in convergence.groupby("study", sort=False):
-        out += [f"| {headers.get(study, study)} | production | max. difference to the finest run (m) | "
-                "max. difference to the next finer run (m) | Newton iterations | wall time (s) |",
-                "|---:|---|---:|---:|---:|---:|"]
-        for _, row in rows.iterrows():
-            out.append(f"| {row['value']:g} | {'yes' if row['production'] else ''} | "
-                       f"{_g(row['max_abs_difference_to_finest_m'], 2)} | "
-                       f"{_g(row['max_abs_difference_to_next_finer_m'], 2)} | "
-                       f"{int(row['newton_iterations'])} | {row['cpu_time_s']:.1f} |")
-        out.append("")
-    return out
+    return [markdown_table(
+        (headers.get(study, study), "production", "max. difference to the finest run (m)",
+         "max. difference to the next finer run (m)", "Newton iterations", "wall time (s)"),
+        ([number(row["value"], 6), "yes" if row["production"] else "",
+          number(row["max_abs_difference_to_finest_m"], 2), number(row["max_abs_difference_to_next_finer_m"], 2),
+          int(row["newton_iterations"]), fixed(row["cpu_time_s"], 1)] for _, row in rows.iterrows()),
+        "rlrrrr") for study, rows in convergence.groupby("study", sort=False)]
+
+
+def _comparison_cells(row) -> list:
+    """A line of the tip-deflection comparison; a diverged run has no measures but its time."""
+    reference = [number(row["peak_reference_m"], 5)]
+    if row["diverged"]:  # measures of a run that left the frame say nothing
+        return [row["case"], row["model"], "-", "-", "-", *reference, "-", number(row["residual_reference_m"], 4),
+                fixed(row["diverged_at_s"], 2)]
+    return [row["case"], row["model"], number(row["max_abs_difference_m"], 3),
+            percent(row["max_abs_difference_rel_peak"]), number(row["peak_m"], 5), *reference,
+            number(row["residual_m"], 4), number(row["residual_reference_m"], 4), "-"]
 
 
 def _exudyn_context(comparison_csv, mode_study_csv, convergence_csv, figure, report_dir) -> dict:
@@ -362,29 +369,24 @@ def _exudyn_context(comparison_csv, mode_study_csv, convergence_csv, figure, rep
                 f"{production['time_step_s'].iloc[0]:g} s and a Newton increment tolerance of "
                 f"{production['newton_tolerance'].iloc[0]:g}") if len(production) else "see below"
     cases = comparison.drop_duplicates("case")
-    comparison_rows = []
-    for _, row in comparison.iterrows():
-        reference = f"{_g(row['peak_reference_m'], 5)} | "
-        if row["diverged"]:  # measures of a run that left the frame say nothing
-            ours = f"- | - | - | {reference}- | {_g(row['residual_reference_m'], 4)} | {row['diverged_at_s']:.2f}"
-        else:
-            ours = (f"{_g(row['max_abs_difference_m'])} | {_percent(row['max_abs_difference_rel_peak'])} | "
-                    f"{_g(row['peak_m'], 5)} | {reference}{_g(row['residual_m'], 4)} | "
-                    f"{_g(row['residual_reference_m'], 4)} | -")
-        comparison_rows.append(f"| {row['case']} | {row['model']} | {ours} |")
+    comparison_table = markdown_table(
+        ("case", "model", "max. difference (m)", "/ reference peak", "peak (m)", "reference peak (m)",
+         "residual (m)", "reference residual (m)", "diverged at (s)"),
+        (_comparison_cells(row) for _, row in comparison.iterrows()), "llrrrrrrr")
     counts = sorted(mode_study["n_modes"].unique())
-    mode_rows = ["| case | model | " + " | ".join(f"n = {n}" for n in counts) + " |",
-                 "|---|---|" + "---:|" * len(counts)]
-    for (case, model), rows in mode_study.groupby(["case", "model"], sort=False):
-        values = dict(zip(rows["n_modes"], rows["max_abs_difference_m"]))
-        mode_rows.append(f"| {case} | {model} | " + " | ".join(_g(values.get(n, math.nan)) for n in counts) + " |")
+    mode_table = markdown_table(
+        ("case", "model", *(f"n = {n}" for n in counts)),
+        ([case, model, *(number(dict(zip(rows["n_modes"], rows["max_abs_difference_m"])).get(n, math.nan), 3)
+                         for n in counts)]
+         for (case, model), rows in mode_study.groupby(["case", "model"], sort=False)),
+        "ll" + "r" * len(counts))
     return dict(
         settings=settings,
         models=list(comparison["model"].unique()), modes=_range(comparison["n_modes"].values, digits=3),
         cases=[f"{row['case']} ({_case_label(row)}, t_f = {row['tf']:g} s)" for _, row in cases.iterrows()],
-        findings=exudyn_findings(comparison, mode_study, convergence), comparison_rows=comparison_rows,
-        figure=_link(figure, report_dir), mode_rows=mode_rows,
-        convergence_rows=_convergence_tables(convergence))
+        findings=exudyn_findings(comparison, mode_study, convergence), comparison_table=comparison_table,
+        figure=_link(figure, report_dir), mode_table=mode_table,
+        convergence_tables=_convergence_tables(convergence))
 
 
 # --- non-uniform beams ----------------------------------------------------------------------------
@@ -398,20 +400,19 @@ def _nonuniform_context(ritz_fe_csv, pybmodes_csv=None) -> dict:
              .pivot_table(index="case", columns="n_modes", values="error", aggfunc="max"))
     counts = list(worst.columns)
     masses = ritz_fe.groupby("case")["tip_mass_kg"].first()
-    ritz_rows = ["| case | tip mass (kg) | " + " | ".join(f"n = {n}" for n in counts) + " |",
-                 "|---|---:|" + "---:|" * len(counts)]
-    for case, row in worst.iterrows():
-        ritz_rows.append(f"| {case} | {masses[case]:.4g} | "
-                         + " | ".join(_g(row[n], 2) for n in counts) + " |")
-    context = dict(ritz_rows=ritz_rows, speeds=_range(ritz_fe["speed_rad_s"].unique(), digits=3),
-                   frequencies=int(ritz_fe["mode"].max()), ritz_best=_g(worst[counts[-1]].max(), 2),
+    ritz_table = markdown_table(
+        ("case", "tip mass (kg)", *(f"n = {n}" for n in counts)),
+        ([case, number(float(masses[case]), 4), *(number(row[n], 2) for n in counts)]
+         for case, row in worst.iterrows()), "lr" + "r" * len(counts))
+    context = dict(ritz_table=ritz_table, speeds=_range(ritz_fe["speed_rad_s"].unique(), digits=3),
+                   frequencies=int(ritz_fe["mode"].max()), ritz_best=number(worst[counts[-1]].max(), 2),
                    ritz_modes=int(counts[-1]), speed_ratios=[f"{r:g}" for r in nonuniform.SPEED_RATIOS],
                    taper=f"{nonuniform.TAPER_RATIO:g}", tip_ratio=f"{nonuniform.TIP_MASS_RATIO:g}",
                    fe_elements=nonuniform.FE_ELEMENTS, pybmodes=None)
     if pybmodes_csv is not None:
         table = read_result_table(pybmodes_csv, PYBMODES_COLUMNS, BUILD_EXUDYN)
         context["pybmodes"] = dict(
-            ritz=_g(table["rel_diff_ritz"].abs().max(), 2), fe=_g(table["rel_diff_fe"].abs().max(), 2),
+            ritz=number(table["rel_diff_ritz"].abs().max(), 2), fe=number(table["rel_diff_fe"].abs().max(), 2),
             order=_range(table["order"].values, digits=3), rows=len(table),
             meshes=list(nonuniform.PYBMODES_MESHES))
     return context

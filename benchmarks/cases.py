@@ -12,8 +12,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from hubbeam.core import radau
-from hubbeam.core.eom import MODEL_IDS, free_dofs
+from hubbeam.core.eom import free_dofs
 from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
+from hubbeam.core.inputs import IntegratorSettings, SimulationInputs, State, Trajectory
 from hubbeam.core.integrate import (
     integrate_free,
     integration_problem,
@@ -23,8 +24,15 @@ from hubbeam.core.integrate import (
     tip_watch,
 )
 from hubbeam.damping import damping_matrices
+from hubbeam.models import model
 from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import case_matrices, maneuver_parameters, output_times, step_stops
+from hubbeam.simulate import (
+    case_matrices,
+    initial_state,
+    maneuver_parameters,
+    output_times,
+    step_stops,
+)
 
 MAX_STEPS = 10_000_000
 
@@ -43,11 +51,8 @@ class BenchmarkCase:
 
     name: str
     case: dict
-    sm: tuple
-    model: int
-    kind: int
-    mp: np.ndarray
-    C: np.ndarray
+    inputs: SimulationInputs
+    start: State
     free: np.ndarray
     t: np.ndarray
     stops: np.ndarray
@@ -57,7 +62,11 @@ class BenchmarkCase:
     @property
     def problem(self) -> tuple:
         """A fresh radau5 problem (with its work arrays) of the case, the one hubbeam runs."""
-        return integration_problem(self.model, self.kind, self.mp, self.C, self.sm)
+        return integration_problem(self.inputs)
+
+    def settings(self, rtol: float, atol: float) -> IntegratorSettings:
+        """hubbeam's integrator settings of a run at ``rtol``, ``atol``."""
+        return IntegratorSettings(float(rtol), float(atol), self.tip_limit, MAX_STEPS)
 
 
 @dataclass(frozen=True)
@@ -104,12 +113,13 @@ def prepare_case(name: str, case: Mapping, params: BeamParameters, numerics: Map
     """A :class:`BenchmarkCase` from a resolved case (``hubbeam.config.case_settings``)."""
     sm = case_matrices(case, params, numerics)
     kind, mp = maneuver_parameters(case["maneuver"])
-    model = MODEL_IDS[case["model"]]
-    free = free_dofs(model, kind, case["modes"])
+    inputs = SimulationInputs(model(case["model"]).traits, kind, mp,
+                              damping_matrices(case.get("damping"), sm), sm)
+    free = free_dofs(inputs.traits, kind, case["modes"])
     t = output_times(case["t_end"], output_step)
-    C = damping_matrices(case.get("damping"), sm)
-    return BenchmarkCase(name, dict(case), sm, model, kind, mp, C, free, t, step_stops(case, t),
-                         tip_watch(free, sm), float(numerics["divergence_limit"]) * params.L)
+    return BenchmarkCase(name, dict(case), inputs, initial_state(case, sm), free, t,
+                         step_stops(case, t), tip_watch(free, sm),
+                         float(numerics["divergence_limit"]) * params.L)
 
 
 # --------------------------------------------------------------------------- single runs
@@ -119,18 +129,17 @@ def run_hubbeam(bench: BenchmarkCase, rtol: float, atol: float, full: bool = Fal
     if full:
         out = np.empty((bench.t.size, n_output_columns(bench.case["modes"])))
         start = time.perf_counter()
-        status, _ = simulate_kernel(bench.model, bench.kind, bench.mp, bench.C, bench.sm, bench.t,
-                                    bench.stops, rtol, atol, bench.tip_limit, MAX_STEPS, out,
-                                    stats)
+        status, _ = simulate_kernel(bench.inputs, bench.start, bench.t, bench.stops,
+                                    bench.settings(rtol, atol), out, stats)
         wall = time.perf_counter() - start
         tip = out[:, output_columns(bench.case["modes"])["tip_transverse"]]
     else:
         y_out = np.empty((bench.t.size, bench.free.size))
         v_out = np.empty_like(y_out)
         start = time.perf_counter()
-        status, _, watch = integrate_free(bench.model, bench.kind, bench.mp, bench.C, bench.sm,
-                                          bench.t, bench.stops, rtol, atol, bench.tip_limit,
-                                          MAX_STEPS, y_out, v_out, stats)
+        status, _, watch = integrate_free(bench.inputs, bench.start, bench.stops,
+                                          bench.settings(rtol, atol),
+                                          Trajectory(bench.t, y_out, v_out), stats)
         wall = time.perf_counter() - start
         tip = y_out @ watch
     return Run(tip, wall, int(stats[radau.RHS_CALLS]), status == radau.SUCCESS)

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from hubbeam.simulate import HIGH_ORDER_VARIABLES, VARIABLES
+from hubbeam.variables import HIGH_ORDER_VARIABLES, VARIABLES
 
 BEAM = {"length": 8.0, "density": 2.7667e3, "area": 7.2968e-5, "youngs_modulus": 6.8952e10,
         "second_moment": 8.2189e-9, "hub_inertia": 200.0, "hub_radius": 0.5}

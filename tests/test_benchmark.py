@@ -58,7 +58,7 @@ def test_first_order_rhs_is_velocity_and_acceleration(tiny):
     n = tiny.case["modes"]
     y, v, a = np.zeros(1 + 2 * n), np.zeros(1 + 2 * n), np.zeros(1 + 2 * n)
     y[tiny.free], v[tiny.free] = z[:tiny.free.size], z[tiny.free.size:]
-    accelerations(tiny.model, tiny.kind, tiny.mp, tiny.C, 0.4, y, v, tiny.sm, tiny.free, a)
+    accelerations(tiny.inputs, 0.4, y, v, tiny.free, a)
     np.testing.assert_array_equal(dz[:tiny.free.size], z[tiny.free.size:])
     np.testing.assert_allclose(dz[tiny.free.size:], a[tiny.free], rtol=1e-14)
     # the plain-Python version computes the same numbers

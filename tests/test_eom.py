@@ -15,11 +15,16 @@ import numpy as np
 import pytest
 
 from hubbeam.core import eom
+from hubbeam.core.inputs import SimulationInputs, Trajectory
 from hubbeam.core.integrate import N_SCALAR, fill_outputs, integration_problem, n_output_columns
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
 from hubbeam.core.radau import problem_rhs
 from hubbeam.maneuvers import maneuver_parameters
 from hubbeam.matrices import SystemMatrices
+from hubbeam.models import MODELS
+
+#: the kernels' traits of every model
+TRAITS = {name: m.traits for name, m in MODELS.items()}
 
 # The synthetic cloud uses the package's own SystemMatrices type: numba's on-disk cache records
 # the argument types of every compiled signature, and a type defined in a test module would make
@@ -186,7 +191,7 @@ def state():
     return y, v
 
 
-@pytest.mark.parametrize("model,with_D", [(eom.FOAM, True), (eom.TLAM, False)])
+@pytest.mark.parametrize("model,with_D", [(TRAITS["FOAM"], True), (TRAITS["TLAM"], False)])
 def test_foam_and_tlam_match_numpy_transcription_of_the_paper(sm, state, model, with_D):
     y, v = state
     M, F = jitted_system(model, sm, y, v, tau=12.5)
@@ -203,7 +208,7 @@ def test_sfoam_is_equation_40(sm, state):
     v0 = v.copy()
     y0[1 : 1 + n] = 0.0
     v0[1 : 1 + n] = 0.0
-    M, F = jitted_system(eom.SFOAM, sm, y0, v0, tau=3.0)
+    M, F = jitted_system(TRAITS["SFOAM"], sm, y0, v0, tau=3.0)
     _, q2 = y0[0], y0[1 + n :]
     thd = v0[0]
     hub = [0] + list(range(1 + n, 1 + 2 * n))
@@ -222,9 +227,9 @@ def test_sfoam_is_equation_40(sm, state):
 @pytest.mark.parametrize(
     "model,kinetic_energy",
     [
-        (eom.CFOAM, exact_kinetic_energy),
-        (eom.FOAM, truncated_kinetic_energy),
-        (eom.TLAM, tlam_kinetic_energy),
+        (TRAITS["CFOAM"], exact_kinetic_energy),
+        (TRAITS["FOAM"], truncated_kinetic_energy),
+        (TRAITS["TLAM"], tlam_kinetic_energy),
     ],
 )
 def test_models_are_lagrange_equations_of_their_kinetic_energy(sm, state, model, kinetic_energy):
@@ -245,8 +250,8 @@ def test_cfoam_minus_foam_is_of_second_order_in_the_elastic_coordinates(sm, stat
         vs = v.copy()
         ys[1:] *= eps
         vs[1:] *= eps
-        Mc, Fc = jitted_system(eom.CFOAM, sm, ys, vs)
-        Mf, Ff = jitted_system(eom.FOAM, sm, ys, vs)
+        Mc, Fc = jitted_system(TRAITS["CFOAM"], sm, ys, vs)
+        Mf, Ff = jitted_system(TRAITS["FOAM"], sm, ys, vs)
         ratios.append(np.max(np.abs(Fc - Ff)) / eps**2)
         # the mass matrices differ by quadratic terms in q only
         assert np.max(np.abs(Mc - Mf)) < 50 * eps**2 * np.max(np.abs(Mf[1:, 1:]))
@@ -258,33 +263,33 @@ def test_energy_is_half_v_M_v_plus_strain_energy(sm, state):
     y, v = state
     n = sm.M1.shape[0]
     U = 0.5 * y[1 : 1 + n] @ sm.K1 @ y[1 : 1 + n] + 0.5 * y[1 + n :] @ sm.K2 @ y[1 + n :]
-    assert eom.energy(eom.CFOAM, y, v, sm) == pytest.approx(exact_kinetic_energy(sm, y, v) + U, rel=1e-13)
-    assert eom.energy(eom.FOAM, y, v, sm) == pytest.approx(truncated_kinetic_energy(sm, y, v) + U, rel=1e-10)
+    assert eom.energy(TRAITS["CFOAM"], y, v, sm) == pytest.approx(exact_kinetic_energy(sm, y, v) + U, rel=1e-13)
+    assert eom.energy(TRAITS["FOAM"], y, v, sm) == pytest.approx(truncated_kinetic_energy(sm, y, v) + U, rel=1e-10)
     dv = np.zeros_like(v)
     dv[0] = 0.1  # T is quadratic in v: the central difference is exact
     p_ref = (exact_kinetic_energy(sm, y, v + dv) - exact_kinetic_energy(sm, y, v - dv)) / 0.2
-    assert eom.angular_momentum(eom.CFOAM, y, v, sm) == pytest.approx(p_ref, rel=1e-12)
+    assert eom.angular_momentum(TRAITS["CFOAM"], y, v, sm) == pytest.approx(p_ref, rel=1e-12)
 
 
 def test_accelerations_solve_the_equations_with_constraints(sm, state):
     n = sm.M1.shape[0]
     y, v = state
     mp = np.array([3.0, 30.0])
-    for model in (eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM):
+    for model in TRAITS.values():
         for kind in (PRESCRIBED, TORQUE):
             yy, vv = y.copy(), v.copy()
             a = np.zeros_like(y)
             free = eom.free_dofs(model, kind, n)
-            torque, q_theta = eom.accelerations(model, kind, mp, _undamped(sm), 7.0, yy, vv, sm,
-                                                free, a)
+            inputs = SimulationInputs(model, kind, mp, _undamped(sm), sm)
+            torque, q_theta = eom.accelerations(inputs, 7.0, yy, vv, free, a)
             M, F = jitted_system(model, sm, yy, vv)
             residual = M @ a - F  # F without torque: the hub row's residual is the torque
             elastic = free[free > 0]
             np.testing.assert_allclose(residual[elastic], 0.0, atol=1e-9 * np.max(np.abs(F)))
-            if model != eom.SFOAM:
+            if model.hub_velocity_force:
                 assert q_theta == pytest.approx(F[0], rel=1e-12)
             assert residual[0] == pytest.approx(torque, rel=1e-9, abs=1e-9)
-            if model == eom.SFOAM:
+            if not model.keeps_axial:
                 assert np.all(yy[1 : 1 + n] == 0.0) and np.all(a[1 : 1 + n] == 0.0)
 
 
@@ -300,8 +305,9 @@ def test_high_order_terms_vanish_to_second_order(sm, state):
         ys[1:] *= eps
         vs[1:] *= eps
         as_[1:] *= eps
-        eom.mass_matrix_and_force(eom.CFOAM, ys, vs, 3.0, sm, Mc, Fc)
-        dM = eom.high_order_terms(Mc, Fc, 3.0, ys, vs, as_, sm, _undamped(sm), Mf, Ff, dQ)
+        eom.mass_matrix_and_force(TRAITS["CFOAM"], ys, vs, 3.0, sm, Mc, Fc)
+        inputs = SimulationInputs(TRAITS["CFOAM"], TORQUE, np.zeros(2), _undamped(sm), sm)
+        dM = eom.high_order_terms(Mc, Fc, 3.0, (ys, vs, as_), inputs, Mf, Ff, dQ)
         sizes.append((abs(dM), np.max(np.abs(dQ))))
     # Delta M_thth (Eq. 35) is cubic in q; the dropped generalised forces are quadratic
     assert sizes[1][0] == pytest.approx(sizes[0][0] / 1000, rel=0.05)
@@ -338,7 +344,7 @@ def _damping(sm):
 
 
 @pytest.mark.parametrize("maneuver", MANEUVERS, ids=_label)
-@pytest.mark.parametrize("model", [eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM])
+@pytest.mark.parametrize("model", TRAITS.values(), ids=TRAITS)
 @pytest.mark.parametrize("amplitude", [0.05, 2.0])
 @pytest.mark.parametrize("damped", [False, True])
 def test_integrator_rhs_equals_the_general_solve(sm, state, maneuver, model, amplitude, damped):
@@ -353,9 +359,10 @@ def test_integrator_rhs_equals_the_general_solve(sm, state, maneuver, model, amp
     free = eom.free_dofs(model, kind, n)
     a_ref = np.zeros_like(y)
     yy, vv = y.copy(), v.copy()  # constrained entries overwritten by the maneuver
-    eom.accelerations(model, kind, mp, C, 4.0, yy, vv, sm, free, a_ref)
+    inputs = SimulationInputs(model, kind, mp, C, sm)
+    eom.accelerations(inputs, 4.0, yy, vv, free, a_ref)
     a = np.full(free.size, np.nan)
-    problem_rhs(4.0, yy[free], vv[free], a, integration_problem(model, kind, mp, C, sm))
+    problem_rhs(4.0, yy[free], vv[free], a, integration_problem(inputs))
     np.testing.assert_allclose(a, a_ref[free], rtol=1e-12, atol=1e-12 * np.max(np.abs(a_ref)))
 
 
@@ -363,11 +370,12 @@ def test_outputs_give_energy_and_momentum_of_the_state(sm, state):
     n = sm.M1.shape[0]
     y, v = state
     mp = np.array([200.0, 10.0])
-    for model in (eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM):
+    for model in TRAITS.values():
         free = eom.free_dofs(model, TORQUE, n)
         yy, vv, a = y.copy(), v.copy(), np.zeros_like(y)
         ws = eom.workspace(sm, free)
-        tau = eom.impose_constraints(model, TORQUE, mp, 4.0, yy, vv, a)
+        tau = eom.impose_constraints(SimulationInputs(model, TORQUE, mp, _undamped(sm), sm), 4.0, yy,
+                                     vv, a)
         eom.mass_matrix_and_force(model, yy, vv, tau, sm, ws.M, ws.F)
         torque, q_theta, e, p = eom.outputs(TORQUE, tau, yy, vv, sm, free, a, ws)
         assert e == pytest.approx(eom.energy(model, yy, vv, sm), rel=1e-13)
@@ -376,7 +384,7 @@ def test_outputs_give_energy_and_momentum_of_the_state(sm, state):
 
 
 @pytest.mark.parametrize("maneuver", MANEUVERS, ids=_label)
-@pytest.mark.parametrize("model", [eom.TLAM, eom.FOAM, eom.SFOAM, eom.CFOAM])
+@pytest.mark.parametrize("model", TRAITS.values(), ids=TRAITS)
 def test_dataset_outputs_equal_the_general_equations(sm, state, maneuver, model):
     """fill_outputs (CFOAM from the pre-contracted tensors) against the point-cloud equations of
     eom, output by output, at states far outside the small-deformation range too."""
@@ -391,14 +399,15 @@ def test_dataset_outputs_equal_the_general_equations(sm, state, maneuver, model)
     y_out = np.ascontiguousarray(scales * y[free])
     v_out = np.ascontiguousarray(scales * v[free])
     out = np.empty((t.size, n_output_columns(n)))
-    fill_outputs(model, kind, mp, C, sm, free, t, y_out, v_out, out)
+    inputs = SimulationInputs(model, kind, mp, C, sm)
+    fill_outputs(inputs, free, Trajectory(t, y_out, v_out), out)
     expected = np.full_like(out, np.nan)
     ws = eom.workspace(sm, free)
     Mf, Ff, dQ = np.empty((N, N)), np.empty(N), np.empty(N)
     for k in range(t.size):
         yy, vv, a = np.zeros(N), np.zeros(N), np.zeros(N)
         yy[free], vv[free] = y_out[k], v_out[k]
-        tau = eom.impose_constraints(model, kind, mp, t[k], yy, vv, a)
+        tau = eom.impose_constraints(inputs, t[k], yy, vv, a)
         eom.mass_matrix_and_force(model, yy, vv, tau, sm, ws.M, ws.F)
         eom.add_damping(C, vv, ws.F)
         torque, q_theta, e, p = eom.outputs(kind, tau, yy, vv, sm, free, a, ws)
@@ -406,8 +415,8 @@ def test_dataset_outputs_equal_the_general_equations(sm, state, maneuver, model)
         expected[k, :N_SCALAR] = (yy[0], vv[0], a[0], torque, q_theta,
                                   *eom.tip_outputs(yy, sm), e, p, dissipation)
         expected[k, N_SCALAR:N_SCALAR + 2 * n] = yy[1:]
-        if model == eom.CFOAM:
-            dM = eom.high_order_terms(ws.M, ws.F, tau, yy, vv, a, sm, C, Mf, Ff, dQ)
+        if model.exact_kinetic_energy:
+            dM = eom.high_order_terms(ws.M, ws.F, tau, (yy, vv, a), inputs, Mf, Ff, dQ)
             expected[k, N_SCALAR + 2 * n:] = (dM, *dQ)
     assert np.array_equal(np.isnan(out), np.isnan(expected))
     # every column to rounding error of its own size

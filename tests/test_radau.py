@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from hubbeam.core import radau
+from hubbeam.core.inputs import IntegratorSettings, Trajectory
 
 
 def tan_problem():
@@ -35,9 +36,10 @@ def run(problem, y0, v0, t_out, rtol=1e-8, atol=1e-10, *, h_init=0.0, fixed_step
     v_out = np.empty((len(t_out), n))
     stats = np.zeros(len(radau.STAT_NAMES), np.int64)
     watch = np.zeros(n) if watch is None else np.asarray(watch, float)
-    status, t_stop = radau.radau5(problem, np.asarray(y0, float), np.asarray(v0, float),
-                                  np.asarray(t_out, float), t_stops, rtol, np.full(2 * n, atol),
-                                  watch, watch_limit, max_steps, h_init, fixed_step, y_out, v_out,
+    settings = IntegratorSettings(float(rtol), float(atol), float(watch_limit), int(max_steps),
+                                  float(h_init), bool(fixed_step))
+    status, t_stop = radau.radau5(problem, (np.asarray(y0, float), np.asarray(v0, float)), t_stops,
+                                  settings, watch, Trajectory(np.asarray(t_out, float), y_out, v_out),
                                   stats)
     return status, t_stop, y_out, v_out, stats
 
@@ -75,8 +77,8 @@ def test_hermite_interpolation_reproduces_quintic_polynomials():
 
     y_out, v_out = np.empty(3), np.empty(3)
     for s in (0.0, 0.13, 0.5, 0.91, 1.0):
-        radau.hermite_interpolate(s, h, values(t0, 0), values(t0, 1), values(t0, 2),
-                                  values(t0 + h, 0), values(t0 + h, 1), values(t0 + h, 2),
+        radau.hermite_interpolate(s, h, (values(t0, 0), values(t0, 1), values(t0, 2)),
+                                  (values(t0 + h, 0), values(t0 + h, 1), values(t0 + h, 2)),
                                   y_out, v_out)
         assert np.allclose(y_out, values(t0 + s * h, 0), rtol=1e-13, atol=1e-13)
         assert np.allclose(v_out, values(t0 + s * h, 1), rtol=1e-12, atol=1e-12)
@@ -103,8 +105,9 @@ def test_error_estimate_is_fourth_order_and_bounds_the_local_error():
     estimate, local_error = [], []
     for h in (0.04, 0.02, 0.01):
         y1, v1, ey, ev = (np.empty(1) for _ in range(4))
-        converged, _ = radau.single_step(tan_problem(), t0, y0, v0, h, 1e-13, np.full(2, 1e-13),
-                                         y1, v1, ey, ev)
+        converged, _ = radau.single_step(tan_problem(), t0, y0, v0, h,
+                                         IntegratorSettings(1e-13, 1e-13, np.inf, 1),
+                                         (y1, v1, ey, ev))
         assert converged
         estimate.append(np.hypot(ey[0], ev[0]))
         exact = math.tan(t0 + h)

@@ -19,7 +19,9 @@ from numba.core.dispatcher import Dispatcher
 
 from hubbeam.config import case_settings
 from hubbeam.core import eom
+from hubbeam.core.inputs import SimulationInputs
 from hubbeam.matrices import assemble
+from hubbeam.models import MODELS
 from hubbeam.parameters import BeamParameters
 from hubbeam.reference import pure_python, reference_simulation
 from hubbeam.simulate import kernel_matrices, maneuver_parameters, simulate
@@ -66,16 +68,16 @@ def test_pure_python_accelerations_call_no_compiled_code_and_agree(setup):
                  {"kind": "torque_table", "time": [0.0, 10.0, 30.0], "torque": [0.0, 5.0, 1.0]},
                  {"kind": "pd", "kp": 3.0, "kd": 1.0,
                   "reference": {"kind": "angle_table", "time": [0.0, 20.0], "angle": [0.0, 1.0]}}]
-    for model in eom.MODEL_IDS.values():
+    for model in MODELS.values():
         for kind, mp in map(maneuver_parameters, maneuvers):
-            free = eom.free_dofs(model, kind, 2)
+            inputs = SimulationInputs(model.traits, kind, mp, C, sm)
+            free = eom.free_dofs(model.traits, kind, 2)
             for _ in range(3):
                 t = rng.uniform(0, 40)
                 y, v = rng.normal(scale=0.1, size=(2, 5))
                 a_fast, a_plain = np.zeros(5), np.zeros(5)
-                args = (model, kind, mp, C, t)
-                out_fast = eom.accelerations(*args, y.copy(), v.copy(), sm, free, a_fast)
-                out_plain = plain(*args, y.copy(), v.copy(), sm, free, a_plain)
+                out_fast = eom.accelerations(inputs, t, y.copy(), v.copy(), free, a_fast)
+                out_plain = plain(inputs, t, y.copy(), v.copy(), free, a_plain)
                 assert np.allclose(a_plain, a_fast, rtol=1e-12, atol=1e-12)
                 assert np.allclose(out_plain, out_fast, rtol=1e-12, atol=1e-12)
 

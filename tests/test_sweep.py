@@ -24,6 +24,7 @@ import xarray as xr
 from hubbeam import validity
 from hubbeam.config import ConfigError, validate_config
 from hubbeam.core import radau
+from hubbeam.core.inputs import ModelTraits
 from hubbeam.core.sweep import hermite_abs_max, output_grid
 from hubbeam.io import open_result, write_netcdf
 from hubbeam.parameters import BeamParameters
@@ -165,7 +166,8 @@ def test_grid_and_coordinates_follow_the_config(_study_config):
                                                               grid["num"]))
         models, mp, index, t_end, t_mark, tips = _points(sweep)
         shape = (len(spec["models"]),) + tuple(g["num"] for g in spec["grid"].values())
-        assert models.size == math.prod(shape) >= 10_000
+        assert len(models) == math.prod(shape) >= 10_000
+        assert models.shape[1:] == (len(ModelTraits._fields),)
         # C order (model, axis 1, axis 2): the swept values vary along their own axis only
         grids = np.meshgrid(*axis_values(sweep).values(), indexing="ij")
         for key, grid in zip(sweep["axes"], grids):

@@ -152,6 +152,8 @@ def case_settings(cfg: Mapping, name: str) -> dict:
     }
     if "damping" in case:
         settings["damping"] = _floats(case["damping"])
+    if "initial" in case:
+        settings["initial"] = _floats(case["initial"])
     return settings
 
 

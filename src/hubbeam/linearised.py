@@ -15,7 +15,9 @@ with the transverse stiffness of Eq. (31), ``K22 = K2 - Omega^2 B`` and
     flapwise:  B = -D                 (out of the plane of rotation: no softening, no coupling)
 
 ``M2``, ``D``, ``R`` include the tip-mass terms of Section 4.4 when the matrices do. The
-transverse block alone is ``M2 q2'' + K22 q2 = 0`` (``G = 0``). The flapwise variant is the
+transverse block alone is ``M2 q2'' + K22 q2 = 0`` (``G = 0``). A model's variant is its
+``linearisation`` in the table of models (``hubbeam.models``); the variants' terms follow from
+the models' traits (``softening_terms``: the ``D`` terms; ``keeps_axial``: the axial block). The flapwise variant is the
 transverse motion perpendicular to the plane of rotation (``w = f2 q3``), which the published
 rotating-cantilever tables tabulate (:mod:`hubbeam.validation.rotating_eigen` derives it).
 
@@ -26,10 +28,15 @@ speeds at once: the symmetric one ``K22 v = omega^2 M2 v`` and the gyroscopic qu
 
 import numpy as np
 
-#: ``B`` of ``K22 = K2 - Omega^2 B`` as ``a M2 - c D``: variant -> ``(a, c)`` (Eq. 31)
-CENTRIFUGAL_TERMS = {"TLAM": (1.0, 0.0), "FOAM": (1.0, 1.0), "flapwise": (0.0, 1.0)}
+from hubbeam.models import MODELS
+
+#: ``B`` of ``K22 = K2 - Omega^2 B`` as ``a M2 - c D``: variant -> ``(a, c)`` (Eq. 31): the
+#: linearisation of each model (``c = 1`` where it keeps the softening terms) and the flapwise one
+CENTRIFUGAL_TERMS = {**{m.linearisation: (1.0, 1.0 if m.softening_terms else 0.0)
+                        for m in MODELS.values()},
+                     "flapwise": (0.0, 1.0)}
 #: the variants with the axial coordinates and their Coriolis coupling (Eqs. 29, 30)
-AXIAL_MODELS = ("TLAM", "FOAM")
+AXIAL_MODELS = tuple(dict.fromkeys(m.linearisation for m in MODELS.values() if m.keeps_axial))
 
 
 def _terms(model):
@@ -55,6 +62,14 @@ def transverse_stiffness(K2, M2, D, model, speed):
     """
     omega2 = np.square(np.asarray(speed, dtype=float))[..., None, None]
     return K2 - omega2 * centrifugal_matrix(M2, D, model)
+
+
+def axial_stretch(sm, speed):
+    """The steady centrifugal stretch ``q1s = Omega^2 (K1 - Omega^2 M1)^-1 V1`` at the hub speed
+    ``Omega = speed`` (the q1 rows of Eq. 24 with ``q2 = 0`` and every rate but the hub's zero;
+    Eqs. 29-30)."""
+    omega2 = float(speed) ** 2
+    return omega2 * np.linalg.solve(sm.K1 - omega2 * sm.M1, sm.V1)
 
 
 def constant_speed_matrices(sm, model, speed, axial=False):

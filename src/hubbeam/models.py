@@ -8,27 +8,34 @@ compute (``tests/test_models.py`` fails when it does).
 
 Traits of a model (:class:`Model`):
 
-* ``kernel_id``: the integer the jitted kernels receive (``hubbeam.core.eom``);
-* ``family``: the compiled kernel that integrates it (``"foam"``: the constant modal mass of
-  Eq. (24) inverted once, ``hubbeam.core.foam_rhs``; ``"cfoam"``: the exact kinetic energy,
-  ``hubbeam.core.cfoam_rhs``);
 * ``keeps_axial``: the axial coordinates ``q1`` are integrated (SFOAM holds them at zero, Eq. 40);
 * ``softening_terms``: the underlined ``D`` terms of Eqs. (25), (31), (32) are kept (all but TLAM);
 * ``hub_velocity_force``: the velocity-dependent generalised force ``Q_theta`` of Eq. (32) acts on
   the hub (SFOAM deletes it, Eq. 40);
+* ``exact_kinetic_energy``: the equations come from the exact kinetic energy of Eqs. (8)-(9)
+  (CFOAM) instead of its first-order expansion, Eqs. (24)-(34);
 * ``linearisation``: the variant of the constant-speed equations, Eq. (31), that linearises it
   about a steady spin (``hubbeam.linearised.CENTRIFUGAL_TERMS``): TLAM's for TLAM, FOAM's for the
-  others (CFOAM's high-order terms are of second order in the deflection and vanish from the
-  linearisation about ``q2 = 0``, reproduction note 5);
+  others. CFOAM's high-order terms are of second order in the elastic coordinates (reproduction
+  note 5); about ``q2 = 0`` they leave only products of the steady axial stretch ``q1s`` with the
+  deflection, a relative change of the order of the stretch ``f1(L) q1s / L`` (3e-6 for the
+  paper's beam at 2 rad/s; ``tests/test_initial_state.py`` measures it), which FOAM's
+  linearisation neglects;
 * ``high_order_outputs``: the dataset carries CFOAM-minus-FOAM terms along the trajectory
   (``hubbeam.variables.HIGH_ORDER_VARIABLES``).
+
+Derived from them: :attr:`Model.traits`, the flags the jitted kernels receive
+(:class:`hubbeam.core.inputs.ModelTraits`), and :attr:`Model.family`, the compiled kernel that
+integrates the model (``"foam"``: the constant modal mass of Eq. (24) inverted once,
+``hubbeam.core.foam_rhs``; ``"cfoam"``: the exact kinetic energy, ``hubbeam.core.cfoam_rhs``).
+Importing this module is cheap (no numba).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from hubbeam.core import eom
+from hubbeam.core import inputs
 
 
 @dataclass(frozen=True)
@@ -36,33 +43,43 @@ class Model:
     """One hub-beam model and the traits that decide what is computed for it."""
 
     name: str
-    kernel_id: int
-    family: str
     keeps_axial: bool
     softening_terms: bool
     hub_velocity_force: bool
+    exact_kinetic_energy: bool
     linearisation: str
     high_order_outputs: bool
     description: str
 
+    @property
+    def traits(self) -> inputs.ModelTraits:
+        """The flags the jitted kernels branch on."""
+        return inputs.ModelTraits(self.keeps_axial, self.softening_terms, self.hub_velocity_force,
+                                  self.exact_kinetic_energy)
+
+    @property
+    def family(self) -> str:
+        """The compiled kernel family that integrates the model (``hubbeam.core.inputs.FAMILIES``)."""
+        return inputs.family(self.traits)
+
 
 #: the models, in the paper's order
 MODELS: dict[str, Model] = {model.name: model for model in (
-    Model("TLAM", eom.TLAM, "foam", keeps_axial=True, softening_terms=False,
-          hub_velocity_force=True, linearisation="TLAM", high_order_outputs=False,
+    Model("TLAM", keeps_axial=True, softening_terms=False, hub_velocity_force=True,
+          exact_kinetic_energy=False, linearisation="TLAM", high_order_outputs=False,
           description="traditional linear approximation model: no foreshortening terms"),
-    Model("FOAM", eom.FOAM, "foam", keeps_axial=True, softening_terms=True,
-          hub_velocity_force=True, linearisation="FOAM", high_order_outputs=False,
+    Model("FOAM", keeps_axial=True, softening_terms=True, hub_velocity_force=True,
+          exact_kinetic_energy=False, linearisation="FOAM", high_order_outputs=False,
           description="first-order approximation model, Eqs. (24)-(34)"),
-    Model("SFOAM", eom.SFOAM, "foam", keeps_axial=False, softening_terms=True,
-          hub_velocity_force=False, linearisation="FOAM", high_order_outputs=False,
+    Model("SFOAM", keeps_axial=False, softening_terms=True, hub_velocity_force=False,
+          exact_kinetic_energy=False, linearisation="FOAM", high_order_outputs=False,
           description="simplified first-order model, Eq. (40): q1 and Q_theta dropped"),
-    Model("CFOAM", eom.CFOAM, "cfoam", keeps_axial=True, softening_terms=True,
-          hub_velocity_force=True, linearisation="FOAM", high_order_outputs=True,
+    Model("CFOAM", keeps_axial=True, softening_terms=True, hub_velocity_force=True,
+          exact_kinetic_energy=True, linearisation="FOAM", high_order_outputs=True,
           description="complete model: the exact kinetic energy of Eqs. (8)-(9)"),
 )}
 
-#: the kernel families, each compiled once (``hubbeam.core.integrate.FAMILY_KERNELS``)
+#: the kernel families the models use, each compiled once (``hubbeam.core.integrate.FAMILY_KERNELS``)
 FAMILIES: tuple[str, ...] = tuple(dict.fromkeys(model.family for model in MODELS.values()))
 
 
@@ -78,9 +95,9 @@ def model(name: str) -> Model:
         raise UnknownModelError(f"model = {name!r}; allowed: one of {', '.join(MODELS)}") from None
 
 
-def by_kernel_id(kernel_id: int) -> Model:
-    """The :class:`Model` the kernels know as ``kernel_id``."""
-    return next(m for m in MODELS.values() if m.kernel_id == kernel_id)
+def family_model(family: str) -> Model:
+    """The first model (in the paper's order) that the kernel family ``family`` integrates."""
+    return next(m for m in MODELS.values() if m.family == family)
 
 
 def wildcard_pattern(values) -> str:

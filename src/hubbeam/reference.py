@@ -26,16 +26,19 @@ from numba.core.dispatcher import Dispatcher
 from scipy.integrate import solve_ivp
 
 from hubbeam.core import eom
+from hubbeam.core.inputs import SimulationInputs, Trajectory
 from hubbeam.core.integrate import fill_outputs, n_output_columns
 from hubbeam.core.radau import LEFT_RANGE, NON_FINITE, STEP_UNDERFLOW, SUCCESS
 from hubbeam.damping import damping_matrices
 from hubbeam.matrices import SystemMatrices
+from hubbeam.models import model
 from hubbeam.parameters import BeamParameters
 from hubbeam.settings import simulation_settings
 from hubbeam.simulate import (
-    MODEL_IDS,
     build_dataset,
     case_matrices,
+    check_initial,
+    initial_state,
     maneuver_parameters,
     output_times,
     step_stops,
@@ -78,16 +81,18 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     every free position and velocity). The run is split at the end of the maneuver, as in the fast
     path (and at every row of a maneuver's table). Integrator attributes name scipy, the method and
     its counts (``n_steps`` is not known to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
+    The run starts from the case's initial state (:func:`hubbeam.simulate.initial_state`).
     """
     case, numerics = (item.to_dict() for item in simulation_settings(case, numerics, params.L))
+    check_initial(case)
     if method not in METHODS:
         raise ValueError(f"method = {method!r}; allowed: one of {', '.join(METHODS)}")
     sm = case_matrices(case, params, numerics, matrices)
-    model = MODEL_IDS[case["model"]]
     kind, mp = maneuver_parameters(case["maneuver"])
-    C = damping_matrices(case.get("damping"), sm)
+    inputs = SimulationInputs(model(case["model"]).traits, kind, mp,
+                              damping_matrices(case.get("damping"), sm), sm)
     n = case["modes"]
-    free = eom.free_dofs(model, kind, n)
+    free = eom.free_dofs(inputs.traits, kind, n)
     nf = free.size
     accelerations = pure_python(eom.accelerations) if pure_python_rhs else eom.accelerations
     y = np.zeros(1 + 2 * n)
@@ -97,7 +102,7 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     def rhs(t, z):
         y[free] = z[:nf]
         v[free] = z[nf:]
-        accelerations(model, kind, mp, C, t, y, v, sm, free, a)
+        accelerations(inputs, t, y, v, free, a)
         return np.concatenate([z[nf:], a[free]])
 
     tip_limit = float(numerics["divergence_limit"]) * params.L
@@ -109,7 +114,8 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
 
     t = output_times(case["t_end"], numerics["output_step"])
     edges = [t[0], *step_stops(case, t), t[-1]]
-    z = np.zeros(2 * nf)
+    start = initial_state(case, sm)
+    z = np.concatenate([start.y[free], start.v[free]])
     states = np.full((t.size, 2 * nf), np.nan)
     status, t_stop, nfev, njev, nlu = SUCCESS, t[-1], 0, 0, 0
     start = time.perf_counter()
@@ -132,8 +138,8 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
         z = result.y[:, -1]
     wall = time.perf_counter() - start
     out = np.empty((t.size, n_output_columns(n)))
-    fill_outputs(model, kind, mp, C, sm, free, t, np.ascontiguousarray(states[:, :nf]),
-                 np.ascontiguousarray(states[:, nf:]), out)
+    fill_outputs(inputs, free, Trajectory(t, np.ascontiguousarray(states[:, :nf]),
+                                          np.ascontiguousarray(states[:, nf:])), out)
     integrator = {"integrator": f"scipy.integrate.solve_ivp {method} (hubbeam.reference)",
                   "rtol": float(rtol), "atol": float(atol), "n_rhs": int(nfev),
                   "n_jacobian": int(njev), "n_lu": int(nlu), "wall_time_s": float(wall),

@@ -79,6 +79,9 @@ class Case:
     modes: int
     tip_mass: TipMass
     damping: Damping | None = None
+    #: ``(key, value)`` of the optional ``initial`` state (``hubbeam.simulate.initial_state``);
+    #: empty: the run starts at rest
+    initial: tuple[tuple[str, Any], ...] = ()
 
     def to_dict(self) -> dict:
         """The resolved case as a plain mapping (``hubbeam.config.case_settings``)."""
@@ -88,6 +91,8 @@ class Case:
                     "tip_mass": {"mass": self.tip_mass.mass, "position": self.tip_mass.position}}
         if self.damping is not None:
             settings["damping"] = self.damping.to_dict()
+        if self.initial:
+            settings["initial"] = {key: _plain(value) for key, value in self.initial}
         return settings
 
 
@@ -198,7 +203,8 @@ def _case(resolved: Mapping) -> Case:
     return Case(name=None if resolved["name"] == UNNAMED else resolved["name"], model=resolved["model"],
                 maneuver=Maneuver.from_mapping(resolved["maneuver"]), t_end=resolved["t_end"],
                 modes=resolved["modes"], tip_mass=TipMass(**resolved["tip_mass"]),
-                damping=Maneuver.from_mapping(resolved["damping"]) if "damping" in resolved else None)
+                damping=Maneuver.from_mapping(resolved["damping"]) if "damping" in resolved else None,
+                initial=tuple((key, _frozen(value)) for key, value in resolved.get("initial", {}).items()))
 
 
 #: the name a case given without one has in messages

@@ -3,7 +3,9 @@
 :func:`simulate` turns a resolved case (``hubbeam.config.case_settings``), the beam parameters
 (Table 1) and the ``numerics`` section of the config into the simulation dataset of
 ``docs/architecture.md``. The hub-beam starts at rest and undeformed (``theta = 0``, ``q = 0``,
-all rates zero). The whole time integration runs in :func:`hubbeam.core.integrate.simulate_kernel`
+all rates zero), or at the operating point of the case's optional ``initial`` mapping
+(:func:`initial_state`: a steady spin with ``q1`` at its centrifugal stretch, plus given modal
+coordinates and rates). The whole time integration runs in :func:`hubbeam.core.integrate.simulate_kernel`
 (Radau IIA of order 5, :mod:`hubbeam.core.radau`). A run stopped early is a result with NaN
 outputs after ``stopped_at_s``: stopped at a tip deflection beyond ``numerics.divergence_limit * L``
 it has ``left_range = 1``, or ``diverged = 1`` when it went beyond its critical speed (or its state
@@ -31,22 +33,23 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import cumulative_simpson
 
-from hubbeam import validity
+from hubbeam import linearised, validity
 from hubbeam.beam import beam_attributes
 from hubbeam.core import radau
-from hubbeam.core.eom import MODEL_IDS
+from hubbeam.core.inputs import IntegratorSettings, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
+from hubbeam.core.maneuver import prescribed, prescribed_motion
 from hubbeam.damping import damping_matrices
 from hubbeam.limits import MAX_MODES, MAX_QUADRATURE_POINTS, MIN_QUADRATURE_POINTS, MIN_RTOL, SMALL_DEFLECTION_LIMIT
 from hubbeam.maneuvers import maneuver_parameters, maneuver_stops
 from hubbeam.matrices import SystemMatrices, assemble
+from hubbeam.models import FAMILIES, family_model, model
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
 from hubbeam.settings import simulation_settings
 from hubbeam.variables import (
     CUMULATIVE_VARIABLES,
-    HIGH_ORDER_VARIABLES,
-    VARIABLES,
+    dataset_variables,
     output_count,
 )
 
@@ -56,12 +59,72 @@ LOG = logging.getLogger(__name__)
 NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
 #: optional numerics keys a simulation reads, with their defaults
 OPTIONAL_NUMERICS = {"small_deflection_limit": SMALL_DEFLECTION_LIMIT}
+#: keys of a case's optional ``initial`` mapping, the state a run starts from (:func:`initial_state`)
+INITIAL_KEYS = ("hub_speed", "q1", "q2", "q1_dot", "q2_dot")
+#: the initial modal coordinates and rates among :data:`INITIAL_KEYS` (one value per mode)
+INITIAL_MODAL_KEYS = INITIAL_KEYS[1:]
 
 INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
 
 
 class SimulationError(ValueError):
     """A case or the numerics cannot be simulated; the message names key, value and allowed."""
+
+
+def check_initial(case: Mapping) -> None:
+    """Raise :class:`SimulationError` unless the optional ``case["initial"]`` (its keys and types
+    checked by the schema, ``cases.<name>.initial``) is a state the case can start from
+    (:func:`initial_state`): finite values, one per mode, no axial coordinates for a model that
+    keeps none, and for a prescribed hub the maneuver's own speed at ``t = 0``."""
+    spec = case.get("initial") or {}
+    where = f"cases.{case.get('name', '<unnamed>')}.initial"
+    n = case["modes"]
+    for key, value in spec.items():
+        values = np.atleast_1d(np.asarray(value, dtype=float))
+        if not np.all(np.isfinite(values)) or (key in INITIAL_MODAL_KEYS and values.size != n):
+            allowed = ("a finite number (rad s-1)" if key == "hub_speed" else
+                       f"a list of {n} finite numbers, one per mode (kg1/2 m, or kg1/2 m s-1 for rates)")
+            raise SimulationError(f"{where}.{key} = {value!r}; allowed: {allowed}")
+        if key in ("q1", "q1_dot") and np.any(values) and not model(case["model"]).keeps_axial:
+            raise SimulationError(f"{where}.{key} = {value!r}; allowed: zeros or no {key}: "
+                                  f"{case['model']} keeps no axial coordinates (q1 = 0, Eq. 40)")
+    kind, mp = maneuver_parameters(case["maneuver"])
+    if "hub_speed" in spec and prescribed(kind):
+        start_speed = float(prescribed_motion(kind, 0.0, mp)[1])
+        if not math.isclose(spec["hub_speed"], start_speed, rel_tol=1e-12, abs_tol=1e-12):
+            raise SimulationError(
+                f"{where}.hub_speed = {spec['hub_speed']!r}; allowed: {start_speed!r} rad s-1, the "
+                f"speed at t = 0 of the prescribed maneuver (or no hub_speed)")
+
+
+def initial_state(case: Mapping, sm: SystemMatrices) -> State:
+    """The state ``(y, y')`` of ``y = (theta, q1, q2)`` at ``t = 0`` for a checked case
+    (:func:`check_initial`), from its optional ``initial`` mapping (default: rest):
+
+    * ``hub_speed`` (rad s-1, default 0): a steady spin, ``theta = 0``, ``theta' = hub_speed``,
+      with ``q1`` at its centrifugal stretch ``q1s`` for that speed
+      (:func:`hubbeam.linearised.axial_stretch`; zero for a model that keeps no ``q1``) and
+      ``q2 = 0``; for a prescribed maneuver it must be the maneuver's speed at ``t = 0``;
+    * ``q1``, ``q2``, ``q1_dot``, ``q2_dot`` (one value per mode, default zeros): added to the
+      modal coordinates and rates of that state.
+    """
+    spec = case.get("initial") or {}
+    n = case["modes"]
+    speed = float(spec.get("hub_speed", 0.0))
+    extra = {key: np.asarray(spec.get(key, np.zeros(n)), dtype=float) for key in INITIAL_MODAL_KEYS}
+    q1s = linearised.axial_stretch(sm, speed) if model(case["model"]).keeps_axial else np.zeros(n)
+    return State(np.concatenate([[0.0], q1s + extra["q1"], extra["q2"]]),
+                 np.concatenate([[speed], extra["q1_dot"], extra["q2_dot"]]))
+
+
+def _with_modes(case: Mapping, modes: int) -> dict:
+    """``case`` with ``modes`` modes; initial modal values of the added modes are zero."""
+    spec = case.get("initial")
+    if not spec:
+        return dict(case, modes=modes)
+    padded = {key: [*value, *[0.0] * (modes - len(value))] if key in INITIAL_MODAL_KEYS else value
+              for key, value in spec.items()}
+    return dict(case, modes=modes, initial=padded)
 
 
 def output_times(t_end: float, output_step: float) -> np.ndarray:
@@ -96,13 +159,13 @@ def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
 def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
              matrices: SystemMatrices | None = None, *,
              convergence_check: Mapping | None = None) -> xr.Dataset:
-    """Simulate one case from rest and return the labelled simulation dataset.
+    """Simulate one case from its initial state and return the labelled simulation dataset.
 
     Parameters
     ----------
     case : a resolved case (``hubbeam.config.case_settings``): ``name``, ``model``, ``maneuver``
         (:mod:`hubbeam.maneuvers`), ``t_end``, ``modes``, ``tip_mass``, optional ``damping``
-        (:mod:`hubbeam.damping`).
+        (:mod:`hubbeam.damping`) and optional ``initial`` (:func:`initial_state`; default: rest).
     params : Table 1 parameters.
     numerics : the ``numerics`` section of the config (``rtol``, ``atol``, ``output_step``,
         ``max_steps``, ``step_warning``, ``divergence_limit``, and ``quadrature_points`` when
@@ -120,6 +183,7 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
     convergence_check = numerics.convergence_check and numerics.convergence_check.to_dict()
     case, numerics = case.to_dict(), numerics.to_dict()  # what the integration below reads
+    check_initial(case)
     sm = case_matrices(case, params, numerics, matrices)
     ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm))
     ds.attrs["quadrature_points"] = quadrature_points(sm)
@@ -144,10 +208,9 @@ def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: Sys
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
     C = damping_matrices(case.get("damping"), sm)
     start = time.perf_counter()
-    status, t_stop = simulate_kernel(
-        MODEL_IDS[case["model"]], kind, mp, C, sm, t, step_stops(case, t),
-        float(numerics["rtol"]), float(numerics["atol"]),
-        float(numerics["divergence_limit"]) * params.L, int(numerics["max_steps"]), out, stats)
+    inputs = SimulationInputs(model(case["model"]).traits, kind, mp, C, sm)
+    status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
+                                     integrator_settings(numerics, params.L), out, stats)
     wall = time.perf_counter() - start
     LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
              "%d rhs calls, %d Jacobians, %d LU", case.get("name", "<unnamed>"), case["model"],
@@ -158,6 +221,14 @@ def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: Sys
                   "atol": float(numerics["atol"]),
                   **{name: int(value) for name, value in zip(radau.STAT_NAMES, stats)}}
     return t, out, status, t_stop, integrator
+
+
+def integrator_settings(numerics: Mapping, length: float) -> IntegratorSettings:
+    """The kernel's :class:`~hubbeam.core.inputs.IntegratorSettings` from checked ``numerics``
+    for a beam of length ``length`` (the tip limit is ``divergence_limit * length``)."""
+    return IntegratorSettings(float(numerics["rtol"]), float(numerics["atol"]),
+                              float(numerics["divergence_limit"]) * length,
+                              int(numerics["max_steps"]))
 
 
 def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics: Mapping,
@@ -191,7 +262,7 @@ def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics:
     reruns = {"tolerance": (case, tight, sm,
                             f"a rerun at rtol = {tight['rtol']:.3g}, atol = {tight['atol']:.3g}")}
     if more > n:
-        more_case = dict(case, modes=more)
+        more_case = _with_modes(case, more)
         more_sm = case_matrices(more_case, params, {"quadrature_points": quadrature_points(sm)})
         reruns["modes"] = (more_case, numerics, more_sm, f"a rerun with {more} modes")
     else:
@@ -232,9 +303,7 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, sm: 
     """
     n = case["modes"]
     columns = output_columns(n)
-    variables = dict(VARIABLES)
-    if case["model"] == "CFOAM":
-        variables |= HIGH_ORDER_VARIABLES
+    variables = dataset_variables(case["model"])
     data_vars = {name: (dims, np.ascontiguousarray(out[:, columns[name]]),
                         {"units": units, "long_name": long_name})
                  for name, (dims, units, long_name) in variables.items()}
@@ -265,6 +334,7 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, sm: 
         "model": case["model"],
         "maneuver": dict(case["maneuver"]),
         "damping": dict(case.get("damping") or {}),
+        "initial": dict(case.get("initial") or {}),
         "tip_mass_kg": float(tip["mass"]),
         "tip_position_m": float(tip["position"]),
         "n_modes": int(n),
@@ -294,15 +364,14 @@ def compile_kernels(family: str | None = None) -> float:
     this once per family before it starts parallel simulations (they then all load the cached
     machine code); the families compile independently, in parallel processes if wanted.
     """
-    models = {"foam": "FOAM", "cfoam": "CFOAM"}
-    if family is not None and family not in models:
-        raise ValueError(f"family: got {family!r}; allowed: {', '.join(models)}")
+    if family is not None and family not in FAMILIES:
+        raise ValueError(f"family: got {family!r}; allowed: {', '.join(FAMILIES)}")
     params = BeamParameters(L=1.0, rho=1.0, A=1.0, E=1.0, I=1.0, Jh=1.0, rA=0.1)
     numerics = {"rtol": 1e-6, "atol": 1e-8, "output_step": 0.05, "max_steps": 1000,
                 "step_warning": 1000, "divergence_limit": 1.0, "quadrature_points": 8}
     start = time.perf_counter()
-    for name in [family] if family else list(models):
-        case = {"name": "compile_kernels", "model": models[name], "modes": 1, "t_end": 0.1,
+    for name in [family] if family else FAMILIES:
+        case = {"name": "compile_kernels", "model": family_model(name).name, "modes": 1, "t_end": 0.1,
                 "maneuver": {"kind": "prescribed", "wf": 0.1, "tf": 0.05},
                 "tip_mass": {"mass": 0.0, "position": 1.0}}
         sm = case_matrices(case, params, numerics)
@@ -310,8 +379,9 @@ def compile_kernels(family: str | None = None) -> float:
         t = output_times(case["t_end"], numerics["output_step"])
         out = np.empty((t.size, n_output_columns(1)))
         stats = np.zeros(len(radau.STAT_NAMES), np.int64)
-        simulate_kernel(MODEL_IDS[models[name]], kind, mp, damping_matrices(None, sm), sm, t,
-                        step_stops(case, t), 1e-6, 1e-8, 1.0, 1000, out, stats)
+        inputs = SimulationInputs(family_model(name).traits, kind, mp, damping_matrices(None, sm), sm)
+        simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
+                        IntegratorSettings(1e-6, 1e-8, 1.0, 1000), out, stats)
     return time.perf_counter() - start
 
 

@@ -33,9 +33,10 @@ from hubbeam import eigen, limits, validity
 from hubbeam.beam import beam_attributes
 from hubbeam.core import radau
 from hubbeam.core import sweep as kernels
-from hubbeam.core.eom import MODEL_IDS
+from hubbeam.core.inputs import IntegratorSettings
 from hubbeam.maneuvers import MANEUVERS
 from hubbeam.matrices import SystemMatrices, assemble
+from hubbeam.models import model
 from hubbeam.parameters import BeamParameters, TipMass
 from hubbeam.provenance import global_attributes
 from hubbeam.simulate import INTEGRATOR, kernel_matrices
@@ -117,12 +118,13 @@ def axis_values(sweep: Mapping) -> dict[str, np.ndarray]:
 def _points(sweep: Mapping):
     """Per-point inputs of the kernel, points ordered as ``(model, axes...)`` in C order.
 
-    Returns ``models, mp, matrix_index, t_end, t_mark`` and the distinct tip masses as a list
-    of ``TipMass`` (``matrix_index`` points into it).
+    Returns ``traits`` (the kernels' model traits of every point as rows,
+    :class:`hubbeam.core.sweep.SweepPoints`), ``mp, matrix_index, t_end, t_mark`` and the
+    distinct tip masses as a list of ``TipMass`` (``matrix_index`` points into it).
     """
     axes = axis_values(sweep)
-    models = np.array([MODEL_IDS[model] for model in sweep["models"]])
-    shape = (models.size,) + tuple(values.size for values in axes.values())
+    models = np.array([model(name).traits for name in sweep["models"]], dtype=bool)
+    shape = (len(models),) + tuple(values.size for values in axes.values())
     grids = dict(zip(axes, np.meshgrid(*axes.values(), indexing="ij")))
 
     def value(key, fixed):
@@ -139,10 +141,10 @@ def _points(sweep: Mapping):
 
     def per_point(array):  # (grid..., extra...) -> (model x grid, extra...): a writable copy
         extra = array.shape[len(shape) - 1:]
-        return np.array(np.broadcast_to(array, (models.size,) + array.shape).reshape((-1,) + extra),
+        return np.array(np.broadcast_to(array, (len(models),) + array.shape).reshape((-1,) + extra),
                         order="C")
 
-    return (np.repeat(models, np.prod(shape[1:], dtype=int)), per_point(mp),
+    return (np.repeat(models, np.prod(shape[1:], dtype=int), axis=0), per_point(mp),
             per_point(inverse.reshape(shape[1:])), per_point(tf + sweep["t_after"]),
             per_point(tf), [TipMass(float(m), float(l)) for m, l in distinct])
 
@@ -186,8 +188,8 @@ def run_points(sweep: Mapping, params: BeamParameters, points: range | None = No
     (default: every CPU this process may use); return the kernel's per-point ``results``,
     ``status`` and ``stats`` arrays. The numbers do not depend on the thread count or on which
     other points run alongside."""
-    models, mp, matrix_index, t_end, t_mark, tips = _points(sweep)
-    points = range(models.size) if points is None else points
+    traits, mp, matrix_index, t_end, t_mark, tips = _points(sweep)
+    points = range(len(traits)) if points is None else points
     selected = slice(points.start, points.stop)
     used, local_index = np.unique(matrix_index[selected], return_inverse=True)
     stack = matrix_stack([assemble(params, tips[k], sweep["modes"], sweep["quadrature_points"])
@@ -195,15 +197,15 @@ def run_points(sweep: Mapping, params: BeamParameters, points: range | None = No
     numerics = sweep["numerics"]
     count = len(points)
     threads = max(1, min(int(threads or default_threads()), count))
-    results = np.full((count, len(kernels.RESULT_COLUMNS)), np.nan)
-    status = np.zeros(count, np.int64)
-    stats = np.zeros((count, kernels.N_STATS), np.int64)
-    arguments = (np.ascontiguousarray(models[selected]), MANEUVERS[sweep["maneuver"]["kind"]][0],
-                 np.ascontiguousarray(mp[selected]), np.ascontiguousarray(local_index.ravel()),
-                 np.ascontiguousarray(t_end[selected]), np.ascontiguousarray(t_mark[selected]),
-                 stack, float(numerics["output_step"]), float(numerics["rtol"]),
-                 float(numerics["atol"]), sweep["divergence_limit"] * params.L,
-                 int(numerics["max_steps"]), results, status, stats)
+    found = kernels.SweepResults(np.full((count, len(kernels.RESULT_COLUMNS)), np.nan),
+                                 np.zeros(count, np.int64), np.zeros((count, kernels.N_STATS), np.int64))
+    sweep_points = kernels.SweepPoints(
+        np.ascontiguousarray(traits[selected]), MANEUVERS[sweep["maneuver"]["kind"]][0],
+        np.ascontiguousarray(mp[selected]), np.ascontiguousarray(local_index.ravel()),
+        np.ascontiguousarray(t_end[selected]), np.ascontiguousarray(t_mark[selected]))
+    settings = IntegratorSettings(float(numerics["rtol"]), float(numerics["atol"]),
+                                  float(sweep["divergence_limit"] * params.L), int(numerics["max_steps"]))
+    arguments = (sweep_points, stack, float(numerics["output_step"]), settings, found)
     start = time.perf_counter()
     with ThreadPoolExecutor(threads) as pool:
         shares = [pool.submit(kernels.sweep_tip_extrema, first, threads, *arguments)
@@ -211,6 +213,7 @@ def run_points(sweep: Mapping, params: BeamParameters, points: range | None = No
         for share in shares:
             share.result()
     wall = time.perf_counter() - start
+    results, status, stats = found
     LOG.info("sweep %s, points %d to %d: %d simulations in %.2f s on %d threads (%.2f ms each), "
              "%d stopped early, %d failed, %d rhs calls", sweep["name"], points.start, points.stop - 1,
              count, wall, threads, 1e3 * wall / max(count, 1),
@@ -345,8 +348,8 @@ def _validity(sweep: Mapping, params: BeamParameters, status: np.ndarray, peak: 
                                               **{key: axes[key] for key in critical.dims if key in axes}})
     cells = xr.DataArray(np.zeros(status.shape), dims=dims,
                          coords={"model": list(sweep["models"]), **axes})
-    limit = xr.concat([critical.sel(eigen_model=validity.linearisation(model), drop=True)
-                       for model in sweep["models"]], dim="model")
+    limit = xr.concat([critical.sel(eigen_model=model(name).linearisation, drop=True)
+                       for name in sweep["models"]], dim="model")
     limit = (limit.assign_coords(model=list(sweep["models"])) + cells).transpose(*dims).values
     if "wf" in axes:
         speed = (cells + cells["wf"]).transpose(*dims).values

@@ -28,7 +28,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from hubbeam import linearised
+from hubbeam import linearised, models
 from hubbeam.core import radau
 
 CATEGORIES = ("valid", "large_deflection", "left_range", "diverged")
@@ -44,16 +44,12 @@ LABELS = {
 BLOWN_UP = (radau.NON_FINITE, radau.STEP_UNDERFLOW)
 
 
-def linearisation(model: str) -> str:
-    """The variant of Eq. (31) that linearises ``model``: TLAM's for TLAM, FOAM's otherwise."""
-    return "TLAM" if model == "TLAM" else "FOAM"
-
-
 def stiffness_lost(K2: np.ndarray, M2: np.ndarray, D: np.ndarray, model: str, speed: float) -> bool:
-    """``K22(speed)`` of Eq. (31) for ``model``'s linearisation is not positive definite."""
+    """``K22(speed)`` of Eq. (31) for ``model``'s linearisation (``hubbeam.models``) is not
+    positive definite."""
     if not math.isfinite(speed):
         return False
-    K22 = linearised.transverse_stiffness(K2, M2, D, linearisation(model), speed)
+    K22 = linearised.transverse_stiffness(K2, M2, D, models.model(model).linearisation, speed)
     return bool(np.linalg.eigvalsh(K22)[0] <= 0.0)
 
 

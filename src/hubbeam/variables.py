@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+from hubbeam.models import model
+
 #: variable -> (dimensions, UDUNITS units, long name)
 VARIABLES = {
     "theta": (("time",), "rad", "hub angle theta"),
@@ -51,10 +53,18 @@ def output_count(t_end: float, output_step: float) -> int:
     return int(math.floor(t_end / output_step + 1e-9)) + 1
 
 
-def values_per_time(model: str, modes: int) -> int:
-    """Values a simulation dataset of ``model`` with ``modes`` modes stores per output time: one
-    per scalar variable, ``modes`` per modal one, the cumulative integrals and the time."""
-    variables = VARIABLES | (HIGH_ORDER_VARIABLES if model == "CFOAM" else {})
+def dataset_variables(name: str) -> dict:
+    """The variables (besides :data:`CUMULATIVE_VARIABLES`) of a simulation dataset of the model
+    ``name``: :data:`VARIABLES`, and :data:`HIGH_ORDER_VARIABLES` for a model with
+    ``high_order_outputs`` (``hubbeam.models``)."""
+    return VARIABLES | (HIGH_ORDER_VARIABLES if model(name).high_order_outputs else {})
+
+
+def values_per_time(name: str, modes: int) -> int:
+    """Values a simulation dataset of the model ``name`` with ``modes`` modes stores per output
+    time: one per scalar variable, ``modes`` per modal one, the cumulative integrals and the
+    time."""
+    variables = dataset_variables(name)
     return (sum(modes if "mode" in dims else 1 for dims, _, _ in variables.values())
             + len(CUMULATIVE_VARIABLES) + 1)
 

@@ -29,9 +29,10 @@ CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F")
 
 
 @kernel
-def cfoam_problem(kind, mp, C, sm):
-    """The :data:`CfoamProblem` of CFOAM under maneuver ``kind`` with damping matrices ``C`` for
-    ``SystemMatrices`` ``sm``."""
+def cfoam_problem(inputs):
+    """The :data:`CfoamProblem` of CFOAM for the :class:`~hubbeam.core.inputs.SimulationInputs`
+    ``inputs`` (maneuver, damping matrices ``C`` and ``SystemMatrices`` ``sm``)."""
+    _, kind, mp, C, sm = inputs
     N = 1 + 2 * sm.M1.shape[0]
     return CfoamProblem(kind, mp, C, cfoam_tensors(sm), np.zeros(N), np.zeros(N), np.empty((N, N)),
                         np.empty(N))

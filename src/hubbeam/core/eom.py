@@ -20,6 +20,9 @@ the form of Eq. (24) with the gyroscopic, stiffness and velocity terms moved to 
 
   summed over the point cloud (Gauss nodes of the beam and the tip mass).
 
+A model enters as its :class:`~hubbeam.core.inputs.ModelTraits` (``traits``), built from the one
+table of models (``hubbeam.models``): the kernels branch on what a model keeps, never on its name.
+
 The kernels only use loops over small arrays: for the 5 to 20 modes of this study explicit loops
 beat BLAS calls. These are the general equations (dataset outputs, the tests' reference); the
 integrator's right-hand sides, which allocate nothing per call, are ``foam_rhs`` and ``cfoam_rhs``.
@@ -32,27 +35,21 @@ import numpy as np
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
 
-TLAM = 0
-FOAM = 1
-SFOAM = 2
-CFOAM = 3
-MODEL_IDS = {"TLAM": TLAM, "FOAM": FOAM, "SFOAM": SFOAM, "CFOAM": CFOAM}
-
 
 @kernel
-def free_dofs(model, kind, n):
-    """Indices of ``y`` that are integrated: theta unless prescribed, q1 unless SFOAM."""
+def free_dofs(traits, kind, n):
+    """Indices of ``y`` that are integrated: theta unless prescribed, q1 if the model keeps it."""
     count = 2 * n + 1
     if prescribed(kind):
         count -= 1
-    if model == SFOAM:
+    if not traits.keeps_axial:
         count -= n
     free = np.empty(count, dtype=np.int64)
     k = 0
     if not prescribed(kind):
         free[k] = 0
         k += 1
-    if model != SFOAM:
+    if traits.keeps_axial:
         for i in range(n):
             free[k] = 1 + i
             k += 1
@@ -120,12 +117,14 @@ def _elastic_forces(cD, y, v, sm, out):
 
 
 @borrowing_kernel
-def foam_system(model, y, v, tau, sm, M, F):
-    """Mass matrix and force of FOAM (Eqs. 24-34), TLAM (no D terms) or SFOAM (Eq. 40)."""
+def foam_system(traits, y, v, tau, sm, M, F):
+    """Mass matrix and force of the first-order equations of a model with ``traits``: FOAM
+    (Eqs. 24-34), TLAM (no ``softening_terms``: no D terms) or SFOAM (Eq. 40: no
+    ``keeps_axial``, no ``hub_velocity_force``); for CFOAM's traits, FOAM's."""
     n = sm.M1.shape[0]
     o1 = 1
     o2 = 1 + n
-    cD = 0.0 if model == TLAM else 1.0
+    cD = 1.0 if traits.softening_terms else 0.0
     thd = v[0]
 
     # M_thth, Eq. (25)
@@ -162,13 +161,14 @@ def foam_system(model, y, v, tau, sm, M, F):
 
     _elastic_forces(cD, y, v, sm, F)
 
-    if model == SFOAM:
-        # Eq. (40): q1 rows decoupled (held at zero by the caller), Q_theta deleted
+    if not traits.keeps_axial:
+        # Eq. (40): q1 rows decoupled (held at zero by the caller)
         for i in range(n):
             M[0, o1 + i] = 0.0
             M[o1 + i, 0] = 0.0
             F[o1 + i] = 0.0
-        F[0] = tau
+    if not traits.hub_velocity_force:
+        F[0] = tau  # Eq. (40): Q_theta deleted
 
 
 @kernel
@@ -253,33 +253,35 @@ def _cfoam_system(y, v, tau, sm, M, F):
 
 
 @kernel
-def mass_matrix_and_force(model, y, v, tau, sm, M, F):
-    """Fill the full ``M(y)`` and ``F(y, y')`` of ``model`` (``F_theta = tau + Q_theta``), without
-    damping (:func:`add_damping`)."""
-    if model == CFOAM:
+def mass_matrix_and_force(traits, y, v, tau, sm, M, F):
+    """Fill the full ``M(y)`` and ``F(y, y')`` of the model with ``traits``
+    (``F_theta = tau + Q_theta``), without damping (:func:`add_damping`)."""
+    if traits.exact_kinetic_energy:
         _cfoam_system(y, v, tau, sm, M, F)
     else:
-        foam_system(model, y, v, tau, sm, M, F)
+        foam_system(traits, y, v, tau, sm, M, F)
 
 
 @borrowing_kernel
-def impose_constraints(model, kind, mp, t, y, v, a):
+def impose_constraints(inputs, t, y, v, a):
     """Overwrite the constrained entries of y, y', y'' and return the applied torque.
 
     A prescribed maneuver (Eq. 43, a speed table) sets theta and its rates and applies no torque
     of its own (the torque it needs is an output); a free hub gets the torque of its maneuver
-    (Eq. 44, a torque table, PD feedback on the state's theta, theta'). SFOAM holds q1 at zero.
+    (Eq. 44, a torque table, PD feedback on the state's theta, theta'). A model that does not
+    keep q1 (SFOAM) holds it at zero. ``inputs``: :class:`~hubbeam.core.inputs.SimulationInputs`.
     """
     n = (y.shape[0] - 1) // 2
     tau = 0.0
+    kind = inputs.kind
     if prescribed(kind):
-        th, thd, thdd = prescribed_motion(kind, t, mp)
+        th, thd, thdd = prescribed_motion(kind, t, inputs.mp)
         y[0] = th
         v[0] = thd
         a[0] = thdd
     else:
-        tau = hub_torque(kind, t, y[0], v[0], mp)
-    if model == SFOAM:
+        tau = hub_torque(kind, t, y[0], v[0], inputs.mp)
+    if not inputs.traits.keeps_axial:
         for i in range(n):
             y[1 + i] = 0.0
             v[1 + i] = 0.0
@@ -388,20 +390,21 @@ def solve_free(kind, tau, free, a_out, ws):
 
 
 @kernel
-def accelerations(model, kind, mp, C, t, y, v, sm, free, a_out):
+def accelerations(inputs, t, y, v, free, a_out):
     """Accelerations of every coordinate at time ``t``; returns ``(torque, Q_theta)``.
 
-    ``y`` and ``v`` are full-length; their constrained entries are overwritten from the maneuver.
-    ``C`` holds the damping matrices of the elastic coordinates (:func:`add_damping`).
+    ``inputs``: :class:`~hubbeam.core.inputs.SimulationInputs` (its ``C`` holds the damping
+    matrices of the elastic coordinates, :func:`add_damping`). ``y`` and ``v`` are full-length;
+    their constrained entries are overwritten from the maneuver.
     The free accelerations solve ``M_ff a_f = F_f - M_fc a_c`` with the constrained accelerations
     ``a_c`` known. ``torque`` is the applied torque of a free hub, or the torque a prescribed motion
     requires, ``(M a)_theta - Q_theta`` (the hub row of Eq. 24). SFOAM has no Q_theta (zero).
     """
-    ws = workspace(sm, free)
-    tau = impose_constraints(model, kind, mp, t, y, v, a_out)
-    mass_matrix_and_force(model, y, v, tau, sm, ws.M, ws.F)
-    add_damping(C, v, ws.F)
-    return solve_free(kind, tau, free, a_out, ws)
+    ws = workspace(inputs.sm, free)
+    tau = impose_constraints(inputs, t, y, v, a_out)
+    mass_matrix_and_force(inputs.traits, y, v, tau, inputs.sm, ws.M, ws.F)
+    add_damping(inputs.C, v, ws.F)
+    return solve_free(inputs.kind, tau, free, a_out, ws)
 
 
 @borrowing_kernel
@@ -432,12 +435,12 @@ def outputs(kind, tau, y, v, sm, free, a_out, ws):
 
 
 @kernel
-def energy(model, y, v, sm):
+def energy(traits, y, v, sm):
     """Total mechanical energy T + U, with T = y'^T M(y) y' / 2 and U of Eq. (22)."""
     N = y.shape[0]
     M = np.empty((N, N))
     F = np.empty(N)
-    mass_matrix_and_force(model, y, v, 0.0, sm, M, F)
+    mass_matrix_and_force(traits, y, v, 0.0, sm, M, F)
     e = strain_energy(y, sm.K1, sm.K2)
     for i in range(N):
         for j in range(N):
@@ -446,12 +449,12 @@ def energy(model, y, v, sm):
 
 
 @kernel
-def angular_momentum(model, y, v, sm):
+def angular_momentum(traits, y, v, sm):
     """Angular momentum about the hub axis, p_theta = dT/d(theta_dot) = (M(y) y')_theta."""
     N = y.shape[0]
     M = np.empty((N, N))
     F = np.empty(N)
-    mass_matrix_and_force(model, y, v, 0.0, sm, M, F)
+    mass_matrix_and_force(traits, y, v, 0.0, sm, M, F)
     p = 0.0
     for j in range(N):
         p += M[0, j] * v[j]
@@ -472,19 +475,22 @@ def tip_outputs(y, sm):
 
 
 @borrowing_kernel
-def high_order_terms(Mc, Fc, tau, y, v, a, sm, C, Mf, Ff, dQ):
-    """The CFOAM terms FOAM drops (Eqs. 35-39, re-derived), along a state with accelerations ``a``.
+def high_order_terms(Mc, Fc, tau, state, inputs, Mf, Ff, dQ):
+    """The CFOAM terms FOAM drops (Eqs. 35-39, re-derived), along a state ``(y, v, a)`` with
+    accelerations ``a``.
 
     ``Mc, Fc`` are CFOAM's mass matrix and force at ``(y, v)`` with applied torque ``tau`` and the
-    damping forces of ``C``; ``Mf, Ff`` are overwritten with FOAM's (same damping, so it cancels).
+    damping forces of ``inputs.C``; ``Mf, Ff`` are overwritten with FOAM's, the first-order
+    equations of the same traits (:func:`foam_system`; same damping, so it cancels).
     Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the generalised force the high-order terms add
     to FOAM's equations (theta, q1, q2 rows; accelerations moved to the right-hand side as in
     Eqs. 38-39) and returns
     ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35).
     """
+    y, v, a = state
     N = y.shape[0]
-    foam_system(FOAM, y, v, tau, sm, Mf, Ff)
-    add_damping(C, v, Ff)
+    foam_system(inputs.traits, y, v, tau, inputs.sm, Mf, Ff)
+    add_damping(inputs.C, v, Ff)
     for i in range(N):
         s = Fc[i] - Ff[i]
         for j in range(N):

@@ -36,7 +36,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from hubbeam.core.eom import SFOAM, TLAM, cholesky_factor, cholesky_solve, free_dofs
+from hubbeam.core.eom import cholesky_factor, cholesky_solve, free_dofs
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
 from hubbeam.core.radau import register_rhs
@@ -51,15 +51,18 @@ B0, B1, G_VEC, C0 = range(4)
 
 
 @kernel
-def foam_problem(model, kind, mp, C, sm):
-    """The :data:`FoamProblem` of ``model`` (TLAM, FOAM or SFOAM) under maneuver ``kind`` with the
-    damping matrices ``C = [C1, C2]``.
+def foam_problem(inputs):
+    """The :data:`FoamProblem` of the :class:`~hubbeam.core.inputs.SimulationInputs` ``inputs``
+    of TLAM, FOAM or SFOAM (its traits: ``softening_terms`` keeps ``D``, ``keeps_axial`` keeps
+    ``q1``, ``hub_velocity_force`` keeps ``Q_theta``) under its maneuver with the damping
+    matrices ``C = [C1, C2]``.
 
     Assembled with plain loops and the Cholesky factor of ``Me`` (numpy's stacking and inverse
     would cost seconds of compilation in every process that builds the kernel)."""
+    traits, kind, mp, C, sm = inputs
     n = sm.M1.shape[0]
     m = 2 * n
-    cD = 0.0 if model == TLAM else 1.0
+    cD = 1.0 if traits.softening_terms else 0.0
     # on (q1, q2): diag(K1, K2), G = diag(M1, M2 - D), [[0, R], [-R^T, 0]], diag(C1, C2),
     # Me = diag(M1, M2), and the vectors (V1, 0), (0, -V2)
     A = np.zeros((5, m, m))
@@ -94,7 +97,7 @@ def foam_problem(model, kind, mp, C, sm):
     cholesky_solve(factor, fx[0])
     cholesky_solve(factor, fx[1])
     # free elastic coordinates as indices into (q1, q2)
-    free = free_dofs(model, kind, n)
+    free = free_dofs(traits, kind, n)
     elastic = free[free > 0] - 1
     ne = elastic.shape[0]
     P = np.empty((7, ne, ne))
@@ -114,15 +117,15 @@ def foam_problem(model, kind, mp, C, sm):
             P[C1, i, j] = -A[2, r, c]
             P[P3, i, j] = -X[3, r, c]
             P[ME, i, j] = A[4, r, c]
-    q_theta_factor = 0.0 if model == SFOAM else 1.0
+    q_theta_factor = 1.0 if traits.hub_velocity_force else 0.0
     scalars = np.array([sm.Jh + sm.Jb, q_theta_factor])
     return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)))
 
 
 @borrowing_kernel
-def _hub_row(y, v, o, thd, x1, o1, x2, o2, problem):
+def _hub_row(y, v, o, thd, x1, x2, ox, problem):
     """The hub row of Eq. (24) at the free elastic coordinates ``e = y[o:]``, ``e' = v[o:]``:
-    ``(m00, Q_theta, c . x1[o1:], c . x2[o2:])`` with ``m00`` (Eq. 25), ``c = C0 + C1 e``
+    ``(m00, Q_theta, c . x1[ox:], c . x2[ox:])`` with ``m00`` (Eq. 25), ``c = C0 + C1 e``
     (Eqs. 26-27) and ``Q_theta`` (Eq. 32; zero for SFOAM) as in the module docstring."""
     P = problem.P
     b = problem.b
@@ -139,8 +142,8 @@ def _hub_row(y, v, o, thd, x1, o1, x2, o2, problem):
             ci += P[C1, i, j] * y[o + j]
         m00 += (ge + b[G_VEC, i]) * y[o + i]
         gee += ge * v[o + i]
-        c_1 += ci * x1[o1 + i]
-        c_2 += ci * x2[o2 + i]
+        c_1 += ci * x1[ox + i]
+        c_2 += ci * x2[ox + i]
     return m00, -2.0 * thd * gee * problem.scalars[1], c_1, c_2
 
 
@@ -171,7 +174,7 @@ def foam_rhs(t, y, v, a, problem):
         r[i] = ri
     if o == 1:
         # hub row (Eqs. 25-27, 32) with e'' eliminated
-        m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, 0, r, 0, problem)
+        m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, r, 0, problem)
         tau = hub_torque(problem.kind, t, y[0], thd, problem.mp)
         thdd = (tau + q_theta - c_u) / (m00 + c_r)
         a[0] = thdd
@@ -197,7 +200,7 @@ def foam_outputs(t, y, v, a, problem):
         thd = v[0]
         thdd = a[0]
         tau = hub_torque(problem.kind, t, y[0], thd, problem.mp)
-    m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, o, a, o, problem)
+    m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, a, o, problem)
     eMe = 0.0  # e'^T Me e'
     for i in range(ne):
         mv = 0.0

@@ -22,9 +22,9 @@ Error control
     The embedded order-3 solution ``y^ = y0 + h (gamma0 f(t0, z0) + sum b^_i F_i)``, ``gamma0 =
     1/gamma``, gives the estimate ``err = (gamma/h - J)^-1 (f(t0, z0) + (gamma/h) sum_j e_j Z_j)``
     (the filter ``(I - h gamma0 J)^-1`` keeps it bounded for stiff components). A step is accepted
-    when the root-mean-square of ``err_k / (atol_k + rtol max(|z0_k|, |z1_k|))`` over all ``2N``
-    components of ``z = (y, v)`` is at most 1; positions and velocities are controlled alike,
-    with ``atol`` given per component. The estimate is ``O(h^4)``, so the next step is
+    when the root-mean-square of ``err_k / (atol + rtol max(|z0_k|, |z1_k|))`` over all ``2N``
+    components of ``z = (y, v)`` is at most 1; positions and velocities are controlled alike.
+    The estimate is ``O(h^4)``, so the next step is
     ``h fac err^(-1/4)`` (``fac`` = 0.9, less after many Newton iterations), limited to
     ``[0.2, 8] h``, the smaller of this and Gustafsson's predictive controller after an accepted
     step, and ``h`` is kept unchanged when the ratio falls in ``[1, 1.2]`` so that the LU factors
@@ -289,12 +289,12 @@ def _copy(src, dst):
 
 @internal_kernel
 def _scale(y0, v0, y1, v1, rtol, atol, sc):
-    """Reciprocal error weights ``1 / (atol_k + rtol max(|z0_k|, |z1_k|))`` of ``z = (y, v)``
+    """Reciprocal error weights ``1 / (atol + rtol max(|z0_k|, |z1_k|))`` of ``z = (y, v)``
     (the norms below multiply by them)."""
     n = y0.shape[0]
     for i in range(n):
-        sc[i] = 1.0 / (atol[i] + rtol * max(abs(y0[i]), abs(y1[i])))
-        sc[n + i] = 1.0 / (atol[n + i] + rtol * max(abs(v0[i]), abs(v1[i])))
+        sc[i] = 1.0 / (atol + rtol * max(abs(y0[i]), abs(y1[i])))
+        sc[n + i] = 1.0 / (atol + rtol * max(abs(v0[i]), abs(v1[i])))
 
 
 @internal_kernel
@@ -345,9 +345,10 @@ def workspace(n):
 
 # --------------------------------------------------------------------------- building blocks
 @internal_kernel
-def _difference_column(problem, t, y_st, v_st, a, a_st, perturbed, j, out):
+def _difference_column(problem, t, w, perturbed, j, out):
     """Column ``j`` of ``out = da/dx`` by a forward difference in ``perturbed[j]`` (``perturbed``
-    is ``y_st`` or ``v_st``, restored afterwards); ``a`` holds ``a(t, y_st, v_st)``."""
+    is ``w.y_st`` or ``w.v_st``, restored afterwards); ``w.a`` holds ``a(t, w.y_st, w.v_st)``."""
+    y_st, v_st, a, a_st = w.y_st, w.v_st, w.a, w.a_st
     x = perturbed[j]
     delta = math.sqrt(UROUND * max(1e-5, abs(x)))
     perturbed[j] = x + delta
@@ -365,8 +366,8 @@ def jacobian(problem, t, y, v, w, stats):
     _copy(y, w.y_st)
     _copy(v, w.v_st)
     for j in range(n):
-        _difference_column(problem, t, w.y_st, w.v_st, w.a, w.a_st, w.y_st, j, w.Ka)
-        _difference_column(problem, t, w.y_st, w.v_st, w.a, w.a_st, w.v_st, j, w.Ca)
+        _difference_column(problem, t, w, w.y_st, j, w.Ka)
+        _difference_column(problem, t, w, w.v_st, j, w.Ca)
     stats[JACOBIANS] += 1
     stats[RHS_CALLS] += 2 * n
 
@@ -405,9 +406,11 @@ def _extrapolate_stages(ratio, w):
 
 
 @borrowing_kernel
-def hermite_interpolate(s, h, y0, v0, a0, y1, v1, a1, y_out, v_out):
-    """Quintic Hermite position and its derivative at ``t0 + s h`` from ``(y, v, a)`` at both
-    ends of a step of size ``h``."""
+def hermite_interpolate(s, h, start, end, y_out, v_out):
+    """Quintic Hermite position and its derivative at ``t0 + s h`` from ``start = (y0, v0, a0)``
+    and ``end = (y1, v1, a1)``, the ends of a step of size ``h``."""
+    y0, v0, a0 = start
+    y1, v1, a1 = end
     b0 = b1 = b2 = b3 = b4 = b5 = 0.0
     d0 = d1 = d2 = d3 = d4 = d5 = 0.0
     for k in range(5, -1, -1):
@@ -432,8 +435,9 @@ def hermite_interpolate(s, h, y0, v0, a0, y1, v1, a1, y_out, v_out):
 
 
 @internal_kernel
-def _newton(problem, t, h, y, v, w, eta, tol, stats):
-    """Simplified Newton iteration for the stage increments ``w.Zy, w.Zv`` (started from them).
+def _newton(problem, step, y, v, w, eta, tol, stats):
+    """Simplified Newton iteration for the stage increments ``w.Zy, w.Zv`` (started from them) of
+    the step ``step = (t, h)``.
 
     Returns ``(converged, iterations, theta, eta)``: ``theta`` is the last contraction rate and
     ``eta = theta / (1 - theta)`` bounds the remaining error by ``eta ||dW||``; convergence means
@@ -443,6 +447,7 @@ def _newton(problem, t, h, y, v, w, eta, tol, stats):
     tolerance): then the iteration has reached the rounding-error floor of ``a(t, y, v)`` (stiff,
     strongly coupled systems at tight tolerances) and the iterate is accepted.
     """
+    t, h = step
     n = y.shape[0]
     Zy, Zv, Wy, Wv, Fa, ry, rv = w.Zy, w.Zv, w.Wy, w.Wv, w.Fa, w.ry, w.rv
     dWy, dWv, cy, cv, cdy, cdv = w.dWy, w.dWv, w.cy, w.cv, w.cdy, w.cdv
@@ -562,20 +567,23 @@ def newton_tolerance(rtol):
 
 
 @kernel
-def single_step(problem, t, y, v, h, rtol, atol, y1, v1, err_y, err_v):
-    """One step of size ``h`` from ``(t, y, v)`` with a fresh Jacobian and zero starting values.
+def single_step(problem, t, y, v, h, settings, result):
+    """One step of size ``h`` from ``(t, y, v)`` with a fresh Jacobian and zero starting values,
+    at the tolerances of ``settings`` (:class:`~hubbeam.core.inputs.IntegratorSettings`).
 
-    Writes the solution ``y1, v1`` and the error estimate ``err_y, err_v``; returns
+    Writes the solution and the error estimate into ``result = (y1, v1, err_y, err_v)``; returns
     ``(newton_converged, scaled_error_norm)``. A diagnostic for tests of the method's order and
     its error estimate, built from the same blocks as :func:`radau5`.
     """
+    y1, v1, err_y, err_v = result
+    rtol, atol = settings.rtol, settings.atol
     w = workspace(y.shape[0])
     stats = np.zeros(len(STAT_NAMES), np.int64)
     problem_rhs(t, y, v, w.a, problem)
     jacobian(problem, t, y, v, w, stats)
     _factorize(h, w, stats)
     _scale(y, v, y, v, rtol, atol, w.sc)
-    ok = _newton(problem, t, h, y, v, w, 1.0, newton_tolerance(rtol), stats)[0]
+    ok = _newton(problem, (t, h), y, v, w, 1.0, newton_tolerance(rtol), stats)[0]
     for m in range(y.shape[0]):
         y1[m] = y[m] + w.Zy[2, m]
         v1[m] = v[m] + w.Zv[2, m]
@@ -588,42 +596,46 @@ def single_step(problem, t, y, v, h, rtol, atol, y1, v1, err_y, err_v):
 
 # --------------------------------------------------------------------------- driver
 @inline_kernel
-def radau5(problem, y0, v0, t_out, t_stops, rtol, atol, watch, watch_limit, max_steps, h_init,
-           fixed_step, y_out, v_out, stats):
+def radau5(problem, start, t_stops, settings, watch, trajectory, stats):
     """Integrate ``y'' = a(t, y, y')`` from ``t_out[0]`` to ``t_out[-1]`` with Radau IIA (order 5).
 
     Parameters
     ----------
     problem : namedtuple of a class registered with :func:`register_rhs`.
-    y0, v0 : (N,) positions and velocities at ``t_out[0]``.
-    t_out : (n_out,) increasing output times; the dense output is written there.
+    start : ``(y0, v0)``, (N,) positions and velocities at ``t_out[0]``.
     t_stops : sorted times that no step may cross (discontinuities of the forcing, such as the
         end of a maneuver); times outside ``(t_out[0], t_out[-1])`` are ignored.
-    rtol : relative tolerance; atol : (2N,) absolute tolerances of ``(y, v)``. Every accepted
-        step has an error estimate of weighted RMS norm <= 1 (see the module docstring).
-    watch, watch_limit : the run stops with status ``LEFT_RANGE`` after the first accepted step
-        with ``|watch . y| > watch_limit``.
-    max_steps : budget of attempted steps (accepted, rejected and Newton failures).
-    h_init : first step size; ``<= 0`` picks ``INITIAL_STEP_FRACTION (t_out[-1] - t_out[0])``.
-    fixed_step : if True every step has size ``h_init`` (shortened only to land on a stop or the
-        end, or halved after a Newton failure), uses a fresh Jacobian and is accepted without
-        error control (for convergence studies).
-    y_out, v_out : (n_out, N) caller-allocated dense output; rows after the stop are NaN.
+    settings : :class:`~hubbeam.core.inputs.IntegratorSettings`: ``rtol`` and ``atol`` of every
+        component of ``(y, v)`` (every accepted step has an error estimate of weighted RMS
+        norm <= 1, see the module docstring); ``tip_limit``: the run stops with status
+        ``LEFT_RANGE`` after the first accepted step with ``|watch . y| > tip_limit``;
+        ``max_steps``: budget of attempted steps (accepted, rejected and Newton failures);
+        ``first_step``: first step size (``<= 0`` picks ``INITIAL_STEP_FRACTION (t_out[-1] -
+        t_out[0])``); ``fixed_step``: if True every step has size ``first_step`` (shortened only
+        to land on a stop or the end, or halved after a Newton failure), uses a fresh Jacobian and
+        is accepted without error control (for convergence studies).
+    watch : (N,) weights of the watched quantity (the tip deflection).
+    trajectory : :class:`~hubbeam.core.inputs.Trajectory` ``(t_out, y_out, v_out)``: increasing
+        output times (n_out,) and the caller-allocated dense output (n_out, N) written there;
+        rows after the stop are NaN.
     stats : (6,) int64 caller-allocated counters, see ``STAT_NAMES``.
 
     Returns ``(status, t_stop)``: a code of ``STATUS_NAMES`` and the time reached. Outputs are
     written for every output time up to the last accepted step (for ``LEFT_RANGE``, up to and
     including the step that crossed the limit, ``t_stop``).
     """
-    return _march(problem, y0.copy(), v0.copy(), workspace(y0.shape[0]), t_out, t_stops, rtol,
-                  atol, watch, watch_limit, max_steps, h_init, fixed_step, y_out, v_out, stats)
+    y0, v0 = start
+    return _march(problem, (y0.copy(), v0.copy()), workspace(y0.shape[0]), t_stops, settings,
+                  watch, trajectory, stats)
 
 
 @internal_kernel
-def _march(problem, y, v, w, t_out, t_stops, rtol, atol, watch, watch_limit, max_steps, h_init,
-           fixed_step, y_out, v_out, stats):
-    """:func:`radau5` from ``(y, v)`` (overwritten: the state as it goes) with the work arrays
-    ``w`` of :func:`workspace`: the whole integration, allocating nothing."""
+def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
+    """:func:`radau5` from ``state = (y, v)`` (overwritten: the state as it goes) with the work
+    arrays ``w`` of :func:`workspace`: the whole integration, allocating nothing."""
+    y, v = state
+    t_out, y_out, v_out = trajectory
+    rtol, atol, watch_limit, max_steps, h_init, fixed_step = settings
     n = y.shape[0]
     n_out = t_out.shape[0]
     t = t_out[0]
@@ -689,7 +701,7 @@ def _march(problem, y, v, w, t_out, t_stops, rtol, atol, watch, watch_limit, max
         else:
             _extrapolate_stages(h / h_acc, w)
         _scale(y, v, y, v, rtol, atol, sc)
-        converged, nit, theta, eta = _newton(problem, t, h, y, v, w, eta, tol_newton, stats)
+        converged, nit, theta, eta = _newton(problem, (t, h), y, v, w, eta, tol_newton, stats)
         if not converged:
             # retry with a fresh Jacobian, or with half the step if J is fresh already
             stats[NEWTON_FAILURES] += 1
@@ -723,7 +735,7 @@ def _march(problem, y, v, w, t_out, t_stops, rtol, atol, watch, watch_limit, max
             return NON_FINITE, t1
         while i_out < n_out and t_out[i_out] <= t1 * (1.0 + 4.0 * UROUND):
             s = min(1.0, (t_out[i_out] - t) / h)
-            hermite_interpolate(s, h, y, v, a, y1, v1, a1, y_out[i_out], v_out[i_out])
+            hermite_interpolate(s, h, (y, v, a), (y1, v1, a1), y_out[i_out], v_out[i_out])
             i_out += 1
         if fixed_step:
             h_new = h_init

@@ -28,11 +28,13 @@ time are kept.
 """
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
 
 from hubbeam.core.eom import free_dofs
+from hubbeam.core.inputs import ModelTraits, SimulationInputs, State, Trajectory
 from hubbeam.core.integrate import integrate_free
 from hubbeam.core.jit import JIT_OPTIONS, inline_kernel, kernel
 from hubbeam.core.radau import STAT_NAMES, SUCCESS
@@ -42,6 +44,36 @@ from hubbeam.core.system_matrices import SystemMatrices
 RESULT_COLUMNS = ("peak", "peak_time", "residual", "t_stop")
 PEAK, PEAK_TIME, RESIDUAL, T_STOP = range(len(RESULT_COLUMNS))
 N_STATS = len(STAT_NAMES)
+
+
+class SweepPoints(NamedTuple):
+    """The per-point inputs of a sweep (``P`` points): ``traits`` (P, 4) bool, the
+    :class:`~hubbeam.core.inputs.ModelTraits` of each point's model as a row; the maneuver
+    ``kind`` (one for the sweep) and parameters ``mp`` (P, ...); ``matrix_index`` (P,) into the
+    stack of system matrices; the end time ``t_end`` and the start of the residual window
+    ``t_mark`` (P,)."""
+
+    traits: np.ndarray
+    kind: int
+    mp: np.ndarray
+    matrix_index: np.ndarray
+    t_end: np.ndarray
+    t_mark: np.ndarray
+
+
+class SweepResults(NamedTuple):
+    """What a sweep writes per point: ``results`` (P, len(RESULT_COLUMNS)), the radau5
+    ``status`` (P,) and counters ``stats`` (P, N_STATS)."""
+
+    results: np.ndarray
+    status: np.ndarray
+    stats: np.ndarray
+
+
+@kernel
+def traits_at(rows, k):
+    """The :class:`~hubbeam.core.inputs.ModelTraits` stored as row ``k`` of ``rows``."""
+    return ModelTraits(rows[k, 0], rows[k, 1], rows[k, 2], rows[k, 3])
 
 
 @kernel
@@ -120,21 +152,21 @@ def hermite_abs_max(p0, d0, p1, d1, h):
 
 
 @inline_kernel
-def tip_extrema(model, kind, mp, sm, t_end, t_mark, output_step, rtol, atol, tip_limit,
-                max_steps, stats):
-    """One sweep point: simulate from rest to ``t_end`` and return
+def tip_extrema(inputs, t_end, t_mark, output_step, settings, stats):
+    """One sweep point: simulate the undamped :class:`~hubbeam.core.inputs.SimulationInputs`
+    ``inputs`` from rest to ``t_end`` with the
+    :class:`~hubbeam.core.inputs.IntegratorSettings` ``settings`` and return
     ``(status, t_stop, peak, peak_time, residual)`` (see the module docstring; NaN extrema unless
     the run succeeded). ``stats`` receives radau5's counters."""
-    n = sm.K1.shape[0]
-    nf = free_dofs(model, kind, n).shape[0]
+    n = inputs.sm.K1.shape[0]
+    nf = free_dofs(inputs.traits, inputs.kind, n).shape[0]
     t_out = output_grid(t_end, output_step, t_mark)
     n_out = t_out.shape[0]
     y_out = np.empty((n_out, nf))
     v_out = np.empty((n_out, nf))
-    undamped = np.zeros((2, n, n))
-    status, t_stop, watch = integrate_free(model, kind, mp, undamped, sm, t_out,
-                                           np.array([t_mark]), rtol, atol, tip_limit, max_steps,
-                                           y_out, v_out, stats)
+    rest = State(np.zeros(1 + 2 * n), np.zeros(1 + 2 * n))
+    status, t_stop, watch = integrate_free(inputs, rest, np.array([t_mark]), settings,
+                                           Trajectory(t_out, y_out, v_out), stats)
     if status != SUCCESS:
         return status, t_stop, np.nan, np.nan, np.nan
     peak = 0.0
@@ -160,23 +192,28 @@ def tip_extrema(model, kind, mp, sm, t_end, t_mark, output_step, rtol, atol, tip
 
 
 @numba.njit(nogil=True, **JIT_OPTIONS)
-def sweep_tip_extrema(first, stride, models, kind, mp, matrix_index, t_end, t_mark, stack,
-                      output_step, rtol, atol, tip_limit, max_steps, results, status, stats):
+def sweep_tip_extrema(first, stride, points, stack, output_step, settings, found):
     """Run the points ``first, first + stride, ...`` of a sweep: one thread's share.
 
-    Point ``p`` simulates model ``models[p]`` (ids of ``eom``) under maneuver ``kind`` with
-    parameters ``mp[p]``, system matrices ``matrices_at(stack, matrix_index[p])``, up to
-    ``t_end[p]``, residual window from ``t_mark[p]``. Writes ``results[p]`` (columns
-    :data:`RESULT_COLUMNS`), ``status[p]`` (radau5 status) and ``stats[p]`` (radau5 counters).
-    Integrator settings as in :func:`tip_extrema`. The kernel releases the GIL, so that
+    Point ``p`` of the :class:`SweepPoints` ``points`` simulates the model with traits
+    ``traits_at(points.traits, p)`` under maneuver ``points.kind`` with parameters
+    ``points.mp[p]``, system matrices ``matrices_at(stack, points.matrix_index[p])``, undamped,
+    up to ``points.t_end[p]``, residual window from ``points.t_mark[p]``, with the integrator
+    ``settings`` (:func:`tip_extrema`). Writes ``found.results[p]`` (columns
+    :data:`RESULT_COLUMNS`), ``found.status[p]`` (radau5 status) and ``found.stats[p]`` (radau5
+    counters) of the :class:`SweepResults` ``found``. The kernel releases the GIL, so that
     ``stride`` Python threads, each with its own ``first``, run a sweep on ``stride`` cores.
     """
-    for p in range(first, models.shape[0], stride):
-        sm = matrices_at(stack, matrix_index[p])
+    results = found.results
+    n = stack.K1.shape[1]
+    undamped = np.zeros((2, n, n))
+    for p in range(first, points.traits.shape[0], stride):
+        sm = matrices_at(stack, points.matrix_index[p])
+        inputs = SimulationInputs(traits_at(points.traits, p), points.kind, points.mp[p], undamped,
+                                  sm)
         code, t_stop, peak, peak_time, residual = tip_extrema(
-            models[p], kind, mp[p], sm, t_end[p], t_mark[p], output_step, rtol, atol,
-            tip_limit, max_steps, stats[p])
-        status[p] = code
+            inputs, points.t_end[p], points.t_mark[p], output_step, settings, found.stats[p])
+        found.status[p] = code
         results[p, PEAK] = peak
         results[p, PEAK_TIME] = peak_time
         results[p, RESIDUAL] = residual

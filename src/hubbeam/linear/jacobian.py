@@ -24,21 +24,16 @@ import numpy as np
 from hubbeam.core import eom
 from hubbeam.linear.statespace import (
     LinearModel,
-    axial_stretch,
     check_matrices,
     check_request,
     check_speed,
     checked_damping,
     state_space,
 )
+from hubbeam.linearised import axial_stretch
 
 #: relative step of the central differences, eps^(1/3)
 RELATIVE_STEP = np.finfo(float).eps ** (1.0 / 3.0)
-
-
-def kernel_model(traits):
-    """The model argument of the jitted kernels for a model's traits (the one place that knows)."""
-    return traits.kernel_id
 
 
 def coordinate_scales(sm) -> np.ndarray:
@@ -91,7 +86,7 @@ def differenced_rates(sm, traits, speed, hub, damping=None):
     C = checked_damping(damping, n)
     q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(n)
     y0, v0, kept = steady_state(sm, traits, speed, q1s)
-    kernel = kernel_model(traits)
+    kernel = traits.traits
     frequency = np.sqrt(sm.K2[0, 0] / sm.M2[0, 0])
     z_steps = RELATIVE_STEP * coordinate_scales(sm)[kept]
     v_steps = z_steps * frequency

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.damping import damping_matrices
-from hubbeam.linearised import constant_speed_matrices
+from hubbeam.linearised import axial_stretch, constant_speed_matrices
 from hubbeam.matrices import assemble
 from hubbeam.models import model as model_traits
 from hubbeam.modes import transverse_modes
@@ -142,11 +142,6 @@ def checked_damping(damping, n: int) -> np.ndarray:
     return C
 
 
-def axial_stretch(sm, speed: float) -> np.ndarray:
-    """The centrifugal stretch ``q1s = Omega^2 (K1 - Omega^2 M1)^-1 V1`` (q1 rows of Eq. 24)."""
-    return speed**2 * np.linalg.solve(sm.K1 - speed**2 * sm.M1, sm.V1)
-
-
 def stretch_foreshortening(sm, q1s: np.ndarray) -> np.ndarray:
     """``E(q1s) = sum_k w_k (f1(x_k) q1s) S(x_k)`` over the point cloud: the foreshortening of the
     exact kinetic energy (Eqs. 8-9) weighted by the stretch; CFOAM's ``K22`` gains ``Omega^2 E``."""
@@ -167,7 +162,7 @@ def second_order(sm, traits, speed: float, damping=None):
     q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(n)
     Me, Ge, Ke = constant_speed_matrices(sm, traits.linearisation, speed, axial=traits.keeps_axial)
     Ke = np.array(Ke)
-    if traits.family == "cfoam":  # the exact kinetic energy (Eqs. 8-9)
+    if traits.exact_kinetic_energy:  # Eqs. 8-9
         Ke[-n:, -n:] += speed**2 * stretch_foreshortening(sm, q1s)
     Ce = np.zeros_like(Me)
     if traits.keeps_axial:

@@ -1,0 +1,81 @@
+"""The values the kernels receive, as numba-friendly named tuples (importable without numba).
+
+* :class:`ModelTraits`: what a model computes, as flags the kernels branch on (built from the one
+  table of models, ``hubbeam.models``, which the core does not import);
+* :class:`SimulationInputs`: the problem of one simulation (model traits, maneuver, damping,
+  system matrices);
+* :class:`IntegratorSettings`: tolerances, the watched tip limit and the step budget of
+  :func:`hubbeam.core.radau.radau5`;
+* :class:`State` and :class:`Trajectory`: a state of ``y = (theta, q1, q2)`` and the dense
+  output of the integrated coordinates on a time grid.
+
+Grouping them keeps every kernel entry point at a handful of arguments, where numba would not
+notice two swapped floats among a dozen.
+"""
+
+from typing import NamedTuple
+
+import numpy as np
+
+from hubbeam.core.system_matrices import SystemMatrices
+
+
+class ModelTraits(NamedTuple):
+    """What the equations of a model keep (Section 3; ``hubbeam.models`` states them per model)."""
+
+    keeps_axial: bool  # q1 integrated (SFOAM holds q1 = 0, Eq. 40)
+    softening_terms: bool  # the underlined D terms of Eqs. (25), (31), (32) (all but TLAM)
+    hub_velocity_force: bool  # Q_theta of Eq. (32) acts on the hub (SFOAM deletes it, Eq. 40)
+    exact_kinetic_energy: bool  # the exact kinetic energy of Eqs. (8)-(9) (CFOAM)
+
+
+#: the compiled kernel families: the constant modal mass inverted once, or the exact kinetic energy
+FAMILIES = ("foam", "cfoam")
+
+
+def family(traits: ModelTraits) -> str:
+    """The kernel family (:data:`FAMILIES`) that integrates a model with ``traits``."""
+    return FAMILIES[int(traits.exact_kinetic_energy)]
+
+
+class SimulationInputs(NamedTuple):
+    """The problem of one simulation: model, maneuver (``hubbeam.core.maneuver``), damping
+    matrices ``C = [C1, C2]`` (``eom.add_damping``) and system matrices."""
+
+    traits: ModelTraits
+    kind: int
+    mp: np.ndarray
+    C: np.ndarray
+    sm: SystemMatrices
+
+
+class IntegratorSettings(NamedTuple):
+    """Settings of :func:`hubbeam.core.radau.radau5`.
+
+    ``rtol`` and ``atol`` apply to every integrated position and velocity; the run stops (status
+    ``left_range``) after the first step with ``|watch . y| > tip_limit``; ``max_steps`` is the
+    budget of attempted steps; ``first_step`` the first step size (``<= 0``: automatic) and
+    ``fixed_step`` turns the error control off (convergence studies)."""
+
+    rtol: float
+    atol: float
+    tip_limit: float
+    max_steps: int
+    first_step: float = 0.0
+    fixed_step: bool = False
+
+
+class State(NamedTuple):
+    """Positions and velocities of ``y = (theta, q1, q2)`` (or of the integrated coordinates)."""
+
+    y: np.ndarray
+    v: np.ndarray
+
+
+class Trajectory(NamedTuple):
+    """Output times ``t`` and the positions ``y`` and velocities ``v`` there, shape
+    ``(len(t), N)``."""
+
+    t: np.ndarray
+    y: np.ndarray
+    v: np.ndarray

@@ -20,6 +20,7 @@ from typing import Any
 
 from hubbeam import limits, variables
 from hubbeam.config_schema import SCHEMA, Problem, Validator, allowed, key_path, kind_keys, show, type_name
+from hubbeam.models import MODELS
 from hubbeam.products import PAPER
 from hubbeam.study import PAPER_FOLDERS
 
@@ -107,10 +108,10 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
     for name, case in _section(cfg, "cases").items():
         case = case if isinstance(case, dict) else {}
         t_end, modes, model = _positive(case.get("t_end")), case.get("modes", default_modes), case.get("model")
-        if t_end is not None and _integer(modes) is not None and isinstance(model, str):
+        if t_end is not None and _integer(modes) is not None and model in MODELS:  # else the schema reports it
             check_run(f"cases.{name}.t_end", f"case {name}", model, modes, t_end)
     validation = _section(cfg, "validation")
-    models = [m for m in validation.get("models", []) if isinstance(m, str)] if isinstance(
+    models = [m for m in validation.get("models", []) if m in MODELS] if isinstance(
         validation.get("models"), list) else []
     study = validation.get("mode_study") if isinstance(validation.get("mode_study"), list) else []
     modes = max((m for m in [default_modes, *study] if _integer(m) is not None), default=None)

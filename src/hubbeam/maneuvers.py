@@ -102,9 +102,9 @@ def maneuver_parameters(maneuver: Mapping, law: FeedbackLaw | None = None) -> tu
     if law is None:
         raise ValueError("maneuver.kind = 'state_feedback' without its feedback law; allowed: "
                          "hubbeam.feedback.simulate_case, which resolves the gains")
-    head = [float(law.gains.size // 2), float(law.inertia), float(ref_code)]
+    head = [float(law.gains.size // 2), float(law.inertia)]
     assert len(head) == kernels.FEEDBACK_GAINS
-    return kernels.STATE_FEEDBACK, np.concatenate([head, law.gains, law.stretch, ref])
+    return kernels.STATE_FEEDBACK, np.concatenate([head, law.gains, law.stretch, [ref_code], ref])
 
 
 def maneuver_stops(maneuver: Mapping) -> np.ndarray:

@@ -34,8 +34,8 @@ theta')``; ``mp = [kp, kd, reference kind, reference parameters...]`` with the r
 ``STATE_FEEDBACK``: a free hub under ``tau = J theta_r'' - K (x - x_r)`` with ``x = (y, y')`` the
 whole state in the coordinates ``y = (theta, q1, q2)`` (size ``N = 1 + 2 n``) and the reference
 ``x_r = (theta_r, theta_r'^2 s, 0, theta_r', 0, 0)``: the rigid reference motion for the hub, the
-centrifugal stretch ``q1s = theta_r'^2 s`` for ``q1`` and zero for ``q2``. ``mp = [N, J, reference
-kind, K (2 N gains: positions then rates), s (n), reference parameters...]`` with the reference as
+centrifugal stretch ``q1s = theta_r'^2 s`` for ``q1`` and zero for ``q2``. ``mp = [N, J, K (2 N
+gains: positions then rates), s (n), reference kind, reference parameters...]`` with the reference as
 for ``PD`` (``J = 0``: no feedforward; the feedforward needs the reference's acceleration, which
 only ``PRESCRIBED`` gives). The torque may be evaluated on the free coordinates of a model that
 integrates no ``q1`` (SFOAM, Eq. 40): the ``q1`` entries of ``K`` are then skipped (they are zero
@@ -62,7 +62,7 @@ ANGLE_TABLE = 5
 PD_REFERENCE = 3
 STATE_FEEDBACK = 6
 #: offset of the gains in a ``STATE_FEEDBACK`` maneuver's ``mp``
-FEEDBACK_GAINS = 3
+FEEDBACK_GAINS = 2
 
 
 @borrowing_kernel
@@ -159,7 +159,7 @@ def feedback_torque(t, y, v, mp):
     n = (N - 1) // 2
     k = FEEDBACK_GAINS
     s = k + 2 * N
-    o = s + n + 1
+    o = s + n + 1  # after the reference's kind
     theta_r, theta_r_dot = _reference(t, mp, o)
     tau = 0.0
     if mp[1] != 0.0:

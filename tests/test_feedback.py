@@ -3,8 +3,9 @@
 * PD is state feedback on the hub angle and speed only: the same run to rounding;
 * about a steady spin, a controller designed by LQR on model X and run on X is stable, and the
   nonlinear closed loop from a small deviation follows the linear closed loop ``A - B K`` (its
-  poles): the difference is of second order, so it halves (within 10 %) when the amplitude
-  halves, and is below a few percent of the response at the smaller amplitude;
+  poles, which the dataset records): the equations' nonlinear terms are quadratic, so the
+  difference falls to a quarter (within 12 %) when the amplitude halves, and is below 1 % of the
+  response at 1 cm of modal amplitude (measured 0.2 %);
 * the LQR cost ``x0' P x0`` equals the cost integrated along the nonlinear run, the difference
   again of second order in the amplitude;
 * the work of the hub torque equals the change of energy plus the dissipation in closed loop;
@@ -27,8 +28,10 @@ from hubbeam.simulate import case_matrices
 SPEED = 2.0  # rad s-1, the design speed (below TLAM's critical speed of this beam, 2.91 rad s-1)
 DESIGN = {"speed": SPEED, "torque_weight": 1e-4,
           "weights": {"hub_angle": 100.0, "hub_speed": 10.0, "tip_deflection": 1e3}}
-#: a reference at steady spin from t = 0 (Eq. 43 over a vanishing tf; its angle lags by wf tf / 2)
-STEADY = {"kind": "prescribed", "wf": SPEED, "tf": 1e-6}
+#: a reference at steady spin from t = 0: Eq. 43 over a vanishing tf (its angle lags by wf tf / 2;
+#: the speed error while it lasts gives the hub a torque impulse K_theta_dot wf tf / 2, which at
+#: tf = 1e-9 s moves the tip by about 4e-9 m, far below the second-order differences tested)
+STEADY = {"kind": "prescribed", "wf": SPEED, "tf": 1e-9}
 
 
 @pytest.fixture(scope="module")
@@ -96,10 +99,10 @@ def test_small_motions_about_the_steady_spin_follow_the_linear_closed_loop(setup
         tip = lin.C[lin.outputs.index("tip_deflection")] @ x.T
         error = np.abs(ds.tip_transverse.values - tip).max()
         errors.append(error)
-        assert error < 0.05 * np.abs(tip).max()
+        assert error < 0.01 * np.abs(tip).max()
         late = ds.time.values > ds.time.values[-1] - 1.0
-        assert np.abs(ds.tip_transverse.values[late]).max() < 0.2 * amplitude * np.abs(tip).max() / amplitude
-    assert 1.8 < errors[0] / errors[1] < 2.2  # second order in the amplitude
+        assert np.abs(ds.tip_transverse.values[late]).max() < 0.2 * np.abs(tip).max()
+    assert 3.5 < errors[0] / errors[1] < 4.5  # second order in the amplitude
 
 
 def test_the_lqr_cost_is_the_cost_along_the_nonlinear_run(setup):
@@ -108,15 +111,17 @@ def test_the_lqr_cost_is_the_cost_along_the_nonlinear_run(setup):
     gaps = []
     for amplitude in (0.02, 0.01):
         case, ds = _steady_run(params, numerics, "FOAM", amplitude, t_end=20.0)
-        lin, _, P, x0, _ = _linear_closed_loop(params, numerics, case, ds, amplitude)
+        lin, K, P, x0, _ = _linear_closed_loop(params, numerics, case, ds, amplitude)
         t = ds.time.values
+        torque = ds.hub_torque.values.copy()
+        torque[0] = -(K @ x0)[0]  # at t = 0 the sample holds the reference's vanishing spin-up
         theta_r = SPEED * (t - STEADY["tf"] / 2)
         w = DESIGN["weights"]
         sm = case_matrices(case, params, numerics)
         running = (w["hub_angle"] * (ds.theta.values - theta_r) ** 2
                    + w["hub_speed"] * (ds.theta_dot.values - SPEED) ** 2
                    + w["tip_deflection"] * (ds.q2.values @ sm.f2L) ** 2
-                   + DESIGN["torque_weight"] * ds.hub_torque.values ** 2)
+                   + DESIGN["torque_weight"] * torque ** 2)
         cost = simpson(running, x=t)
         expected = x0 @ P @ x0
         gaps.append(abs(cost - expected) / expected)
@@ -132,7 +137,7 @@ def test_work_of_the_hub_torque_is_energy_change_plus_dissipation(setup, model):
     maneuver = {"kind": "state_feedback", "feedforward": True,
                 "reference": {"kind": "prescribed", "wf": 1.0, "tf": 4.0},
                 "design": dict(DESIGN, model="FOAM", speed=1.0)}
-    ds = simulate_case(_case(maneuver, model, damping={"kind": "modal", "ratio": 0.02}), params,
+    ds = simulate_case(_case(maneuver, model, damping={"kind": "modal", "axial": 0.02, "transverse": 0.02}), params,
                        dict(numerics, output_step=0.005))
     change = ds.energy.values - ds.energy.values[0]
     work = ds.work.values

@@ -122,7 +122,14 @@ def lqr_design(case: Mapping, beam, sm) -> tuple[dict, dict]:
         else:
             row = lin.C[lin.outputs.index(key)]
             Q += value * np.outer(row, row)
-    K, P, poles = ct.lqr(lin.A, lin.B, Q, R)
+    try:
+        K, P, poles = ct.lqr(lin.A, lin.B, Q, R)
+    except ValueError as error:  # the Riccati solver's Hamiltonian has imaginary eigenvalues
+        raise SimulationError(
+            f"{where}: the Riccati equation of the {spec['model']} design at {speed!r} rad s-1 has "
+            f"no stabilising solution ({error}); allowed: weights and damping that leave no "
+            "undamped mode unseen (add damping, e.g. of the axial modes, or weight their states)"
+        ) from None
     attributes = {"feedback_design": json.dumps(dict(spec), sort_keys=True),
                   "feedback_design_poles": json.dumps([[p.real, p.imag] for p in poles]),
                   "feedback_design_riccati": json.dumps(np.asarray(P).tolist())}

@@ -34,8 +34,10 @@ CASE_FIGURE = "figure per case"
 #: one figure per comparison of ``study.comparisons`` (``<key>_<comparison>``), its runs overlaid
 COMPARISON_FIGURE = "figure per comparison"
 EIGEN_FIGURE = "eigen figure"
+#: one figure (``<key>``) of every case whose state feedback was designed (``maneuver.design``)
+DESIGNS_FIGURE = "figure of the feedback designs"
 TABLE = "table"
-KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, TABLE)
+KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, DESIGNS_FIGURE, TABLE)
 
 CRITICAL_SPEEDS_NC = IN_RESULTS.eigen("critical_speeds")
 #: the study's beam as data: its properties along the span and first mode shapes (hubbeam.shapes)
@@ -94,8 +96,10 @@ class Product:
         return "Figures of the paper" if self.in_paper else "Beyond the paper"
 
     def is_built_for(self, cfg: Mapping) -> bool:
-        """Whether the configuration ``cfg`` has every key the product needs."""
-        return all(_has(cfg, key.split(".")) for key in self.needs)
+        """Whether the configuration ``cfg`` has every key the product needs (and, for a figure of
+        the feedback designs, a designed case)."""
+        return (all(_has(cfg, key.split(".")) for key in self.needs)
+                and (self.kind != DESIGNS_FIGURE or bool(designed_cases(cfg))))
 
     @property
     def module(self) -> str:
@@ -113,6 +117,12 @@ class Product:
             parts.append(f"*Paper:* {_rst(self.paper)}")
         parts.append(f"*This study:* {_rst(self.ours)}" if self.paper else _rst(self.ours))
         return " ".join(parts)
+
+
+def designed_cases(cfg: Mapping) -> list[str]:
+    """The cases of ``cfg`` whose state feedback is designed by LQR (``maneuver.design``), sorted."""
+    return sorted(name for name, case in cfg.get("cases", {}).items()
+                  if isinstance(case, Mapping) and "design" in case.get("maneuver", {}))
 
 
 def _has(cfg, keys: list[str]) -> bool:
@@ -223,6 +233,13 @@ GENERAL_PRODUCTS: Mapping[str, Product] = registry(
         "mode_shapes", EIGEN_FIGURE, "hubbeam.plotting.mode_shapes:plot", "First mode shapes",
         ours="The first transverse mode shapes of FOAM at rest and at the top of the speed grid.",
         in_paper=False, files={"beam": BEAM_NC}, needs=("study",)),
+    Product(
+        "controller_trust", DESIGNS_FIGURE, "hubbeam.plotting.controller_trust:plot",
+        "Controllers designed on one model, run on another", in_paper=False,
+        ours="Peak and residual tip deflection, settling time of v(L) and peak torque of every LQR "
+             "design of the study against its design speed, on CFOAM and on its own design model; "
+             "the paper's conclusion (iii) that SFOAM can be used for controller design, tested.",
+        needs=("study",)),
 )
 
 # --- the paper's products ------------------------------------------------------------------------

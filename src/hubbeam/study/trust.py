@@ -12,7 +12,8 @@ closed loop (the controller on the model it was designed on) is its prediction, 
 the reference model (:data:`REFERENCE_MODEL`, the most complete) is the truth. A design is *good
 enough* at a speed when the reference loop is stable and its peak and residual tip deflections
 differ from the prediction by at most :data:`TRUST_TOLERANCE` (relative); :func:`verdicts`
-states, per design model, the first speed where it stops being good enough and by how much.
+states, per design model, the first speed where it stops being good enough and by how much, and
+the first speed where its loop on the reference model is unstable.
 """
 
 from __future__ import annotations
@@ -112,5 +113,8 @@ def verdicts(table: list[dict]) -> dict[str, str]:
                    + ("" if own is None or own["stable"] else f", and on {name} itself"))
         else:
             why = f"its {REFERENCE_MODEL} tip deflections differ by {100 * failed['gap']:.2g} % from its prediction"
-        out[name] = f"{upto}at {failed['design_speed']:g} rad/s {why}"
+        unstable = [row["design_speed"] for row in rows if not row["reference"]["stable"]]
+        later = (f"; unstable on {REFERENCE_MODEL} from {min(unstable):g} rad/s"
+                 if unstable and min(unstable) > failed["design_speed"] else "")
+        out[name] = f"{upto}at {failed['design_speed']:g} rad/s {why}{later}"
     return out

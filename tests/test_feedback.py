@@ -22,8 +22,9 @@ from scipy.integrate import simpson
 
 from hubbeam.feedback import simulate_case
 from hubbeam.linear.statespace import linear_model
+from hubbeam.modes import transverse_modes
 from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import case_matrices
+from hubbeam.simulate import SimulationError, case_matrices
 
 SPEED = 2.0  # rad s-1, the design speed (below TLAM's critical speed of this beam, 2.91 rad s-1)
 DESIGN = {"speed": SPEED, "torque_weight": 1e-4,
@@ -167,3 +168,43 @@ def test_bad_feedback_input_is_refused_naming_the_key(setup, maneuver, words):
     for word in words:
         assert word in str(error.value)
 
+
+
+def test_a_plant_the_torque_cannot_stabilise_is_refused_naming_the_mode(setup):
+    """At rest FOAM's axial modes decouple from the hub (no Coriolis coupling, M_thq1 = 0): without
+    damping they sit on the imaginary axis out of the torque's reach (PBH), so no design there;
+    with axial damping they are stable and the design goes ahead."""
+    params, numerics = setup
+    maneuver = {"kind": "state_feedback", "reference": {"kind": "prescribed", "wf": 1.0, "tf": 4.0},
+                "design": dict(DESIGN, model="FOAM", speed=0.0)}
+    with pytest.raises(SimulationError) as error:
+        simulate_case(_case(maneuver, t_end=0.1), params, numerics)
+    assert "not stabilisable from the hub torque" in str(error.value)
+    assert "mostly q1_" in str(error.value) and "design.model = 'FOAM' at speed 0.0" in str(error.value)
+    damped = _case(maneuver, t_end=0.1, damping={"kind": "modal", "axial": 0.01, "transverse": 0.0})
+    assert simulate_case(damped, params, numerics).attrs["integrator_status"] == "success"
+
+
+def test_feedback_of_the_root_moment_is_feedback_of_the_curvature_at_the_root(setup):
+    """The measured root bending moment EI(0) v''(0) = EI(0) f2''(0) q2 (a strain gauge) fed back
+    with gain k is state feedback with the gains k EI(0) f2''(0) on q2 (the mode shapes' second
+    derivative at the root computed here on its own)."""
+    params, numerics = setup
+    reference = {"kind": "prescribed", "wf": 1.0, "tf": 4.0}
+    k = 0.05
+    curvature = float(params.EI_at(0.0)) * transverse_modes(0.0, 2, params, derivative=2)[0]
+    measured = {"kind": "state_feedback", "reference": reference,
+                "output_feedback": {"hub_angle": 400.0, "hub_speed": 200.0, "root_moment": k}}
+    gains = {"kind": "state_feedback", "reference": reference,
+             "gains": {"theta": 400.0, "theta_dot": 200.0, "q2_1": k * curvature[0], "q2_2": k * curvature[1]}}
+    a, b = (simulate_case(_case(maneuver), params, numerics) for maneuver in (measured, gains))
+    assert np.abs(a.tip_transverse.values - _case_pd_tip(params, numerics, reference)).max() > 1e-4
+    for name in ("theta", "tip_transverse", "hub_torque"):
+        np.testing.assert_allclose(a[name].values, b[name].values, rtol=1e-9,
+                                   atol=1e-9 * np.abs(b[name].values).max())
+
+
+def _case_pd_tip(params, numerics, reference):
+    """The tip deflection of the same loop without the root moment (the gain must matter)."""
+    pd = {"kind": "pd", "kp": 400.0, "kd": 200.0, "reference": reference}
+    return simulate_case(_case(pd), params, numerics).tip_transverse.values

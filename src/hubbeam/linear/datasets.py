@@ -117,8 +117,8 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
     """Tracked, damped Campbell diagram of every model, held and free hub (module docstring).
 
     Mode ``k`` is one tracked mode (numbered by frequency at the first speed); ``mode_label`` its
-    label there, ``label`` its label at each speed. ``unstable_from`` is the lowest grid speed
-    with an unstable mode; ``critical_speed`` that of ``K22`` (Eq. 31, hub held) of the model's
+    group there (numbered by frequency within the group), ``label`` its dominant coordinate at each
+    speed. ``unstable_from`` is the lowest grid speed with an unstable mode; ``critical_speed`` that of ``K22`` (Eq. 31, hub held) of the model's
     linearisation (:func:`hubbeam.eigen.critical_speed`), NaN where none up to the last speed.
     """
     speeds, systems = _checked(beam, tip_masses, speeds, n_modes, n_quad, damping)
@@ -172,8 +172,9 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
                                       "flag_meanings": "none unstable stable"}),
             "label": (dims, label.astype(str),
                       {"long_name": "dominant content of the mode's shape at this speed"}),
-            "mode_label": (dims[:3] + ("mode",), label[..., 0, :].astype(str),
-                           {"long_name": "dominant content of the mode's shape at the first speed"}),
+            "mode_label": (dims[:3] + ("mode",), tracking.numbered_by_frequency(label[..., 0, :]),
+                           {"long_name": "dominant content of the mode's shape at the first speed, numbered "
+                                         "by frequency within its group"}),
             "shape_real": (dims + ("coordinate",), components.real,
                            {"units": "1", "long_name": "real part of the mode shape (position "
                             "components, unit norm weighted by the square root of the mass "

@@ -119,7 +119,8 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
     Mode ``k`` is one tracked mode (numbered by frequency at the first speed); ``mode_label`` its
     group there (numbered by frequency within the group), ``label`` its dominant coordinate at each
     speed. ``unstable_from`` is the lowest grid speed with an unstable mode; ``critical_speed`` that
-    of ``K22`` (Eq. 31, hub held) of the model's linearisation (:func:`hubbeam.eigen.critical_speed`), NaN where none up to the last speed.
+    of ``K22`` (Eq. 31, hub held) of the model's linearisation
+    (:func:`hubbeam.eigen.critical_speed`), NaN where none up to the last speed.
     """
     speeds, systems = _checked(beam, tip_masses, speeds, n_modes, n_quad, damping)
     coordinates = _coordinate_names(n_modes)

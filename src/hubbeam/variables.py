@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from hubbeam.models import MODELS
+from hubbeam.models import model
 
 #: variable -> (dimensions, UDUNITS units, long name)
 VARIABLES = {
@@ -56,10 +56,8 @@ def output_count(t_end: float, output_step: float) -> int:
 def dataset_variables(name: str) -> dict:
     """The variables (besides :data:`CUMULATIVE_VARIABLES`) of a simulation dataset of the model
     ``name``: :data:`VARIABLES`, and :data:`HIGH_ORDER_VARIABLES` for a model with
-    ``high_order_outputs`` (``hubbeam.models``). A name not in the table (which the configuration
-    check reports) has none: the memory estimates of that check run on every case."""
-    known = MODELS.get(name)
-    return VARIABLES | (HIGH_ORDER_VARIABLES if known is not None and known.high_order_outputs else {})
+    ``high_order_outputs`` (``hubbeam.models``)."""
+    return VARIABLES | (HIGH_ORDER_VARIABLES if model(name).high_order_outputs else {})
 
 
 def values_per_time(name: str, modes: int) -> int:

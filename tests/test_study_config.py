@@ -14,12 +14,12 @@ import pytest
 import yaml
 
 from hubbeam.config import ConfigError, case_settings, validate_config
+from hubbeam.paths import study_paths
 from hubbeam.study import (
     MARKER,
     PAPER_FOLDERS,
     StudyError,
     claim_results_dir,
-    results_dir,
 )
 from hubbeam.tabular import SECTION_COLUMNS, TableError, read_table, resolve_files
 
@@ -84,12 +84,12 @@ def test_the_tiny_study_and_the_shipped_studies_are_valid(study, sectioned):
         path = REPO / "studies" / f"{name}.yaml"
         cfg = resolve_files(yaml.safe_load(path.read_text()), path.parent)
         validate_config(cfg, files=[path])
-        assert cfg["study"]["name"] == name and results_dir(cfg) == f"results/{name}"
+        assert cfg["study"]["name"] == name and study_paths(cfg).results == f"results/{name}"
 
 
 def test_the_paper_keeps_its_folders_and_needs_table2_speed(study):
     paper = yaml.safe_load((REPO / "config" / "config.yaml").read_text())
-    assert results_dir(paper) == "results"
+    assert study_paths(paper).results == "results"
     del paper["eigen"]["table2_speed"]
     assert_reported(problems_of(paper), "eigen.table2_speed", "missing", "Table 2")
     validate_config(study)  # a study has no Table 2

@@ -25,6 +25,7 @@ import xarray as xr
 
 from hubbeam import measures, paper
 from hubbeam.io import open_result
+from hubbeam.paths import SHARED
 from hubbeam.products import PAPER_PRODUCTS, Product
 from hubbeam.results import diverged_at, maneuver_value, n_modes, select, times, variable
 from hubbeam.tables import read_csv_rows, table3_rows, write_rows
@@ -184,7 +185,7 @@ def _table2_claims():
                     raise ClaimInputError(f"{results.table2_csv}: no row for mode {i}")
                 return line[row]
             claims.append(_numeric(f"table2_{row.lower()}_f{i}", f"Table 2: {label} frequency of mode {i}",
-                                   "Hz", value, f"{value:.4f}", compute, "results/tables/table2.csv"))
+                                   "Hz", value, f"{value:.4f}", compute, SHARED.table("table2", "csv")))
     return claims
 
 
@@ -195,7 +196,7 @@ def _critical_claims():
         claims.append(_numeric(
             f"critical_speed_tlam_mt{mass:g}".replace(".", "p"), f"TLAM critical angular velocity {where}",
             "rad s-1", value, f"{value:.2f}", lambda r, m=mass: r.critical_speed("TLAM", m),
-            "results/tables/critical_speeds.csv"))
+            SHARED.table("critical_speeds", "csv")))
 
     def ratio(results):
         natural = next(r for r in results.table2() if int(r["mode"]) == 1)["natural"]

@@ -20,6 +20,8 @@ from typing import Any
 
 from hubbeam import limits, variables
 from hubbeam.config_schema import SCHEMA, Problem, Validator, allowed, key_path, kind_keys, show, type_name
+from hubbeam.models import MODELS
+from hubbeam.products import PAPER
 from hubbeam.study import PAPER_FOLDERS
 
 
@@ -106,10 +108,10 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
     for name, case in _section(cfg, "cases").items():
         case = case if isinstance(case, dict) else {}
         t_end, modes, model = _positive(case.get("t_end")), case.get("modes", default_modes), case.get("model")
-        if t_end is not None and _integer(modes) is not None and isinstance(model, str):
+        if t_end is not None and _integer(modes) is not None and model in MODELS:  # else the schema reports it
             check_run(f"cases.{name}.t_end", f"case {name}", model, modes, t_end)
     validation = _section(cfg, "validation")
-    models = [m for m in validation.get("models", []) if isinstance(m, str)] if isinstance(
+    models = [m for m in validation.get("models", []) if m in MODELS] if isinstance(
         validation.get("models"), list) else []
     study = validation.get("mode_study") if isinstance(validation.get("mode_study"), list) else []
     modes = max((m for m in [default_modes, *study] if _integer(m) is not None), default=None)
@@ -220,14 +222,16 @@ def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
 
 def _study_problems(cfg: Mapping, eigen: Mapping, cases: Mapping) -> list[Problem]:
     """A study keeps out of the paper's folders, compares its own cases and ends its eigen grid of
-    positions at the tip; the paper (no ``study``) needs ``eigen.table2_speed`` for Table 2."""
-    if "study" not in cfg:
-        if "table2_speed" in eigen:
-            return []
-        return [Problem("eigen.table2_speed", "missing (required for the paper's Table 2, i.e. "
-                        f"without a study section); allowed: {allowed(['eigen', 'table2_speed'], SCHEMA)}")]
-    study = _section(cfg, "study")
+    positions at the tip; the paper's products (``products: [paper]``) need ``eigen.table2_speed``
+    for Table 2."""
     problems = []
+    products = cfg.get("products")
+    if isinstance(products, list) and PAPER in products and "table2_speed" not in eigen:
+        problems.append(Problem("eigen.table2_speed", "missing (required for the paper's Table 2, "
+                                f"`products: [{PAPER}]`); allowed: {allowed(['eigen', 'table2_speed'], SCHEMA)}"))
+    if "study" not in cfg:
+        return problems
+    study = _section(cfg, "study")
     if study.get("name") in PAPER_FOLDERS:
         problems.append(Problem("study.name", f"got {study['name']!r}, a folder of the paper's "
                                 f"products in results/; allowed: any other name ({', '.join(PAPER_FOLDERS)} "

@@ -90,7 +90,7 @@ def staged(*paths: os.PathLike | str) -> Iterator[list[Path]]:
     exist; each is flushed to disk and renamed over its destination. When the block raises (or a
     stand-in is missing), no destination is touched and the staging directories are removed::
 
-        with staged("results/figures/fig05.pdf", "results/figures/fig05.png") as (pdf, _png):
+        with staged("figures/fig05.pdf", "figures/fig05.png") as (pdf, _png):
             save_figure(fig, pdf)  # writes pdf and the png beside it
     """
     destinations = [Path(path) for path in paths]

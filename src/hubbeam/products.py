@@ -1,14 +1,21 @@
 """The registry of products: every figure and table, what it reads, how it is drawn, what it says.
 
 A :class:`Product` declares its key (``fig05``, ``campbell``, ``table3``), its kind (a figure drawn
-from simulation runs, a figure of the eigen-analysis, or a table), the function that draws it (an
-import path ``"module:attribute"``, imported only when the product is drawn, so that importing the
-registry stays cheap), the simulation cases it reads by their exact names (no name patterns), or
-the result files it reads, its caption and the claims of the paper it carries.
+from simulation runs, one figure per case or per comparison of a study, a figure of the
+eigen-analysis, or a table), the function that draws it (an import path ``"module:attribute"``,
+imported only when the product is drawn, so that importing the registry stays cheap), the
+simulation cases it reads by their exact names (no name patterns), or the result files it reads
+(relative to the results folder, :data:`hubbeam.paths.IN_RESULTS`), the configuration keys it
+needs, its caption and the claims of the paper it carries.
 
-The Snakemake rules (targets, inputs, ``snakemake --report`` captions) and the reproduction report
-(figure sections and captions) are derived from :data:`PAPER_PRODUCTS`. A study declares its own
-products the same way, without code, from plain mappings (:func:`product_from_entry`).
+:data:`GENERAL_PRODUCTS` are those of every configuration whose keys they need are present (the
+Campbell diagram always; the study report's figures with a ``study`` section);
+:data:`PAPER_PRODUCTS` are the paper's own, built when the configuration asks for them
+(``products: [paper]``, :data:`PRODUCT_SETS`). :func:`products_for` gives a configuration's
+products: the Snakemake rules (targets, inputs, ``snakemake --report`` captions), the figure
+sections of the reproduction report (with their captions) and of the study report are derived
+from it. A new product of
+every study is one entry of :data:`GENERAL_PRODUCTS` (plus a rule when no rule of its kind exists).
 """
 
 from __future__ import annotations
@@ -18,13 +25,21 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
+from hubbeam.paths import IN_RESULTS
+
 #: kinds of product
 SIMULATION_FIGURE = "simulation figure"
+#: one figure per configured case (``<key>_<case>``), drawn from that case's run
+CASE_FIGURE = "figure per case"
+#: one figure per comparison of ``study.comparisons`` (``<key>_<comparison>``), its runs overlaid
+COMPARISON_FIGURE = "figure per comparison"
 EIGEN_FIGURE = "eigen figure"
 TABLE = "table"
-KINDS = (SIMULATION_FIGURE, EIGEN_FIGURE, TABLE)
+KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, TABLE)
 
-CRITICAL_SPEEDS_NC = "results/eigen/critical_speeds.nc"
+CRITICAL_SPEEDS_NC = IN_RESULTS.eigen("critical_speeds")
+#: the study's beam as data: its properties along the span and first mode shapes (hubbeam.shapes)
+BEAM_NC = IN_RESULTS.eigen("beam")
 
 
 class ProductError(ValueError):
@@ -36,8 +51,10 @@ class Product:
     """One figure or table.
 
     ``cases``: the simulation cases it reads (simulation figures, tables from runs); ``files``: the
-    result files it reads, by the keyword its function takes them under (eigen figures, tables
-    from csv). ``paper``: what the paper shows in it; ``ours``: what our product shows.
+    result files it reads relative to the results folder, by the keyword its function takes them
+    under (eigen figures, tables from csv). ``needs``: the configuration keys (dotted, e.g.
+    ``study.comparisons``) without which it is not built. ``paper``: what the paper shows in it;
+    ``ours``: what our product shows.
     """
 
     key: str
@@ -50,6 +67,7 @@ class Product:
     cases: tuple[str, ...] = ()
     files: Mapping[str, str] = field(default_factory=dict)
     claims: tuple[str, ...] = ()
+    needs: tuple[str, ...] = ()
 
     def __post_init__(self):
         if self.kind not in KINDS:
@@ -62,6 +80,7 @@ class Product:
         object.__setattr__(self, "cases", tuple(self.cases))
         object.__setattr__(self, "files", MappingProxyType(dict(self.files)))
         object.__setattr__(self, "claims", tuple(self.claims))
+        object.__setattr__(self, "needs", tuple(self.needs))
 
     @property
     def is_figure(self) -> bool:
@@ -73,6 +92,10 @@ class Product:
         if self.kind == TABLE:
             return "Tables"
         return "Figures of the paper" if self.in_paper else "Beyond the paper"
+
+    def is_built_for(self, cfg: Mapping) -> bool:
+        """Whether the configuration ``cfg`` has every key the product needs."""
+        return all(_has(cfg, key.split(".")) for key in self.needs)
 
     @property
     def module(self) -> str:
@@ -90,6 +113,10 @@ class Product:
             parts.append(f"*Paper:* {_rst(self.paper)}")
         parts.append(f"*This study:* {_rst(self.ours)}" if self.paper else _rst(self.ours))
         return " ".join(parts)
+
+
+def _has(cfg, keys: list[str]) -> bool:
+    return not keys or (isinstance(cfg, Mapping) and keys[0] in cfg and _has(cfg[keys[0]], keys[1:]))
 
 
 def _rst(text: str) -> str:
@@ -128,6 +155,17 @@ def registry(*products: Product) -> Mapping[str, Product]:
     return MappingProxyType(out)
 
 
+def merged(*registries: Mapping[str, Product]) -> Mapping[str, Product]:
+    """One registry of the products of ``registries``; a product listed in several (the same
+    declaration) counts once, two different products under one key are an error."""
+    out: dict[str, Product] = {}
+    for products in registries:
+        for key, product in products.items():
+            if out.setdefault(key, product) is not product:
+                raise ProductError(f"product key {key!r} is declared twice")
+    return MappingProxyType(out)
+
+
 def of_kind(products: Mapping[str, Product], *kinds: str) -> dict[str, Product]:
     return {key: p for key, p in products.items() if p.kind in kinds}
 
@@ -146,6 +184,46 @@ def check_product_cases(products: Mapping[str, Product], case_names: Iterable[st
         raise ProductError("invalid hubbeam configuration: the figures and tables read cases that "
                            "the config `cases` does not define:\n" + "\n".join(missing))
 
+
+# --- the products of every configuration ------------------------------------------------------
+
+#: the Campbell diagram: a general product that the paper's products include
+CAMPBELL = Product(
+    "campbell", EIGEN_FIGURE, "hubbeam.plotting.campbell:plot",
+    "Beyond the paper: Campbell diagram", in_paper=False,
+    paper="Not in the paper; Table 2 is one vertical slice of it (1 rad/s).",
+    ours="Frequencies of TLAM and FOAM against hub speed: TLAM's first frequency reaches zero at the "
+         "critical speed, FOAM's rises with speed (dynamic stiffening).",
+    files={"campbell": IN_RESULTS.eigen("campbell"), "critical": CRITICAL_SPEEDS_NC},
+    claims=("table2_tlam_softens_foam_stiffens",))
+
+GENERAL_PRODUCTS: Mapping[str, Product] = registry(
+    Product(
+        "case", CASE_FIGURE, "hubbeam.plotting.case_figure:plot", "The response of one case",
+        ours="Tip deflection, hub angular velocity, hub torque and energy balance of one run of the "
+             "study.", in_paper=False, needs=("study",)),
+    Product(
+        "compare", COMPARISON_FIGURE, "hubbeam.plotting.comparison:plot", "A comparison of cases",
+        ours="Tip deflection, hub angular velocity and hub torque of the runs of one comparison of the "
+             "study, overlaid.", in_paper=False,
+        needs=("study.comparisons",)),
+    CAMPBELL,
+    Product(
+        "critical_speeds", EIGEN_FIGURE, "hubbeam.plotting.study_critical:plot",
+        "Critical speeds over tip-mass position", in_paper=False,
+        ours="The hub speed at which each model's transverse stiffness K22 becomes singular, against "
+             "the tip-mass position, one curve per tip mass.",
+        files={"critical": CRITICAL_SPEEDS_NC}, needs=("study",)),
+    Product(
+        "beam_properties", EIGEN_FIGURE, "hubbeam.plotting.beam_properties:plot", "The beam",
+        ours="rhoA, EI and EA along the span, the stations marked, and the tip mass of every case at "
+             "its position.", in_paper=False,
+        files={"beam": BEAM_NC}, needs=("study",)),
+    Product(
+        "mode_shapes", EIGEN_FIGURE, "hubbeam.plotting.mode_shapes:plot", "First mode shapes",
+        ours="The first transverse mode shapes of FOAM at rest and at the top of the speed grid.",
+        in_paper=False, files={"beam": BEAM_NC}, needs=("study",)),
+)
 
 # --- the paper's products ------------------------------------------------------------------------
 
@@ -221,7 +299,7 @@ PAPER_PRODUCTS: Mapping[str, Product] = registry(
         ours="The hub speed of the printed curves is not stated (note 10): we show the dominant "
              "eigenvalue over position and speed and mark where it crosses zero; eigenvalues depend on "
              "the unit modal mass normalisation (note 7).",
-        files={"k22": "results/eigen/k22.nc", "critical": CRITICAL_SPEEDS_NC},
+        files={"k22": IN_RESULTS.eigen("k22"), "critical": CRITICAL_SPEEDS_NC},
         claims=("critical_speed_tlam_mt0", "critical_speed_tlam_mt0p1", "critical_speed_tlam_mt0p5",
                 "tip_mass_lowers_tlam_critical_speed", "foam_no_critical_speed")),
     Product(
@@ -234,14 +312,7 @@ PAPER_PRODUCTS: Mapping[str, Product] = registry(
         cases=("fig10_foam_mt0", "fig10_foam_mt0p1", "fig10_foam_mt0p5", "fig10_tlam_mt0",
                "fig10_tlam_mt0p1", "fig10_tlam_mt0p5"),
         claims=("tlam_fails_mt0p5_wf2", "tlam_foam_close_mt0_wf2")),
-    Product(
-        "campbell", EIGEN_FIGURE, "hubbeam.plotting.campbell:plot",
-        "Beyond the paper: Campbell diagram", in_paper=False,
-        paper="Not in the paper; Table 2 is one vertical slice of it (1 rad/s).",
-        ours="Frequencies of TLAM and FOAM against hub speed: TLAM's first frequency reaches zero at the "
-             "critical speed, FOAM's rises with speed (dynamic stiffening).",
-        files={"campbell": "results/eigen/campbell.nc", "critical": CRITICAL_SPEEDS_NC},
-        claims=("table2_tlam_softens_foam_stiffens",)),
+    CAMPBELL,
     Product(
         "critical_map", EIGEN_FIGURE, "hubbeam.plotting.critical_map:plot",
         "Beyond the paper: critical speed over tip mass and position", in_paper=False,
@@ -265,7 +336,7 @@ PAPER_PRODUCTS: Mapping[str, Product] = registry(
         ours="The first five vibration frequencies of the beam, natural and of TLAM and FOAM at the hub "
              "speed of the table, beside the printed ones; the journal prints this table under Table "
              "3's caption (note 3).",
-        files={"csv": "results/tables/table2.csv"}),
+        files={"csv": IN_RESULTS.table("table2", "csv")}),
     Product(
         "table3", TABLE, "hubbeam.tables:table3", "Table 3: largest inertia torque",
         ours="The largest inertia torque |Q_theta| of FOAM under the torque pulse for each torque "
@@ -273,3 +344,25 @@ PAPER_PRODUCTS: Mapping[str, Product] = registry(
              "caption (note 3).",
         cases=_TAB3),
 )
+
+#: the name of the paper's product set
+PAPER = "paper"
+#: the products a configuration may ask for beside the general ones (``products: [paper]``)
+PRODUCT_SETS: Mapping[str, Mapping[str, Product]] = MappingProxyType({PAPER: PAPER_PRODUCTS})
+
+
+def product_sets(cfg: Mapping) -> list[str]:
+    """The product sets the configuration asks for (``products``), each checked to exist."""
+    names = list(cfg.get("products", []))
+    unknown = [name for name in names if name not in PRODUCT_SETS]
+    if unknown:
+        raise ProductError(f"products: got {', '.join(map(repr, unknown))}; allowed: "
+                           f"{', '.join(PRODUCT_SETS)}")
+    return names
+
+
+def products_for(cfg: Mapping) -> Mapping[str, Product]:
+    """Every product of the configuration ``cfg``: the general products it has the keys for and
+    those of the product sets it asks for."""
+    general = {key: p for key, p in GENERAL_PRODUCTS.items() if p.is_built_for(cfg)}
+    return merged(general, *(PRODUCT_SETS[name] for name in product_sets(cfg)))

@@ -3,6 +3,9 @@
 Rules reach the experiment through these helpers: case names for wildcards, the resolved case for
 `params:` (so that editing a case reruns exactly that case), and the package sources a rule's
 script imports, as inputs (Snakemake watches a script's own mtime, not the modules it imports).
+Every path comes from `PATHS` (hubbeam.paths: results/ and logs/ for the paper, results/<name>/
+and logs/<name>/ for a study; `SHARED` for the compiled kernels' markers), every figure and table
+from `PRODUCTS`, the configuration's products (hubbeam.products.products_for).
 """
 
 import os
@@ -12,15 +15,22 @@ from snakemake.exceptions import WorkflowError
 
 from hubbeam.config import case_names, case_settings
 from hubbeam.models import FAMILIES, model, wildcard_pattern
+from hubbeam.paths import FIGURE_FORMATS, SHARED, TABLE_FORMATS, study_paths
+from hubbeam.products import (CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, PAPER, PAPER_PRODUCTS,
+                              SIMULATION_FIGURE, TABLE, of_kind, product_cases, product_sets,
+                              products_for)
 from hubbeam.sourcedeps import script_dependencies
-from hubbeam.study import is_study, logs_dir, results_dir
 
 PACKAGE_DIR = Path(workflow.basedir, "src", "hubbeam")
 SCRIPTS_DIR = Path(workflow.basedir, "workflow", "scripts")
-#: where the generic rules (matrices, simulations) write: results/ and logs/ for the paper,
-#: results/<name>/ and logs/<name>/ for a study
-RESULTS = results_dir(config)
-LOGS = logs_dir(config)
+#: where this configuration's results and logs go
+PATHS = study_paths(config)
+#: the figures and tables of this configuration
+PRODUCTS = products_for(config)
+#: the paper's own products (Tables 1-3, Figs. 3-10, claims, reproduction report) are asked for
+WITH_PAPER = PAPER in product_sets(config)
+#: the kernel families, each compiled once (hubbeam.models)
+FAMILY_PATTERN = wildcard_pattern(FAMILIES)
 
 
 def cases():
@@ -50,40 +60,31 @@ def script_code(script, *modules):
     return [os.path.relpath(path) for path in files]
 
 
+#: the marker of a family's compiled kernel (shared by every configuration)
+KERNEL_DONE = SHARED.log("simulations", "kernel_{family}.done")
+
+
 def simulation_kernel_done(wildcards):
     """Input function of `simulate`: the marker of the compiled kernel of the case's family."""
-    family = model(case_config(wildcards.case)["model"]).family
-    return f"logs/simulations/kernel_{family}.done"
+    return KERNEL_DONE.format(family=model(case_config(wildcards.case)["model"]).family)
 
 
 def simulation_kernels_done(wildcards):
     """Input function of jobs that simulate any model: the markers of every family's kernel."""
-    return expand("logs/simulations/kernel_{family}.done", family=FAMILIES)
+    return expand(KERNEL_DONE, family=FAMILIES)
 
 
 def simulation_results():
     """One netCDF file per configured case."""
-    return expand(f"{RESULTS}/simulations/{{case}}.nc", case=cases())
+    return [PATHS.simulation(case) for case in cases()]
 
 
-def final_targets():
-    """Every final product of the study, the inputs of the `all` rule (extend as rules are added)."""
-    return (
-        simulation_results()
-        + figure_targets()
-        + table_targets()
-        + report_targets()
-        + sweep_targets()
-        + published_validation_results()
-        + reading_targets()
-        + ["results/hubbeam-results.tar.gz"]
-    )
+def all_targets():
+    """The inputs of the `all` rule: every product of the configuration and its archive."""
+    return archive_inputs(None) + [PATHS.archive()]
 
 
-# --- figures, tables, claims and report (rules in figures.smk and report.smk) -------------------
-
-from hubbeam.products import (EIGEN_FIGURE, PAPER_PRODUCTS, SIMULATION_FIGURE, TABLE, of_kind,
-                              product_cases)
+# --- figures, tables, claims and report (rules in figures.smk, study.smk and report.smk) --------
 
 FIGURE_STYLE = os.path.relpath(PACKAGE_DIR / "plotting" / "hubbeam.mplstyle")
 #: the caption file of every product in `snakemake --report`: it prints `params.caption`
@@ -91,29 +92,50 @@ PRODUCT_CAPTION = "../report/product.rst"
 
 
 def product(key):
-    """The product `key` of the registry (`hubbeam.products.PAPER_PRODUCTS`)."""
+    """The paper's product `key` (`hubbeam.products.PAPER_PRODUCTS`)."""
     return PAPER_PRODUCTS[key]
 
 
 def product_datasets(key):
     """The result files of the cases product `key` reads."""
-    return expand("results/simulations/{case}.nc", case=product(key).cases)
+    return [PATHS.simulation(case) for case in product(key).cases]
+
+
+def product_files(product):
+    """{keyword: path} of the result files `product` reads, in this configuration's folder."""
+    return {name: PATHS.result(path) for name, path in product.files.items()}
+
+
+def study_comparisons():
+    """{comparison name: [case, ...]} of `study.comparisons` (none without it)."""
+    return dict(config.get("study", {}).get("comparisons", {}))
+
+
+def figure_names(key, product):
+    """The figure names of `product`: its key, or one `<key>_<name>` per case or comparison."""
+    names = {CASE_FIGURE: cases(), COMPARISON_FIGURE: sorted(study_comparisons())}.get(product.kind)
+    return [key] if names is None else [f"{key}_{name}" for name in names]
+
+
+def figures(ext):
+    """{name: path} of every figure of the configuration in the format `ext`."""
+    return {name: PATHS.figure(name, ext) for key, product in PRODUCTS.items() if product.is_figure
+            for name in figure_names(key, product)}
 
 
 def figure_targets():
-    """PDF and PNG of every figure of the registry."""
-    keys = sorted(of_kind(PAPER_PRODUCTS, SIMULATION_FIGURE, EIGEN_FIGURE))
-    return expand("results/figures/{key}.{ext}", key=keys, ext=("pdf", "png"))
+    """PDF and PNG of every figure of the configuration."""
+    return sorted(path for ext in FIGURE_FORMATS for path in figures(ext).values())
 
 
 def table_keys():
-    """Keys of the tables of the registry (`table1`, ...)."""
-    return sorted(of_kind(PAPER_PRODUCTS, TABLE))
+    """Keys of the tables of the configuration (`table1`, ...)."""
+    return sorted(of_kind(PRODUCTS, TABLE))
 
 
 def table_targets():
     """csv, Markdown and LaTeX of every table (table2.csv itself comes from the eigen rule)."""
-    return expand("results/tables/{key}.{ext}", key=table_keys(), ext=("csv", "md", "tex"))
+    return [PATHS.table(key, ext) for key in table_keys() for ext in TABLE_FORMATS]
 
 
 def claim_cases():
@@ -121,17 +143,25 @@ def claim_cases():
     return product_cases(PAPER_PRODUCTS)
 
 
+#: the tables of the eigen-analysis the claims read besides the runs, by input name
+CLAIM_TABLES = {"table2": PATHS.table("table2", "csv"),
+                "critical_speeds": PATHS.table("critical_speeds", "csv")}
+#: the files of the study report (rules in study.smk), by output name
+STUDY_REPORT = {"markdown": PATHS.report("report.md"), "html": PATHS.report("report.html"),
+                "summary": PATHS.report("summary.csv")}
+
+
 def report_targets():
-    return [
-        "results/report/claims.csv",
-        "results/report/reproduction.md",
-        "results/report/reproduction.html",
-    ]
+    """The reports the configuration asks for: the claims and the reproduction report with the
+    paper's products, the study report with a `study` section (its title, description and
+    comparisons)."""
+    paper = [PATHS.report(name) for name in ("claims.csv", "reproduction.md", "reproduction.html")]
+    return (paper if WITH_PAPER else []) + (list(STUDY_REPORT.values()) if "study" in config else [])
 
 
 def archive_inputs(wildcards):
     """Everything the archive bundles: netCDF results (simulations, matrices, eigen-analysis,
-    sweeps), figures, tables, the report and the published-table validation (the optional Exudyn
+    sweeps), figures, tables, the reports and the published-table validation (the optional Exudyn
     validation is not bundled)."""
     results = simulation_results() + matrices_results() + eigen_results() + sweep_targets()
     products = (figure_targets() + table_targets() + report_targets() + published_validation_results()
@@ -148,7 +178,7 @@ def simulation_matrices(wildcards):
     from hubbeam.parameters import TipMass
 
     tip = TipMass(**case_config(wildcards.case)["tip_mass"])
-    return f"{RESULTS}/matrices/{configuration_name(tip)}.nc"
+    return PATHS.matrices(configuration_name(tip))
 
 
 def simulation_numerics():
@@ -186,7 +216,7 @@ def matrices_configuration(wildcards):
     configurations = matrices_configurations()
     if wildcards.config_name not in configurations:
         raise WorkflowError(
-            f"{RESULTS}/matrices/{wildcards.config_name}.nc: unknown configuration "
+            f"{PATHS.matrices(wildcards.config_name)}: unknown configuration "
             f"{wildcards.config_name!r}; allowed: {', '.join(sorted(configurations))}"
         )
     return configurations[wildcards.config_name]
@@ -194,32 +224,25 @@ def matrices_configuration(wildcards):
 
 def matrices_results():
     """One netCDF file of system matrices per tip-mass configuration."""
-    return expand(f"{RESULTS}/matrices/{{config_name}}.nc", config_name=sorted(matrices_configurations()))
+    return [PATHS.matrices(name) for name in sorted(matrices_configurations())]
 
 
 # --- eigen-analysis (rules in eigen.smk) ----------------------------------------------------------
 
 
 def eigen_results():
-    """Every product of the eigen-analysis (netCDF and csv)."""
-    return [
-        "results/eigen/k22.nc",
-        "results/eigen/critical_speeds.nc",
-        "results/eigen/campbell.nc",
-        "results/tables/critical_speeds.csv",
-        "results/tables/table2.csv",
-    ]
+    """The results of the eigen-analysis (netCDF and csv) the products and the claims read."""
+    read = {path for product in PRODUCTS.values() for path in product_files(product).values()}
+    return sorted(read | (set(CLAIM_TABLES.values()) if WITH_PAPER else set()))
 
 
 # --- independent validation (rules in validate.smk, docs/validation.md) --------------------------
-# The published-table check (paper only: it validates the paper's beam model against literature
-# tables) is part of `all` whenever the config has `validation.published`, and of the reproduction
-# report. The optional target `validate` builds, under RESULTS/validation/, the Exudyn comparison
-# (when the config has a `validation` section) and the non-uniform checks (always), with their
-# report RESULTS/report/validation_exudyn.md/.html.
+# The published-table check (it validates the beam model against literature tables of uniform
+# cantilevers, not a study's beam) is one of the paper's products: with `validation.published`, part
+# of `all` and of the reproduction report. The optional target `validate` builds, under validation/ of the results folder, the
+# Exudyn comparison (when the config has a `validation` section) and the non-uniform checks
+# (always), with their report report/validation_exudyn.md/.html.
 
-VALIDATION_DIR = f"{RESULTS}/validation"
-VALIDATION_LOGS = f"{LOGS}/validation"
 #: the optional modules `validate` imports: pyBModes always, Exudyn for the `validation` section
 VALIDATION_MODULES = ("pybmodes", "exudyn")
 
@@ -236,21 +259,21 @@ def validation_config():
 
 def published_validation_inputs():
     """The products of `validate_published` the reproduction report reads, by input name (none
-    for a study or when the config has no `validation.published`)."""
-    if is_study(config) or "published" not in config.get("validation", {}):
+    without the paper's products or without `validation.published`)."""
+    if not WITH_PAPER or "published" not in config.get("validation", {}):
         return {}
     return {
-        "published": f"{VALIDATION_DIR}/published_comparison.csv",
-        "tip_mass": f"{VALIDATION_DIR}/tip_mass_comparison.csv",
-        "curves": f"{VALIDATION_DIR}/rotating_eigen.nc",
-        "published_figure": f"{VALIDATION_DIR}/rotating_frequencies.png",
+        "published": PATHS.validation("published_comparison.csv"),
+        "tip_mass": PATHS.validation("tip_mass_comparison.csv"),
+        "curves": PATHS.validation("rotating_eigen.nc"),
+        "published_figure": PATHS.validation("rotating_frequencies.png"),
     }
 
 
 def published_validation_results():
     """Every product of `validate_published` (none without `validation.published`)."""
     inputs = published_validation_inputs()
-    return sorted(inputs.values()) + ([f"{VALIDATION_DIR}/rotating_frequencies.pdf"] if inputs else [])
+    return sorted(inputs.values()) + ([PATHS.validation("rotating_frequencies.pdf")] if inputs else [])
 
 
 def validation_cases():
@@ -275,12 +298,12 @@ def validation_case(wildcards):
 
 def validation_case_files(wildcards):
     """Input function: the comparison file of every validation case."""
-    return expand(f"{VALIDATION_DIR}/exudyn_{{vcase}}.nc", vcase=validation_cases())
+    return [PATHS.validation(f"exudyn_{vcase}.nc") for vcase in validation_cases()]
 
 
 def validation_reference_files(wildcards):
     """Input function: the Exudyn run of every validation case."""
-    return expand(f"{VALIDATION_DIR}/runs/exudyn_{{vcase}}.nc", vcase=validation_cases())
+    return [PATHS.validation(f"runs/exudyn_{vcase}.nc") for vcase in validation_cases()]
 
 
 def validation_section(key):
@@ -298,9 +321,9 @@ def convergence_case(wildcards):
 def nonuniform_results():
     """The tables of the non-uniform checks (rule validate_nonuniform) by input name: Ritz
     against our finite elements always, pyBModes for a beam off the hub axis (it needs rA > 0)."""
-    results = {"ritz_fe": f"{VALIDATION_DIR}/nonuniform_ritz_fe.csv"}
+    results = {"ritz_fe": PATHS.validation("nonuniform_ritz_fe.csv")}
     if config["beam"]["hub_radius"] > 0.0:
-        results["pybmodes"] = f"{VALIDATION_DIR}/nonuniform_pybmodes.csv"
+        results["pybmodes"] = PATHS.validation("nonuniform_pybmodes.csv")
     return results
 
 
@@ -310,15 +333,15 @@ def exudyn_report_inputs():
     if "validation" not in config:
         return {}
     return {
-        "comparison": f"{VALIDATION_DIR}/exudyn_comparison.csv",
-        "figure": f"{VALIDATION_DIR}/exudyn_comparison.png",
-        "mode_study": f"{VALIDATION_DIR}/exudyn_mode_study.csv",
-        "convergence": f"{VALIDATION_DIR}/exudyn_convergence.csv",
+        "comparison": PATHS.validation("exudyn_comparison.csv"),
+        "figure": PATHS.validation("exudyn_comparison.png"),
+        "mode_study": PATHS.validation("exudyn_mode_study.csv"),
+        "convergence": PATHS.validation("exudyn_convergence.csv"),
     }
 
 
 def validation_report_results():
-    return [f"{RESULTS}/report/validation_exudyn.md", f"{RESULTS}/report/validation_exudyn.html"]
+    return [PATHS.report("validation_exudyn.md"), PATHS.report("validation_exudyn.html")]
 
 
 def validation_targets(wildcards):
@@ -338,8 +361,8 @@ def validation_targets(wildcards):
     exudyn = []
     if "validation" in config:
         exudyn = [
-            f"{VALIDATION_DIR}/exudyn_comparison.pdf",
-            f"{VALIDATION_DIR}/exudyn_convergence.nc",
+            PATHS.validation("exudyn_comparison.pdf"),
+            PATHS.validation("exudyn_convergence.nc"),
             *exudyn_report_inputs().values(),
             *validation_case_files(wildcards),
         ]
@@ -373,7 +396,7 @@ def sweep_chunks(wildcards):
     from hubbeam.sweep import n_chunks
 
     count = n_chunks(sweep_params(wildcards))
-    return expand(f"results/sweeps/chunks/{wildcards.sweep}/{{chunk}}.nc", chunk=range(count))
+    return [PATHS.sweep_chunk(wildcards.sweep, str(chunk)) for chunk in range(count)]
 
 
 def sweep_targets(in_all=True):
@@ -382,34 +405,34 @@ def sweep_targets(in_all=True):
     from hubbeam.sweep import sweep_settings
 
     names = [name for name in sweeps() if sweep_settings(config, name)["in_all"] == in_all]
-    return expand("results/sweeps/{sweep}.nc", sweep=names) + expand(
-        "results/figures/sweep_{sweep}.{ext}", sweep=names, ext=("pdf", "png")
-    )
+    return [PATHS.sweep(name) for name in names] + [
+        PATHS.figure(f"sweep_{name}", ext) for name in names for ext in FIGURE_FORMATS]
 
 
 # --- alternative readings (rules in readings.smk) ------------------------------------------------
 
 
 def reading_names():
-    """Names of the configured readings (`readings`), in config order; none without the section."""
-    return list(config.get("readings", {}))
+    """Names of the configured readings (`readings`), in config order; none without the section
+    or without the paper's products (a reading recomputes the paper's claims)."""
+    return list(config.get("readings", {})) if WITH_PAPER else []
 
 
 def reading_targets():
     """The claims x readings matrix (none without a `readings` section)."""
-    return ["results/readings/readings.csv", "results/readings/readings.nc"] if reading_names() else []
+    return [PATHS.readings("csv"), PATHS.readings("nc")] if reading_names() else []
 
 
 def reading_inputs():
     """The matrix the reproduction report reads, by input name (none without `readings`)."""
-    return {"readings": "results/readings/readings.csv"} if reading_names() else {}
+    return {"readings": PATHS.readings("csv")} if reading_names() else {}
 
 
 def _reading_cases(name):
     from hubbeam.readings import ReadingError, reading_cases
 
     if name not in config.get("readings", {}):
-        raise WorkflowError(f"results/readings/claims/{name}.csv: unknown reading {name!r}; "
+        raise WorkflowError(f"{PATHS.reading(name)}: unknown reading {name!r}; "
                             f"allowed: {', '.join(reading_names()) or 'none configured'}")
     try:
         return reading_cases(config, name)

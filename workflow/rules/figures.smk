@@ -1,11 +1,13 @@
-"""Figures (Figs. 3-10 and beyond) and Tables 1-3, drawn from the result files only.
+"""Figures (Figs. 3-10 and beyond, the eigen-analysis figures of every configuration) and Tables
+1-3, drawn from the result files only.
 
-Every figure and table is a product of the registry `hubbeam.products.PAPER_PRODUCTS`, which names
-the cases or result files it reads, the function that draws it and its caption. One rule per
-figure (defined in a loop) so that each figure has its own caption in `snakemake --report`.
+Every figure and table is a product of the registry (`hubbeam.products`; `PRODUCTS` in common.smk
+holds the configuration's), which names the cases or result files it reads, the function that
+draws it and its caption. One rule per figure (defined in a loop) so that each figure has its own
+caption in `snakemake --report`. The figures per case and per comparison are in study.smk.
 """
 
-for _key, _product in of_kind(PAPER_PRODUCTS, SIMULATION_FIGURE).items():
+for _key, _product in of_kind(PRODUCTS, SIMULATION_FIGURE).items():
 
     rule:
         name:
@@ -16,9 +18,9 @@ for _key, _product in of_kind(PAPER_PRODUCTS, SIMULATION_FIGURE).items():
             style=FIGURE_STYLE,
             code=script_code("figure_simulation.py", _product.module),
         output:
-            pdf=ensure(f"results/figures/{_key}.pdf", non_empty=True),
+            pdf=ensure(PATHS.figure(_key, "pdf"), non_empty=True),
             png=report(
-                ensure(f"results/figures/{_key}.png", non_empty=True),
+                ensure(PATHS.figure(_key, "png"), non_empty=True),
                 caption=PRODUCT_CAPTION,
                 category=_product.category,
             ),
@@ -27,25 +29,25 @@ for _key, _product in of_kind(PAPER_PRODUCTS, SIMULATION_FIGURE).items():
             cases=list(_product.cases),
             caption=_product.caption(),
         log:
-            f"logs/figures/{_key}.log",
+            PATHS.log("figures", f"{_key}.log"),
         script:
             "../scripts/figure_simulation.py"
 
 
-for _key, _product in of_kind(PAPER_PRODUCTS, EIGEN_FIGURE).items():
+for _key, _product in of_kind(PRODUCTS, EIGEN_FIGURE).items():
 
     rule:
         name:
             f"figure_{_key}"
         localrule: True
         input:
-            **_product.files,
+            **product_files(_product),
             style=FIGURE_STYLE,
             code=script_code("figure_eigen.py", _product.module),
         output:
-            pdf=ensure(f"results/figures/{_key}.pdf", non_empty=True),
+            pdf=ensure(PATHS.figure(_key, "pdf"), non_empty=True),
             png=report(
-                ensure(f"results/figures/{_key}.png", non_empty=True),
+                ensure(PATHS.figure(_key, "png"), non_empty=True),
                 caption=PRODUCT_CAPTION,
                 category=_product.category,
             ),
@@ -53,7 +55,7 @@ for _key, _product in of_kind(PAPER_PRODUCTS, EIGEN_FIGURE).items():
             function=_product.function,
             caption=_product.caption(),
         log:
-            f"logs/figures/{_key}.log",
+            PATHS.log("figures", f"{_key}.log"),
         script:
             "../scripts/figure_eigen.py"
 
@@ -63,14 +65,14 @@ rule table1:
     input:
         code=script_code("table_1.py"),
     output:
-        csv=report("results/tables/table1.csv", caption=PRODUCT_CAPTION, category="Tables"),
-        md="results/tables/table1.md",
-        tex="results/tables/table1.tex",
+        csv=report(PATHS.table("table1", "csv"), caption=PRODUCT_CAPTION, category="Tables"),
+        md=PATHS.table("table1", "md"),
+        tex=PATHS.table("table1", "tex"),
     params:
         beam=config["beam"],
         caption=product("table1").caption(),
     log:
-        "logs/tables/table1.log",
+        PATHS.log("tables", "table1.log"),
     script:
         "../scripts/table_1.py"
 
@@ -78,16 +80,17 @@ rule table1:
 rule table2_render:
     localrule: True
     input:
-        **product("table2").files,
+        **product_files(product("table2")),
         code=script_code("table_2.py"),
     output:
-        md=report("results/tables/table2.md", caption=PRODUCT_CAPTION, category="Tables"),
-        tex="results/tables/table2.tex",
+        md=report(PATHS.table("table2", "md"), caption=PRODUCT_CAPTION, category="Tables"),
+        tex=PATHS.table("table2", "tex"),
     params:
-        speed=config["eigen"]["table2_speed"],
+        # only the paper's configuration has it; read when the job runs
+        speed=lambda wildcards: config["eigen"]["table2_speed"],
         caption=product("table2").caption(),
     log:
-        "logs/tables/table2.log",
+        PATHS.log("tables", "table2.log"),
     script:
         "../scripts/table_2.py"
 
@@ -98,13 +101,13 @@ rule table3:
         datasets=product_datasets("table3"),
         code=script_code("table_3.py"),
     output:
-        csv=report("results/tables/table3.csv", caption=PRODUCT_CAPTION, category="Tables"),
-        md="results/tables/table3.md",
-        tex="results/tables/table3.tex",
+        csv=report(PATHS.table("table3", "csv"), caption=PRODUCT_CAPTION, category="Tables"),
+        md=PATHS.table("table3", "md"),
+        tex=PATHS.table("table3", "tex"),
     params:
         cases=list(product("table3").cases),
         caption=product("table3").caption(),
     log:
-        "logs/tables/table3.log",
+        PATHS.log("tables", "table3.log"),
     script:
         "../scripts/table_3.py"

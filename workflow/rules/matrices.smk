@@ -1,7 +1,7 @@
 """System matrices (Eqs. 13-20, Appendix) of every tip-mass configuration of the simulation cases.
 
-One file per configuration, `<RESULTS>/matrices/<name>.nc` (RESULTS in common.smk: results/ for
-the paper, results/<name>/ for a study), named by
+One file per configuration, `matrices/<name>.nc` of the results folder (`PATHS` in common.smk:
+results/ for the paper, results/<name>/ for a study), named by
 `hubbeam.matrices.configuration_name` (`mt0`, `mt0p1_l8`, ...), with as many modes as the most
 demanding case that uses it (the matrices of fewer modes are its leading blocks). The helpers
 (`matrices_configurations`, `matrices_configuration`, `matrices_results`) are in common.smk.
@@ -11,7 +11,7 @@ rule matrices:
     input:
         code=script_code("assemble_matrices.py"),
     output:
-        ensure(f"{RESULTS}/matrices/{{config_name}}.nc", non_empty=True),
+        ensure(PATHS.matrices("{config_name}"), non_empty=True),
     params:
         beam=config["beam"],
         configuration=matrices_configuration,
@@ -19,6 +19,6 @@ rule matrices:
     wildcard_constraints:
         config_name=r"mt[0-9a-z_]+",
     log:
-        f"{LOGS}/matrices/{{config_name}}.log",
+        PATHS.log("matrices", "{config_name}.log"),
     script:
         "../scripts/assemble_matrices.py"

@@ -2,8 +2,9 @@
 
 Each reading is one job: it simulates the runs its change generates (`reading-<reading>--<case>`,
 held in memory; unchanged runs are the default results) and evaluates its claims with the
-functions of hubbeam.claims -> results/readings/claims/<reading>.csv. `readings_matrix` collects
-them into the claims x readings matrix, results/readings/readings.csv and readings.nc, which the
+functions of hubbeam.claims -> readings/claims/<reading>.csv of the results folder.
+`readings_matrix` collects them into the claims x readings matrix, readings/readings.csv and
+readings.nc, which the
 reproduction report reads. The default results never depend on these rules. Part of `all` (the
 17 readings of config/config.yaml take about 1.5 minutes on two cores); `snakemake readings` builds
 the matrix alone.
@@ -12,14 +13,13 @@ the matrix alone.
 
 rule reading:
     input:
-        datasets=lambda wildcards: expand("results/simulations/{case}.nc", case=reading_base_cases(wildcards)),
-        table2="results/tables/table2.csv",
-        critical_speeds="results/tables/critical_speeds.csv",
-        claims="results/report/claims.csv",
+        datasets=lambda wildcards: [PATHS.simulation(case) for case in reading_base_cases(wildcards)],
+        **CLAIM_TABLES,
+        claims=PATHS.report("claims.csv"),
         kernel=simulation_kernels_done,
         code=script_code("readings_reading.py"),
     output:
-        ensure("results/readings/claims/{reading}.csv", non_empty=True),
+        ensure(PATHS.reading("{reading}"), non_empty=True),
     params:
         cases=reading_base_cases,
         generated=reading_generated_cases,
@@ -30,22 +30,22 @@ rule reading:
     wildcard_constraints:
         reading="[A-Za-z0-9_]+",
     log:
-        "logs/readings/{reading}.log",
+        PATHS.log("readings", "{reading}.log"),
     script:
         "../scripts/readings_reading.py"
 
 
 rule readings_matrix:
     input:
-        readings=expand("results/readings/claims/{reading}.csv", reading=reading_names()),
+        readings=[PATHS.reading(name) for name in reading_names()],
         code=script_code("readings_matrix.py"),
     output:
-        csv=ensure("results/readings/readings.csv", non_empty=True),
-        nc=ensure("results/readings/readings.nc", non_empty=True),
+        csv=ensure(PATHS.readings("csv"), non_empty=True),
+        nc=ensure(PATHS.readings("nc"), non_empty=True),
     params:
         readings=config.get("readings", {}),
     log:
-        "logs/readings/matrix.log",
+        PATHS.log("readings", "matrix.log"),
     script:
         "../scripts/readings_matrix.py"
 

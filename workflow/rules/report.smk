@@ -1,4 +1,5 @@
-"""The claims of the paper against our results, the reproduction report and the results archive."""
+"""The claims of the paper against our results and the reproduction report (with the paper's
+products), and the archive of every configuration's results."""
 
 
 report: "../report/workflow.rst"
@@ -7,20 +8,19 @@ report: "../report/workflow.rst"
 rule claims:
     localrule: True
     input:
-        datasets=expand("results/simulations/{case}.nc", case=claim_cases()),
-        table2="results/tables/table2.csv",
-        critical_speeds="results/tables/critical_speeds.csv",
+        datasets=[PATHS.simulation(case) for case in claim_cases()],
+        **CLAIM_TABLES,
         code=script_code("report_claims.py"),
     output:
         report(
-            ensure("results/report/claims.csv", non_empty=True),
+            ensure(PATHS.report("claims.csv"), non_empty=True),
             caption="../report/claims.rst",
             category="Report",
         ),
     params:
         cases=claim_cases(),
     log:
-        "logs/report/claims.log",
+        PATHS.log("report", "claims.log"),
     script:
         "../scripts/report_claims.py"
 
@@ -28,9 +28,9 @@ rule claims:
 rule reproduction_report:
     localrule: True
     input:
-        claims="results/report/claims.csv",
-        figures=[path for path in figure_targets() if path.endswith(".png")],
-        tables=expand("results/tables/{key}.md", key=table_keys()),
+        claims=PATHS.report("claims.csv"),
+        figures=list(figures("png").values()),
+        tables=[PATHS.table(key, "md") for key in table_keys()],
         datasets=simulation_results(),
         # the published-table validation (none when the config has no `validation` section)
         **published_validation_inputs(),
@@ -38,9 +38,9 @@ rule reproduction_report:
         **reading_inputs(),
         code=script_code("report_reproduction.py"),
     output:
-        markdown=ensure("results/report/reproduction.md", non_empty=True),
+        markdown=ensure(PATHS.report("reproduction.md"), non_empty=True),
         html=report(
-            ensure("results/report/reproduction.html", non_empty=True),
+            ensure(PATHS.report("reproduction.html"), non_empty=True),
             caption="../report/reproduction.rst",
             category="Report",
         ),
@@ -48,7 +48,7 @@ rule reproduction_report:
         cases=cases(),
         numerics=config["numerics"],
     log:
-        "logs/report/reproduction.log",
+        PATHS.log("report", "reproduction.log"),
     script:
         "../scripts/report_reproduction.py"
 
@@ -58,11 +58,13 @@ rule archive:
     input:
         archive_inputs,
     output:
-        ensure("results/hubbeam-results.tar.gz", non_empty=True),
+        ensure(PATHS.archive(), non_empty=True),
     params:
         config=config,
+        top=PATHS.archive_top,
+        root=PATHS.archive_root,
         workflow_root=workflow.basedir,
     log:
-        "logs/report/archive.log",
+        PATHS.log("report", "archive.log"),
     script:
         "../scripts/archive.py"

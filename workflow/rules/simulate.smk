@@ -1,7 +1,7 @@
-"""Time simulation of every configured case: `<RESULTS>/simulations/<case>.nc` (Radau IIA kernel),
-where RESULTS (common.smk) is results/ for the paper and results/<name>/ for a study.
+"""Time simulation of every configured case: `simulations/<case>.nc` of the results folder
+(Radau IIA kernel; `PATHS` in common.smk: results/ for the paper, results/<name>/ for a study).
 
-The system matrices come from `<RESULTS>/matrices/<configuration>.nc` (their leading `modes` blocks);
+The system matrices come from `matrices/<configuration>.nc` (their leading `modes` blocks);
 the beam parameters, the resolved case, the integrator settings and the optional convergence check
 (`numerics.convergence_check`, None when absent) come through `params:`, so that editing a case
 reruns exactly that case (helpers `simulation_matrices` and `simulation_numerics` in common.smk). The package sources a simulation runs are inputs, so that editing a kernel reruns
@@ -17,15 +17,15 @@ rule simulation_kernel:
     input:
         code=script_code("compile_simulation_kernel.py"),
     output:
-        "logs/simulations/kernel_{family}.done",
+        KERNEL_DONE,
     params:
         family="{family}",
     wildcard_constraints:
-        family=wildcard_pattern(FAMILIES),
+        family=FAMILY_PATTERN,
     # first on the cores of a cold run: every simulation waits for its family's kernel
     priority: 100
     log:
-        "logs/simulations/kernel_{family}.log",
+        SHARED.log("simulations", "kernel_{family}.log"),
     script:
         "../scripts/compile_simulation_kernel.py"
 
@@ -36,13 +36,13 @@ rule simulate:
         kernel=simulation_kernel_done,
         code=script_code("simulate_case.py"),
     output:
-        ensure(f"{RESULTS}/simulations/{{case}}.nc", non_empty=True),
+        ensure(PATHS.simulation("{case}"), non_empty=True),
     params:
         beam=config["beam"],
         case=case_params,
         numerics=simulation_numerics(),
         convergence_check=config["numerics"].get("convergence_check"),
     log:
-        f"{LOGS}/simulations/{{case}}.log",
+        PATHS.log("simulations", "{case}.log"),
     script:
         "../scripts/simulate_case.py"

@@ -3,9 +3,9 @@
 A map is split into chunks of `chunk_size` simulations (hubbeam.sweep.chunk_points): one
 `sweep_chunk` job per chunk runs them in the parallel numba kernel on its threads (one by default,
 a chunk being sized for about a minute on one core) and writes the temporary
-`results/sweeps/chunks/<name>/<i>.nc`; `sweep` gathers the chunks into `results/sweeps/<name>.nc`
-(bit-identical to a single run of the whole map); `figure_sweep` draws
-`results/figures/sweep_<name>.pdf/.png` from that file only. Maps marked `in_all: false` (too
+`sweeps/chunks/<name>/<i>.nc` of the results folder; `sweep` gathers the chunks into
+`sweeps/<name>.nc` (bit-identical to a single run of the whole map); `figure_sweep` draws
+`figures/sweep_<name>.pdf/.png` from that file only. Maps marked `in_all: false` (too
 large for every run) are built by `large_sweeps`. `sweep_kernel` compiles the kernel into numba's
 on-disk cache once, after `simulation_kernel` has cached the integrator it shares, so that no two
 jobs compile the same code at the same time. Helpers (`sweeps`, `sweep_params`, `sweep_chunks`,
@@ -22,21 +22,21 @@ rule large_sweeps:
 rule sweep_kernel:
     input:
         code=script_code("sweep_compile.py"),
-        simulation_kernels=expand("logs/simulations/kernel_{family}.done", family=FAMILIES),
+        simulation_kernels=simulation_kernels_done,
     output:
-        "logs/sweeps/kernel.done",
+        SHARED.log("sweeps", "kernel.done"),
     log:
-        "logs/sweeps/kernel.log",
+        SHARED.log("sweeps", "kernel.log"),
     script:
         "../scripts/sweep_compile.py"
 
 
 rule sweep_chunk:
     input:
-        kernel="logs/sweeps/kernel.done",
+        kernel=SHARED.log("sweeps", "kernel.done"),
         code=script_code("sweep_chunk.py"),
     output:
-        temp(ensure("results/sweeps/chunks/{sweep}/{chunk}.nc", non_empty=True)),
+        temp(ensure(PATHS.sweep_chunk("{sweep}", "{chunk}"), non_empty=True)),
     params:
         beam=config["beam"],
         sweep=sweep_params,
@@ -44,7 +44,7 @@ rule sweep_chunk:
         sweep="|".join(sweeps()) or "no-sweeps",
         chunk=r"\d+",
     log:
-        "logs/sweeps/chunks/{sweep}/{chunk}.log",
+        PATHS.log("sweeps", "chunks", "{sweep}", "{chunk}.log"),
     script:
         "../scripts/sweep_chunk.py"
 
@@ -54,7 +54,7 @@ rule sweep:
         chunks=sweep_chunks,
         code=script_code("sweep_gather.py"),
     output:
-        ensure("results/sweeps/{sweep}.nc", non_empty=True),
+        ensure(PATHS.sweep("{sweep}"), non_empty=True),
     params:
         beam=config["beam"],
         sweep=sweep_params,
@@ -62,7 +62,7 @@ rule sweep:
         sweep="|".join(sweeps()) or "no-sweeps",
     localrule: True
     log:
-        "logs/sweeps/{sweep}.log",
+        PATHS.log("sweeps", "{sweep}.log"),
     script:
         "../scripts/sweep_gather.py"
 
@@ -70,19 +70,19 @@ rule sweep:
 rule figure_sweep:
     localrule: True
     input:
-        sweep="results/sweeps/{sweep}.nc",
+        sweep=PATHS.sweep("{sweep}"),
         style=FIGURE_STYLE,
         code=script_code("figure_sweep.py"),
     output:
-        pdf=ensure("results/figures/sweep_{sweep}.pdf", non_empty=True),
+        pdf=ensure(PATHS.figure("sweep_{sweep}", "pdf"), non_empty=True),
         png=report(
-            ensure("results/figures/sweep_{sweep}.png", non_empty=True),
+            ensure(PATHS.figure("sweep_{sweep}", "png"), non_empty=True),
             caption="../report/sweep.rst",
             category="Beyond the paper",
         ),
     wildcard_constraints:
         sweep="|".join(sweeps()) or "no-sweeps",
     log:
-        "logs/figures/sweep_{sweep}.log",
+        PATHS.log("figures", "sweep_{sweep}.log"),
     script:
         "../scripts/figure_sweep.py"

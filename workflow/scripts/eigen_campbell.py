@@ -8,8 +8,7 @@ from hubbeam.io import write_netcdf
 from hubbeam.provenance import global_attributes
 
 p = snakemake.params
-params = beam_from_config(p.beam)
-ds = campbell(params, p.tip_masses, np.linspace(**p.speeds), p.n_modes, p.n_quad)
+ds = campbell(beam_from_config(p.beam), p.tip_masses, np.linspace(**p.speeds), p.n_modes, p.n_quad)
 ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
 write_netcdf(ds, snakemake.output[0])
 with open(snakemake.log[0], "w") as log:

@@ -2,10 +2,10 @@
 
 A study is one config file with a top-level ``study`` section (``name``, optional ``title``,
 ``description``, ``comparisons``); ``snakemake --configfile studies/<name>.yaml`` runs it and
-writes only under ``results/<name>/``. A config without ``study`` is the paper (Bai et al. 2009),
-whose products stay directly under ``results/``. Two config files that claim the same folder are
-rejected: the first run writes the marker ``results/<name>/.study`` with the path of the config
-file that owns the folder.
+writes only under ``results/<name>/`` (:func:`hubbeam.paths.study_paths`). A config without
+``study`` is the paper (Bai et al. 2009), whose products stay directly under ``results/``. Two
+config files that claim the same folder are rejected: the first run writes the marker
+``results/<name>/.study`` with the path of the config file that owns the folder.
 """
 
 from __future__ import annotations
@@ -14,9 +14,11 @@ import os
 from collections.abc import Mapping
 from pathlib import Path
 
+from hubbeam.paths import DEFAULT_CONFIG_FILE, StudyPaths
+
 #: folders of the paper's products directly under results/, which a study name must not take
-PAPER_FOLDERS = ("benchmarks", "eigen", "figures", "matrices", "report", "simulations", "sweeps",
-                 "tables", "validation")
+PAPER_FOLDERS = ("benchmarks", "eigen", "figures", "matrices", "readings", "report", "simulations",
+                 "sweeps", "tables", "validation")
 #: the file in a study's folder that records the config file owning it
 MARKER = ".study"
 
@@ -25,19 +27,11 @@ class StudyError(ValueError):
     """A study cannot run as configured (the message names the folder and the config files)."""
 
 
-def is_study(cfg: Mapping) -> bool:
-    """True for a study config, False for the paper's."""
-    return "study" in cfg
-
-
-def results_dir(cfg: Mapping) -> str:
-    """Where the config's products go: ``results`` for the paper, ``results/<name>`` for a study."""
-    return f"results/{cfg['study']['name']}" if is_study(cfg) else "results"
-
-
-def logs_dir(cfg: Mapping) -> str:
-    """Where the config's rule logs go: ``logs`` for the paper, ``logs/<name>`` for a study."""
-    return f"logs/{cfg['study']['name']}" if is_study(cfg) else "logs"
+def base_config_files(cfg: Mapping) -> tuple[str, ...]:
+    """The config files ``cfg`` (the config files given to Snakemake) is merged onto: none for a
+    study, which stands alone; config/config.yaml for any other (a small file changing a setting
+    of the paper's)."""
+    return () if "study" in cfg else (DEFAULT_CONFIG_FILE,)
 
 
 def claim_results_dir(folder: os.PathLike | str, config_file: os.PathLike | str) -> Path:
@@ -57,3 +51,9 @@ def claim_results_dir(folder: os.PathLike | str, config_file: os.PathLike | str)
     marker.parent.mkdir(parents=True, exist_ok=True)
     marker.write_text(owner + "\n", encoding="utf-8")
     return marker
+
+
+def claim_folder(paths: StudyPaths, config_file: os.PathLike | str) -> Path | None:
+    """:func:`claim_results_dir` for a configuration's folders when they are its own (a study's);
+    the default folders are shared by config/config.yaml and the files extending it."""
+    return claim_results_dir(paths.results, config_file) if paths.owned else None

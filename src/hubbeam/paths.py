@@ -1,0 +1,114 @@
+"""Where every result and log of a configuration goes: the one place that names folders and files.
+
+A configuration without a ``study`` section (the paper, Bai et al. 2009) writes directly under
+``results/`` and ``logs/``; a study named ``<name>`` writes under ``results/<name>/`` and
+``logs/<name>/`` and owns that folder (:func:`hubbeam.study.claim_folder`). The compiled
+kernels are the same for every configuration, so their markers stay under ``logs/`` itself
+(:data:`SHARED`).
+
+:class:`StudyPaths` gives each kind of file its path: the rules, the scripts and the product
+registry ask it instead of spelling ``results/...``; the registry states the files a product reads
+relative to the results folder (:data:`IN_RESULTS`), which the rules place with
+:meth:`StudyPaths.result`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+#: the configuration of the paper, which a ``--configfile`` without a ``study`` section extends
+DEFAULT_CONFIG_FILE = "config/config.yaml"
+RESULTS_ROOT = "results"
+LOGS_ROOT = "logs"
+#: the formats every figure is written in
+FIGURE_FORMATS = ("pdf", "png")
+#: the formats every table is written in
+TABLE_FORMATS = ("csv", "md", "tex")
+
+
+@dataclass(frozen=True)
+class StudyPaths:
+    """The results and logs folders of one configuration and the paths of its files.
+
+    Every method takes names (or Snakemake wildcards such as ``"{case}"``) and returns a path
+    relative to the working directory, with ``/`` separators.
+    """
+
+    results: str = RESULTS_ROOT
+    logs: str = LOGS_ROOT
+    #: the top folder inside the archive, and the archive's name
+    archive_top: str = "hubbeam-results"
+    #: the folder the archive's members are named relative to
+    archive_root: str = "."
+    #: the results folder belongs to one configuration file (a study's; hubbeam.study records it)
+    owned: bool = False
+
+    def result(self, *parts: str) -> str:
+        """A path under the results folder."""
+        return "/".join(part for part in (self.results, *parts) if part)
+
+    def log(self, *parts: str) -> str:
+        """A path under the logs folder."""
+        return "/".join(part for part in (self.logs, *parts) if part)
+
+    def simulation(self, case: str) -> str:
+        return self.result("simulations", f"{case}.nc")
+
+    def matrices(self, configuration: str) -> str:
+        return self.result("matrices", f"{configuration}.nc")
+
+    def eigen(self, name: str) -> str:
+        """An eigen-analysis dataset (``k22``, ``campbell``, ``critical_speeds``)."""
+        return self.result("eigen", f"{name}.nc")
+
+    def figure(self, key: str, ext: str) -> str:
+        return self.result("figures", f"{key}.{ext}")
+
+    def figures(self, key: str) -> list[str]:
+        """The figure ``key`` in every format of :data:`FIGURE_FORMATS`."""
+        return [self.figure(key, ext) for ext in FIGURE_FORMATS]
+
+    def table(self, key: str, ext: str) -> str:
+        return self.result("tables", f"{key}.{ext}")
+
+    def report(self, name: str) -> str:
+        """A file of the reports folder (``claims.csv``, ``report.html``, ...)."""
+        return self.result("report", name)
+
+    def validation(self, name: str) -> str:
+        """A file of the independent validation (``published_comparison.csv``, ``runs/...``)."""
+        return self.result("validation", name)
+
+    def sweep(self, name: str) -> str:
+        return self.result("sweeps", f"{name}.nc")
+
+    def sweep_chunk(self, name: str, chunk: str) -> str:
+        return self.result("sweeps", "chunks", name, f"{chunk}.nc")
+
+    def reading(self, name: str) -> str:
+        """The claims evaluated under the alternative reading ``name``."""
+        return self.result("readings", "claims", f"{name}.csv")
+
+    def readings(self, ext: str) -> str:
+        """The claims x readings matrix (``csv`` or ``nc``)."""
+        return self.result("readings", f"readings.{ext}")
+
+    def archive(self) -> str:
+        return self.result(f"{self.archive_top}.tar.gz")
+
+
+#: the default folders (the paper's), which also hold what every configuration shares
+SHARED = StudyPaths()
+#: paths relative to a results folder, for declarations that hold for every configuration
+IN_RESULTS = StudyPaths(results="", logs="")
+
+
+def study_paths(cfg: Mapping) -> StudyPaths:
+    """The folders of the configuration ``cfg``: its study's own (``study.name``), or the default."""
+    name = cfg.get("study", {}).get("name")
+    if name is None:
+        return SHARED
+    return StudyPaths(results=SHARED.result(name), logs=SHARED.log(name), archive_top=f"{name}-results",
+                      archive_root=SHARED.result(name), owned=True)
+

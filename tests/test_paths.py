@@ -1,0 +1,161 @@
+"""The paper is one study: every path from hubbeam.paths, one registry of products for the paper
+and every study, and one set of rules that every configuration runs."""
+
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from hubbeam.config import ConfigError, validate_config
+from hubbeam.paths import IN_RESULTS, SHARED, study_paths
+from hubbeam.products import (
+    CAMPBELL,
+    GENERAL_PRODUCTS,
+    PAPER_PRODUCTS,
+    SIMULATION_FIGURE,
+    Product,
+    ProductError,
+    merged,
+    product_sets,
+    products_for,
+)
+
+REPO = Path(__file__).resolve().parents[1]
+PAPER_CONFIG = REPO / "config" / "config.yaml"
+STUDY_CONFIG = REPO / "studies" / "spinup10m.yaml"
+
+#: a string literal that starts with the results or logs folder ("results/...", f'logs/...')
+PATH_LITERAL = re.compile(r"""(?<![\w/.])[rbfuRBFU]{0,2}["'](results|logs)/""")
+
+
+def paper() -> dict:
+    return yaml.safe_load(PAPER_CONFIG.read_text())
+
+
+def study() -> dict:
+    return yaml.safe_load(STUDY_CONFIG.read_text())
+
+
+# --- paths -------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("line, found", [
+    ('x = "results/figures/fig05.pdf"', True), ("f'logs/{name}.log'", True), ('{"results": data}', False),
+    ('rf"results/{x}"', True), ('"my_results/x"', False), ('"tests/results/x"', False),
+    ("the results/ folder", False), ('"results_dir"', False),
+])
+def test_the_path_literal_pattern_finds_what_it_should(line, found):
+    assert bool(PATH_LITERAL.search(line)) == found
+
+
+def test_no_results_or_logs_path_is_spelled_outside_the_paths_module():
+    paths_module = REPO / "src" / "hubbeam" / "paths.py"
+    files = [REPO / "Snakefile", *(REPO / "src").rglob("*.py"), *(REPO / "workflow").rglob("*.smk"),
+             *(REPO / "workflow").rglob("*.py")]
+    found = [f"{path.relative_to(REPO)}:{number}: {line.strip()}"
+             for path in files if path != paths_module
+             for number, line in enumerate(path.read_text().splitlines(), start=1)
+             if PATH_LITERAL.search(line)]
+    assert found == []
+
+
+def test_the_paper_writes_directly_under_results_and_logs():
+    paths = study_paths(paper())
+    assert paths == SHARED and not paths.owned
+    assert paths.simulation("fig04_foam") == "results/simulations/fig04_foam.nc"
+    assert paths.figure("fig05", "png") == "results/figures/fig05.png"
+    assert paths.log("eigen", "k22.log") == "logs/eigen/k22.log"
+    assert paths.archive() == "results/hubbeam-results.tar.gz" and paths.archive_root == "."
+
+
+def test_a_study_writes_under_its_own_folders():
+    paths = study_paths(study())
+    assert paths.owned
+    assert paths.simulation("{case}") == "results/spinup10m/simulations/{case}.nc"
+    assert paths.eigen("campbell") == "results/spinup10m/eigen/campbell.nc"
+    assert paths.log("simulations", "{case}.log") == "logs/spinup10m/simulations/{case}.log"
+    assert paths.archive() == "results/spinup10m/spinup10m-results.tar.gz"
+    assert paths.archive_root == paths.results == "results/spinup10m"
+
+
+def test_products_name_their_files_relative_to_the_results_folder():
+    assert IN_RESULTS.eigen("k22") == "eigen/k22.nc"
+    for product in (*GENERAL_PRODUCTS.values(), *PAPER_PRODUCTS.values()):
+        for path in product.files.values():
+            assert not path.startswith(("results", "/")), (product.key, path)
+            assert study_paths(study()).result(path).startswith("results/spinup10m/")
+
+
+# --- the registry --------------------------------------------------------------------------------
+
+def test_the_paper_asks_for_its_products_and_gets_none_of_the_study_report():
+    products = products_for(paper())
+    assert product_sets(paper()) == ["paper"]
+    assert dict(products) == dict(PAPER_PRODUCTS)
+    assert products["campbell"] is CAMPBELL is GENERAL_PRODUCTS["campbell"]  # declared once
+
+
+def test_a_study_gets_the_general_products_and_none_of_the_paper():
+    cfg = study()
+    assert list(products_for(cfg)) == ["case", "compare", "campbell", "critical_speeds", "beam_properties",
+                                       "mode_shapes"]
+    del cfg["study"]["comparisons"]
+    assert list(products_for(cfg)) == ["case", "campbell", "critical_speeds", "beam_properties", "mode_shapes"]
+    assert not set(products_for(cfg)) & (set(PAPER_PRODUCTS) - {"campbell"})
+
+
+def test_a_study_may_ask_for_the_paper_products_too():
+    products = products_for(study() | {"products": ["paper"]})
+    assert set(products) == set(PAPER_PRODUCTS) | set(GENERAL_PRODUCTS)
+
+
+def test_an_unknown_product_set_is_named_with_what_is_allowed():
+    with pytest.raises(ProductError, match=r"^products: got 'papr'; allowed: paper$"):
+        products_for(paper() | {"products": ["papr"]})
+
+
+def test_table2_speed_is_needed_by_the_paper_products_not_by_a_config_without_a_study():
+    with pytest.raises(ConfigError, match=r"eigen.table2_speed: missing \(required for the paper's Table 2"):
+        validate_config(study() | {"products": ["paper"]})
+    cfg = paper()
+    del cfg["products"], cfg["eigen"]["table2_speed"]
+    validate_config(cfg)
+
+
+def test_a_product_is_built_only_with_the_keys_it_needs():
+    product = Product("x", SIMULATION_FIGURE, "m:f", "X", ours="x", needs=("study.comparisons",))
+    assert product.is_built_for({"study": {"comparisons": {}}})
+    assert not product.is_built_for({"study": {"name": "s"}})
+    assert not product.is_built_for({"study": "not a section"})
+
+
+def test_two_products_under_one_key_are_an_error():
+    other = Product("campbell", SIMULATION_FIGURE, "m:f", "Another", ours="x")
+    assert merged(GENERAL_PRODUCTS, PAPER_PRODUCTS)["campbell"] is CAMPBELL
+    with pytest.raises(ProductError, match="product key 'campbell' is declared twice"):
+        merged(GENERAL_PRODUCTS, {"campbell": other})
+
+
+# --- one set of rules ----------------------------------------------------------------------------
+
+def listed_rules(workdir: Path, *args: str) -> set[str]:
+    command = [sys.executable, "-m", "snakemake", "--snakefile", str(REPO / "Snakefile"), "--directory",
+               str(workdir), "--list-rules", *args]
+    run = subprocess.run(command, cwd=workdir, capture_output=True, text=True, timeout=300, check=False)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    return {line.split()[0] for line in run.stdout.splitlines() if line and not line[0].isspace()}
+
+
+def test_every_rule_file_is_included_for_the_paper_and_for_a_study(tmp_path):
+    assert "is_study" not in (REPO / "Snakefile").read_text()
+    (tmp_path / "config").mkdir()
+    shutil.copy(PAPER_CONFIG, tmp_path / "config" / "config.yaml")
+    shutil.copy(STUDY_CONFIG, tmp_path / "study.yaml")
+    rule_files = sorted((REPO / "workflow" / "rules").glob("*.smk"))
+    static = {name for path in rule_files for name in re.findall(r"^rule (\w+):", path.read_text(), re.M)}
+    assert {"simulate", "eigen_campbell", "claims", "study_report", "archive", "sweep"} <= static
+    for args in ((), ("--configfile", "study.yaml")):
+        assert static <= listed_rules(tmp_path, *args), args

@@ -1,8 +1,8 @@
 """Runs that start at an operating point (``case["initial"]``, ``hubbeam.simulate.initial_state``).
 
-* A free hub in steady spin under zero torque (a table of zeros) stays there, for every model: ``theta_dot``
-  constant, ``q2 = 0``, ``q1`` at its centrifugal stretch (Eqs. 29-30), all to the integrator's
-  tolerance.
+* A free hub in steady spin under zero torque (a torque table of zeros) stays there, for every
+  model: ``theta_dot`` constant, ``q2 = 0``, ``q1`` at its centrifugal stretch (Eqs. 29-30), all
+  to the integrator's tolerance.
 * A small deviation along a mode of the constant-speed linearisation (Eqs. 29-31) oscillates at
   the frequency :mod:`hubbeam.linearised` gives, for every model, when the hub is heavy enough for
   the free hub to act as the held hub of the linearisation.

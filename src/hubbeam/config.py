@@ -43,7 +43,7 @@ from hubbeam.config_schema import (
     key_path,
     show,
 )
-from hubbeam.defaults import fill_eigen, fill_numerics
+from hubbeam.defaults import fill_eigen, fill_linear, fill_numerics
 
 
 class ConfigError(ValueError):
@@ -239,6 +239,7 @@ def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section
         raise ConfigError(problems, sources)
     if whole:
         fill_eigen(cfg)
+        fill_linear(cfg)
     return cfg
 
 

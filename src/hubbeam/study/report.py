@@ -23,6 +23,8 @@ from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE,
 BEAM_FIGURE = "beam_properties"
 #: the figure of the feedback designs, shown in their section
 DESIGNS_FIGURE = "controller_trust"
+#: the registry's linear-model figures (``hubbeam.products``), shown in a section of their own
+LINEAR_PREFIX = "linear_"
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
@@ -40,7 +42,10 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                   verdicts=verdicts(list(designs)), design_figure=eigen_figures.get(DESIGNS_FIGURE),
                   reference_model=REFERENCE_MODEL, settling_band=SETTLING_BAND,
                   trust_tolerance=TRUST_TOLERANCE,
-                  eigen_figures={name: path for name, path in eigen_figures.items() if name not in own})
+                  eigen_figures={name: path for name, path in eigen_figures.items()
+                                 if name not in own and not name.startswith(LINEAR_PREFIX)},
+                  linear_figures={name: path for name, path in eigen_figures.items()
+                                  if name.startswith(LINEAR_PREFIX)})
 
 
 def beam_summary(beam: Mapping) -> list[dict]:

@@ -62,14 +62,15 @@ def _named(where: str, values: Mapping, allowed) -> None:
         raise SimulationError(f"{where}.{unknown[0]}: unknown name; allowed: {', '.join(allowed)}")
 
 
-def steady_spin_check(where: str, sm, traits, speed: float) -> None:
-    """``SimulationError`` unless the model has a steady spin at ``speed``: the axial stiffness
-    ``K1 - speed^2 M1`` positive definite for a model that keeps ``q1`` (Eqs. 29-30)."""
+def steady_spin_check(key: str, sm, traits, speed: float) -> None:
+    """``SimulationError`` (naming the configuration ``key`` of ``speed``) unless the model has a
+    steady spin at ``speed``: the axial stiffness ``K1 - speed^2 M1`` positive definite for a
+    model that keeps ``q1`` (Eqs. 29-30)."""
     if not traits.keeps_axial:
         return
     lowest = scipy.linalg.eigh(sm.K1, sm.M1, eigvals_only=True)[0]
     if speed**2 >= lowest:
-        raise SimulationError(f"{where}.speed = {speed!r}; allowed: a speed below "
+        raise SimulationError(f"{key} = {speed!r}; allowed: a speed below "
                               f"{np.sqrt(lowest):.6g} rad s-1, where the centrifugal stretch of "
                               "q1 has a steady state (K1 - speed^2 M1 positive definite)")
 
@@ -103,7 +104,7 @@ def lqr_design(case: Mapping, beam, sm) -> tuple[dict, dict]:
         raise SimulationError(f"{where}.model = {spec['model']!r}; allowed: one of {', '.join(MODELS)}")
     traits = model_traits(spec["model"]).traits
     speed = float(spec["speed"])
-    steady_spin_check(where, sm, traits, speed)
+    steady_spin_check(f"{where}.speed", sm, traits, speed)
     weights, R = spec["weights"], float(spec["torque_weight"])
     names = state_names(traits, sm.M1.shape[0])
     _named(f"{where}.weights", weights, names + SIGNALS)

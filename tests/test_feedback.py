@@ -6,8 +6,9 @@
   poles, which the dataset records): the equations' nonlinear terms are quadratic, so the
   difference falls to a quarter (within 12 %) when the amplitude halves, and is below 1 % of the
   response at 1 cm of modal amplitude (measured 0.2 %);
-* the LQR cost ``x0' P x0`` equals the cost integrated along the nonlinear run, the difference
-  again of second order in the amplitude;
+* the LQR cost ``x0' P x0`` equals the cost integrated along the nonlinear run within the
+  relative size of the neglected terms (the tip deflection over the length), the relative
+  difference halving with the amplitude;
 * the work of the hub torque equals the change of energy plus the dissipation in closed loop;
 * output feedback on the hub angle and speed is the PD hub again;
 * bad input is refused before anything runs, naming the key.
@@ -109,7 +110,7 @@ def test_small_motions_about_the_steady_spin_follow_the_linear_closed_loop(setup
 def test_the_lqr_cost_is_the_cost_along_the_nonlinear_run(setup):
     params, numerics = setup
     numerics = dict(numerics, rtol=1e-10, atol=1e-12)
-    gaps = []
+    gaps, ratios = [], []
     for amplitude in (0.02, 0.01):
         case, ds = _steady_run(params, numerics, "FOAM", amplitude, t_end=20.0)
         lin, K, P, x0, _ = _linear_closed_loop(params, numerics, case, ds, amplitude)
@@ -126,7 +127,10 @@ def test_the_lqr_cost_is_the_cost_along_the_nonlinear_run(setup):
         cost = simpson(running, x=t)
         expected = x0 @ P @ x0
         gaps.append(abs(cost - expected) / expected)
-    assert gaps[0] < 0.05
+        ratios.append(np.abs(ds.tip_transverse.values).max() / params.L)
+    # the neglected terms are of the relative size of the deflection over the length (measured
+    # 6e-5 at the larger amplitude, where v(L) / L = 4e-3)
+    assert gaps[0] < ratios[0]
     assert 1.6 < gaps[0] / gaps[1] < 2.4  # the relative gap is of first order in the amplitude
 
 

@@ -6,9 +6,9 @@ product's function (``params.function``) as keyword arguments of the same names.
 
 from pathlib import Path
 
-from hubbeam.io import open_result, staged
 from hubbeam.plotting import draw
-from hubbeam.products import resolve
+from hubbeam.reporting.products import resolve
+from hubbeam.results.io import open_result, staged
 
 files = {name: path for name, path in snakemake.input.items() if name not in ("style", "code")}
 datasets = {name: open_result(path) for name, path in files.items()}

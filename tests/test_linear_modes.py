@@ -270,3 +270,10 @@ def test_bad_damping_and_tip_masses_are_refused():
         datasets.campbell(PARAMS, [0.0], [0.0], 2, damping={"kind": "viscous"})
     with pytest.raises(ValueError, match="tip_masses"):
         datasets.campbell(PARAMS, [-1.0], [0.0], 2)
+
+
+def test_labels_are_numbered_within_their_group_by_frequency():
+    from hubbeam.linear.tracking import numbered_by_frequency
+
+    labels = np.array([["hub", "bending 1", "bending 1", "axial 1", "bending 2"]])
+    assert numbered_by_frequency(labels).tolist() == [["hub", "bending 1", "bending 2", "axial 1", "bending 3"]]

@@ -91,19 +91,31 @@ def test_products_name_their_files_relative_to_the_results_folder():
 
 # --- the registry --------------------------------------------------------------------------------
 
+#: the linear-model figures every configuration gets, and with a second tip mass their ``_tip`` variants
+LINEAR = ["linear_campbell", "linear_mode_shapes", "linear_poles_zeros", "linear_bode"]
+LINEAR_TIP = [product for key in LINEAR for product in (key, f"{key}_tip")]
+
+
 def test_the_paper_asks_for_its_products_and_gets_none_of_the_study_report():
     products = products_for(paper())
     assert product_sets(paper()) == ["paper"]
-    assert dict(products) == dict(PAPER_PRODUCTS)
+    assert dict(products) == dict(PAPER_PRODUCTS) | {key: GENERAL_PRODUCTS[key] for key in LINEAR_TIP}
     assert products["campbell"] is CAMPBELL is GENERAL_PRODUCTS["campbell"]  # declared once
+
+
+def test_the_linear_figures_of_a_tip_mass_need_one():
+    cfg = paper()
+    cfg["linear"]["tip_masses"] = [0.0]
+    assert set(products_for(cfg)) == set(PAPER_PRODUCTS) | set(LINEAR)
 
 
 def test_a_study_gets_the_general_products_and_none_of_the_paper():
     cfg = study()
     assert list(products_for(cfg)) == ["case", "compare", "campbell", "critical_speeds", "beam_properties",
-                                       "mode_shapes"]
+                                       "mode_shapes", *LINEAR_TIP]
     del cfg["study"]["comparisons"]
-    assert list(products_for(cfg)) == ["case", "campbell", "critical_speeds", "beam_properties", "mode_shapes"]
+    assert list(products_for(cfg)) == ["case", "campbell", "critical_speeds", "beam_properties", "mode_shapes",
+                                       *LINEAR_TIP]
     assert not set(products_for(cfg)) & (set(PAPER_PRODUCTS) - {"campbell"})
 
 

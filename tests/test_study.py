@@ -131,7 +131,13 @@ def test_a_tiny_study_builds_every_general_product_in_its_own_folder(tmp_path):
     expected += ["eigen/campbell.nc", "eigen/critical_speeds.nc", "eigen/beam.nc"]
     figures = [f"case_{case}" for case in cases] + ["compare_models", "campbell", "critical_speeds",
                                                     "beam_properties", "mode_shapes"]
+    # the linear models (linear.smk): no tip mass and the tiny study's 0.1 kg, the largest of its eigen grid
+    linear = ["linear_campbell", "linear_mode_shapes", "linear_poles_zeros", "linear_bode"]
+    figures += linear + [f"{name}_tip" for name in linear]
     expected += [f"figures/{name}.{ext}" for name in figures for ext in ("pdf", "png")]
+    expected += [f"linear/{name}.nc" for name in ("campbell", "mode_shapes", "poles_zeros", "bode")]
+    expected += [f"linear/models/{model}_{hub}_tip{k}.{ext}" for model in ("TLAM", "FOAM", "SFOAM", "CFOAM")
+                 for hub in ("free", "prescribed") for k in (0, 1) for ext in ("nc", "mat")]
     expected += ["report/report.md", "report/report.html", "report/summary.csv", "tiny-results.tar.gz", MARKER]
     written = sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())
     assert written == sorted(expected)

@@ -159,11 +159,27 @@ def report_targets():
     return (paper if WITH_PAPER else []) + (list(STUDY_REPORT.values()) if "study" in config else [])
 
 
+def linear_model_exports():
+    """One `[tip-mass index, model, hub, netCDF, MATLAB]` per exported set of linear models (rule
+    in linear.smk): every model and hub condition at every tip mass of `linear.tip_masses`."""
+    from hubbeam.linear.statespace import HUBS
+    from hubbeam.model.models import MODELS
+
+    return [[k, model, hub, *(PATHS.linear(f"models/{model}_{hub}_tip{k}", ext) for ext in ("nc", "mat"))]
+            for k in range(len(config["linear"]["tip_masses"])) for model in MODELS for hub in HUBS]
+
+
+def linear_model_files():
+    """The files of the exported linear models (netCDF and MATLAB)."""
+    return [path for entry in linear_model_exports() for path in entry[3:]]
+
+
 def archive_inputs(wildcards):
     """Everything the archive bundles: netCDF results (simulations, matrices, eigen-analysis,
     sweeps), figures, tables, the reports and the published-table validation (the optional Exudyn
     validation is not bundled)."""
-    results = simulation_results() + matrices_results() + eigen_results() + sweep_targets()
+    results = (simulation_results() + matrices_results() + eigen_results() + sweep_targets()
+               + linear_model_files())
     products = (figure_targets() + table_targets() + report_targets() + published_validation_results()
                 + reading_targets())
     return sorted(set(results + products))

@@ -53,6 +53,7 @@ for _key, _product in of_kind(PRODUCTS, EIGEN_FIGURE).items():
             ),
         params:
             function=_product.function,
+            options=dict(_product.options),
             caption=_product.caption(),
         log:
             PATHS.log("figures", f"{_key}.log"),

@@ -43,15 +43,25 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
         problems.append(Problem("numerics.step_warning",
                                 f"got {step_warning}; allowed: at most numerics.max_steps = {max_steps}"))
 
-    for grid_name in ("speeds", "positions"):
-        grid = _section(eigen, grid_name)
+    linear = _section(cfg, "linear")
+    grids = {"eigen.speeds": _section(eigen, "speeds"), "eigen.positions": _section(eigen, "positions"),
+             "linear.speeds": _section(linear, "speeds"), "linear.frequencies": _section(linear, "frequencies")}
+    for where, grid in grids.items():
         start, stop = _number(grid.get("start")), _number(grid.get("stop"))
         if start is not None and stop is not None and stop <= start:
-            problems.append(Problem(f"eigen.{grid_name}.stop",
-                                    f"got {stop}; allowed: a value > eigen.{grid_name}.start = {start}"))
-        if grid_name == "positions" and stop is not None and length is not None and stop > length:
-            problems.append(Problem("eigen.positions.stop",
-                                    f"got {stop}; allowed: a position on the beam, <= beam.length = {length}"))
+            problems.append(Problem(f"{where}.stop", f"got {stop}; allowed: a value > {where}.start = {start}"))
+    shapes, modes = _integer(linear.get("shapes")), _integer(numerics.get("modes"))
+    if shapes is not None and modes is not None and shapes > modes:
+        problems.append(Problem("linear.shapes", f"got {shapes}; allowed: at most numerics.modes = {modes}, "
+                                "the vibration modes of SFOAM, which keeps no axial coordinates"))
+    bode_speeds = linear.get("bode_speeds")
+    if isinstance(bode_speeds, list) and all(_number(v) is not None for v in bode_speeds) and any(
+            b <= a for a, b in zip(bode_speeds, bode_speeds[1:])):
+        problems.append(Problem("linear.bode_speeds", f"got {show(bode_speeds)}; allowed: strictly increasing speeds"))
+    stop = _number(grids["eigen.positions"].get("stop"))
+    if stop is not None and length is not None and stop > length:
+        problems.append(Problem("eigen.positions.stop",
+                                f"got {stop}; allowed: a position on the beam, <= beam.length = {length}"))
 
     first_spelling: dict[str, str] = {}
     for name, case in cases.items():

@@ -130,3 +130,27 @@ def round_up(value: float) -> float:
     """``value`` (> 0) rounded up to two significant digits (12.46 -> 13, 0.0123 -> 0.013)."""
     scale = 10.0 ** (math.floor(math.log10(value)) - 1)
     return float(round(math.ceil(round(value / scale, 9)) * scale, 12))
+
+
+#: frequency responses: frequencies (rad s-1) when ``linear.frequencies`` is left out
+LINEAR_FREQUENCIES = {"start": 0.1, "stop": 1000.0, "num": 500}
+#: fractions of the top speed of the frequency responses when ``linear.bode_speeds`` is left out
+BODE_SPEED_FRACTIONS = (0.0, 0.5, 0.875)
+#: vibration modes whose shapes are drawn when ``linear.shapes`` is left out
+LINEAR_SHAPES = 4
+
+
+def fill_linear(cfg: dict) -> None:
+    """Add, in place, every missing key of ``linear`` (the schema's descriptions): the speeds of
+    ``eigen.speeds``, no tip mass and the largest of ``eigen.tip_masses``, frequency responses at
+    rest, half and seven eighths of the top speed, the shapes of as many modes as every model has
+    (at most :data:`LINEAR_SHAPES`); ``cfg`` must be valid with ``eigen`` filled."""
+    linear = cfg.setdefault("linear", {})
+    eigen = cfg["eigen"]
+    linear.setdefault("speeds", dict(eigen["speeds"]))
+    largest = max(float(mass) for mass in eigen["tip_masses"])
+    linear.setdefault("tip_masses", [0.0, largest] if largest > 0.0 else [0.0])
+    top = float(linear["speeds"]["stop"])
+    linear.setdefault("bode_speeds", [fraction * top for fraction in BODE_SPEED_FRACTIONS])
+    linear.setdefault("frequencies", dict(LINEAR_FREQUENCIES))
+    linear.setdefault("shapes", min(LINEAR_SHAPES, int(cfg["numerics"]["modes"])))

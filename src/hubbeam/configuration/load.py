@@ -34,7 +34,7 @@ from typing import Any, NamedTuple
 import yaml
 
 from hubbeam.configuration.checks import physical_problems
-from hubbeam.configuration.defaults import fill_eigen, fill_numerics
+from hubbeam.configuration.defaults import fill_eigen, fill_linear, fill_numerics
 from hubbeam.configuration.schema import (
     SCHEMA,
     Problem,
@@ -239,6 +239,7 @@ def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section
         raise ConfigError(problems, sources)
     if whole:
         fill_eigen(cfg)
+        fill_linear(cfg)
     return cfg
 
 

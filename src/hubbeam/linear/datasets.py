@@ -31,7 +31,7 @@ import xarray as xr
 
 from hubbeam.configuration.settings import damping_settings
 from hubbeam.linear import frequency, tracking
-from hubbeam.linear.statespace import HUBS, INPUT_UNITS, OUTPUTS, check_speed, linear_model, second_order
+from hubbeam.linear.statespace import HUBS, INPUT_UNITS, OUTPUTS, check_speeds, linear_model, second_order
 from hubbeam.model.beam import beam_attributes
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.eigen import critical_speed
@@ -40,6 +40,7 @@ from hubbeam.model.models import MODELS
 from hubbeam.model.models import model as model_traits
 from hubbeam.model.modes import transverse_modes
 from hubbeam.model.parameters import TipMass
+from hubbeam.results.provenance import without_provenance
 
 #: the outputs of the transfer functions from the hub torque (free hub)
 TRANSFER_OUTPUTS = ("hub_angle", "tip_deflection", "tip_arc")
@@ -48,18 +49,6 @@ KINDS = {"none": -1, "vibration": 0, "divergent": 1, "rigid": 2}
 #: hub conditions in the datasets: held = prescribed hub speed, free = torque input
 HUB_NAMES = {"held": "prescribed", "free": "free"}
 HZ = 1.0 / (2.0 * np.pi)
-
-
-def check_speeds(speeds) -> np.ndarray:
-    """``speeds`` as a float array; ``ValueError`` unless a non-empty increasing grid of finite
-    hub speeds >= 0 rad s-1."""
-    grid = np.atleast_1d(np.asarray(speeds, dtype=float))
-    if grid.ndim != 1 or grid.size == 0 or np.any(np.diff(grid) <= 0.0):
-        raise ValueError(f"speeds = {speeds!r}; allowed: a non-empty, strictly increasing grid of "
-                         "hub speeds >= 0 rad s-1")
-    for speed in grid:
-        check_speed(float(speed))
-    return grid
 
 
 def _systems(beam, tip_masses, n_modes, n_quad):
@@ -128,9 +117,10 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
     """Tracked, damped Campbell diagram of every model, held and free hub (module docstring).
 
     Mode ``k`` is one tracked mode (numbered by frequency at the first speed); ``mode_label`` its
-    label there, ``label`` its label at each speed. ``unstable_from`` is the lowest grid speed
-    with an unstable mode; ``critical_speed`` that of ``K22`` (Eq. 31, hub held) of the model's
-    linearisation (:func:`hubbeam.model.eigen.critical_speed`), NaN where none up to the last speed.
+    group there (numbered by frequency within the group), ``label`` its dominant coordinate at each
+    speed. ``unstable_from`` is the lowest grid speed with an unstable mode; ``critical_speed`` that
+    of ``K22`` (Eq. 31, hub held) of the model's linearisation
+    (:func:`hubbeam.model.eigen.critical_speed`), NaN where none up to the last speed.
     """
     speeds, systems = _checked(beam, tip_masses, speeds, n_modes, n_quad, damping)
     coordinates = _coordinate_names(n_modes)
@@ -183,8 +173,9 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
                                       "flag_meanings": "none unstable stable"}),
             "label": (dims, label.astype(str),
                       {"long_name": "dominant content of the mode's shape at this speed"}),
-            "mode_label": (dims[:3] + ("mode",), label[..., 0, :].astype(str),
-                           {"long_name": "dominant content of the mode's shape at the first speed"}),
+            "mode_label": (dims[:3] + ("mode",), tracking.numbered_by_frequency(label[..., 0, :]),
+                           {"long_name": "dominant content of the mode's shape at the first speed, numbered "
+                                         "by frequency within its group"}),
             "shape_real": (dims + ("coordinate",), components.real,
                            {"units": "1", "long_name": "real part of the mode shape (position "
                             "components, unit norm weighted by the square root of the mass "
@@ -255,7 +246,7 @@ def mode_shapes(campbell_ds: xr.Dataset, beam, count: int = 4, stations: int = 1
                 "rank": ("rank", np.arange(1, count + 1),
                          {"units": "1", "long_name": "vibration mode, by frequency at rest"}),
                 "x": ("x", x, {"units": "m", "long_name": "distance from the clamp"})},
-        attrs=dict(campbell_ds.attrs) | {"title": "mode shapes along the span"},
+        attrs=without_provenance(campbell_ds.attrs) | {"title": "mode shapes along the span"},
     )
 
 

@@ -222,3 +222,20 @@ def dominant_content(shapes: np.ndarray, names, weights: np.ndarray):
                          for i in range(len(coordinates))], dtype=object)
         labels = np.where(winner == g_index, text[inside], labels)
     return labels.astype(str), fractions
+
+
+def numbered_by_frequency(labels: np.ndarray) -> np.ndarray:
+    """``labels`` (..., modes) of modes ordered by frequency with each group's modes numbered in
+    that order: ``bending 1, bending 1, axial 1, bending 2`` -> ``bending 1, bending 2, axial 1,
+    bending 3``. The dominant coordinate names a mode well with the hub held; with a free hub the
+    hub's rotation puts most of every bending mode's mass-weighted content into the first
+    clamped-free function, so the rank within the group is the name that stays distinct."""
+    out = np.array(labels, dtype=object)
+    for index in np.ndindex(out.shape[:-1]):
+        counts: dict[str, int] = {}
+        for k, text in enumerate(out[index]):
+            group = str(text).partition(" ")[0]
+            if group and group != "hub":
+                counts[group] = counts.get(group, 0) + 1
+                out[index + (k,)] = f"{group} {counts[group]}"
+    return out.astype(str)

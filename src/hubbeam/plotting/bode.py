@@ -19,7 +19,7 @@ OUTPUT_NAMES = {"hub_angle": r"hub angle $\theta$", "tip_deflection": r"tip defl
                 "tip_arc": r"tip arc $(r_A + L)\theta + v(L)$"}
 
 
-def plot(bode: xr.Dataset, tip_mass: float | None = None):
+def plot(bode: xr.Dataset, tip_mass: float | str | None = None):
     """Magnitude and phase against frequency: rows per output, columns per speed."""
     ds, where = one_tip_mass(bode, tip_mass, "Bode")
     outputs = [name.removesuffix("_magnitude") for name in ds.data_vars if name.endswith("_magnitude")]

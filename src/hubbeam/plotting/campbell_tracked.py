@@ -19,16 +19,17 @@ from hubbeam.plotting.style import LABEL_BOX, axis_label, model_style, new_figur
 HUB_TITLES = {"held": "hub held (speed prescribed)", "free": "free hub (torque input)"}
 
 
-def one_tip_mass(ds: xr.Dataset, tip_mass: float | None, what: str) -> tuple[xr.Dataset, str]:
-    """``ds`` at ``tip_mass`` (kg; the first one by default, a clear error if absent) and a caption
-    fragment naming it."""
-    mass = float(ds["tip_mass"].values[0]) if tip_mass is None else float(tip_mass)
+def one_tip_mass(ds: xr.Dataset, tip_mass: float | str | None, what: str) -> tuple[xr.Dataset, str]:
+    """``ds`` at ``tip_mass`` (kg; the first one by default, ``"largest"`` the largest; a clear
+    error if absent) and a caption fragment naming it."""
+    masses = ds["tip_mass"].values
+    mass = float({None: masses[0], "largest": masses.max()}.get(tip_mass, tip_mass))
     labelled(ds, next(iter(ds.data_vars)), what, tip_mass=mass)
     where = f"{mass:g} kg tip mass" if mass > 0 else "no tip mass"
     return ds.sel(tip_mass=mass, method="nearest"), where
 
 
-def plot(campbell: xr.Dataset, tip_mass: float | None = None):
+def plot(campbell: xr.Dataset, tip_mass: float | str | None = None):
     """Frequency (top) and damping ratio (bottom) against hub speed, held and free hub."""
     ds, where = one_tip_mass(campbell, tip_mass, "Campbell")
     fig, axes = new_figure(2, 2, width=7.0, height=5.6, sharex=True)

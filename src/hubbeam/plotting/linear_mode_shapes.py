@@ -14,7 +14,7 @@ from hubbeam.plotting.campbell_tracked import HUB_TITLES, one_tip_mass
 from hubbeam.plotting.style import SEQUENCE_COLORS, VARIANT_LINESTYLES, axis_label, new_figure, panel_title
 
 
-def plot(shapes: xr.Dataset, tip_mass: float | None = None):
+def plot(shapes: xr.Dataset, tip_mass: float | str | None = None):
     """Mode shapes: rows the first and the last speed, columns the hub conditions."""
     ds, where = one_tip_mass(shapes, tip_mass, "mode shapes")
     speeds, hubs = ds["speed"].values, ds["hub"].values

@@ -30,7 +30,7 @@ def _near(values, limit):
     return values[np.abs(values) <= limit]
 
 
-def plot(poles_zeros: xr.Dataset, tip_mass: float | None = None, limit: float = LIMIT):
+def plot(poles_zeros: xr.Dataset, tip_mass: float | str | None = None, limit: float = LIMIT):
     """Root frequencies against speed (top, per model) and tip-arc pole-zero maps (bottom)."""
     ds, where = one_tip_mass(poles_zeros, tip_mass, "poles and zeros")
     models = ds["model"].values

@@ -72,6 +72,7 @@ FORMATS = {
     ".csv": Format("text/csv", "CSV"),
     ".md": Format("text/markdown", "Markdown"),
     ".tex": Format("application/x-tex", "LaTeX"),
+    ".mat": Format("application/x-matlab-data", "MATLAB MAT-file (version 5)"),
     ".html": Format("text/html", "HTML"),
     ".yaml": Format("application/yaml", "YAML"),
     ".py": Format("text/x-python", "Python"),

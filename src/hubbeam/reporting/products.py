@@ -38,6 +38,8 @@ TABLE = "table"
 KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, TABLE)
 
 CRITICAL_SPEEDS_NC = IN_RESULTS.eigen("critical_speeds")
+#: the linear-model datasets the figures read (hubbeam.linear.datasets)
+LINEAR_NC = {name: IN_RESULTS.linear(name) for name in ("campbell", "mode_shapes", "poles_zeros", "bode")}
 #: the study's beam as data: its properties along the span and first mode shapes (hubbeam.model.shapes)
 BEAM_NC = IN_RESULTS.eigen("beam")
 
@@ -53,8 +55,9 @@ class Product:
     ``cases``: the simulation cases it reads (simulation figures, tables from runs); ``files``: the
     result files it reads relative to the results folder, by the keyword its function takes them
     under (eigen figures, tables from csv). ``needs``: the configuration keys (dotted, e.g.
-    ``study.comparisons``) without which it is not built. ``paper``: what the paper shows in it;
-    ``ours``: what our product shows.
+    ``study.comparisons``; a number indexes a list) without which it is not built. ``options``: keyword arguments of the
+    drawing function besides the files (e.g. which tip mass a linear-model figure shows).
+    ``paper``: what the paper shows in it; ``ours``: what our product shows.
     """
 
     key: str
@@ -68,6 +71,7 @@ class Product:
     files: Mapping[str, str] = field(default_factory=dict)
     claims: tuple[str, ...] = ()
     needs: tuple[str, ...] = ()
+    options: Mapping[str, object] = field(default_factory=dict)
 
     def __post_init__(self):
         if self.kind not in KINDS:
@@ -81,6 +85,7 @@ class Product:
         object.__setattr__(self, "files", MappingProxyType(dict(self.files)))
         object.__setattr__(self, "claims", tuple(self.claims))
         object.__setattr__(self, "needs", tuple(self.needs))
+        object.__setattr__(self, "options", MappingProxyType(dict(self.options)))
 
     @property
     def is_figure(self) -> bool:
@@ -116,7 +121,13 @@ class Product:
 
 
 def _has(cfg, keys: list[str]) -> bool:
-    return not keys or (isinstance(cfg, Mapping) and keys[0] in cfg and _has(cfg[keys[0]], keys[1:]))
+    """Whether ``cfg`` has the dotted path ``keys``; a number is an index into a list
+    (``linear.tip_masses.1``: a second tip mass)."""
+    if not keys:
+        return True
+    if isinstance(cfg, list) and keys[0].isdigit():
+        return int(keys[0]) < len(cfg) and _has(cfg[int(keys[0])], keys[1:])
+    return isinstance(cfg, Mapping) and keys[0] in cfg and _has(cfg[keys[0]], keys[1:])
 
 
 def _rst(text: str) -> str:
@@ -223,6 +234,35 @@ GENERAL_PRODUCTS: Mapping[str, Product] = registry(
         "mode_shapes", EIGEN_FIGURE, "hubbeam.plotting.mode_shapes:plot", "First mode shapes",
         ours="The first transverse mode shapes of FOAM at rest and at the top of the speed grid.",
         in_paper=False, files={"beam": BEAM_NC}, needs=("study",)),
+    *(product for key, function, title, what, files in (
+        ("linear_campbell", "campbell_tracked", "Tracked, damped Campbell diagram",
+         "Frequency and damping ratio of every mode of every model against hub speed, with the hub "
+         "held and free; each mode followed through crossings and veering by the similarity of its "
+         "shape (MAC), labelled by its dominant content; the speeds where a model is unstable shaded.",
+         {"campbell": LINEAR_NC["campbell"]}),
+        ("linear_mode_shapes", "linear_mode_shapes", "Mode shapes of the linear models",
+         "The first vibration mode shapes along the span at rest and at the highest speed, held and "
+         "free hub, for every model.",
+         {"shapes": LINEAR_NC["mode_shapes"]}),
+        ("linear_poles_zeros", "pole_zero", "Poles and zeros over hub speed",
+         "Poles and zeros from the hub torque against hub speed for "
+         "every model: the collocated hub angle's zeros alternate with its poles; the tip's arc "
+         "position has a mirrored pair of real zeros (non-minimum phase) that dynamic stiffening "
+         "moves; TLAM's first pole reaches zero at its critical speed.",
+         {"poles_zeros": LINEAR_NC["poles_zeros"]}),
+        ("linear_bode", "bode", "Bode diagrams from the hub torque",
+         "Bode diagrams (magnitude and phase) from the hub torque to the hub "
+         "angle, the tip deflection v(L) and the tip's arc position, every model, at several hub "
+         "speeds.", {"bode": LINEAR_NC["bode"]}),
+    ) for product in (
+        Product(key, EIGEN_FIGURE, f"hubbeam.plotting.{function}:plot",
+                f"{title}, no tip mass",
+                ours=what, in_paper=False, files=files, options={"tip_mass": 0.0}),
+        Product(f"{key}_tip", EIGEN_FIGURE, f"hubbeam.plotting.{function}:plot",
+                f"{title}, the largest tip mass",
+                ours=what, in_paper=False, files=files, options={"tip_mass": "largest"},
+                needs=("linear.tip_masses.1",)),
+    )),
 )
 
 # --- the paper's products ------------------------------------------------------------------------

@@ -62,6 +62,11 @@ class StudyPaths:
         """An eigen-analysis dataset (``k22``, ``campbell``, ``critical_speeds``)."""
         return self.result("eigen", f"{name}.nc")
 
+    def linear(self, name: str, ext: str = "nc") -> str:
+        """A linear-model product (``campbell``, ``poles_zeros``, ``bode``, ``mode_shapes``, or the
+        exported models ``models/<model>_<hub>_tip<k>``, as ``nc`` or ``mat``)."""
+        return self.result("linear", f"{name}.{ext}")
+
     def figure(self, key: str, ext: str) -> str:
         return self.result("figures", f"{key}.{ext}")
 

@@ -96,6 +96,18 @@ def global_attributes(title: str, case_config: Mapping | None = None,
     return attributes
 
 
+#: the attributes :func:`global_attributes` writes besides the versions (``<name>_version``)
+PROVENANCE_ATTRIBUTES = ("Conventions", "title", "institution", "source", "history", "references",
+                         "git_commit", "case_config")
+
+
+def without_provenance(attrs: Mapping[str, Any]) -> dict:
+    """``attrs`` of a result read back, less what :func:`global_attributes` wrote: the attributes
+    a product derived from it carries on."""
+    return {key: value for key, value in attrs.items()
+            if key not in PROVENANCE_ATTRIBUTES and not key.endswith("_version")}
+
+
 def _netcdf_value(value: Any) -> Any:
     if isinstance(value, Mapping):
         return json.dumps(value, sort_keys=True)

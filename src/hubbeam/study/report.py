@@ -19,6 +19,8 @@ from hubbeam.reporting.formatting import number
 
 #: the eigen figure shown in the report's beam section rather than with the eigen-analysis
 BEAM_FIGURE = "beam_properties"
+#: the registry's linear-model figures (``hubbeam.reporting.products``), shown in a section of their own
+LINEAR_PREFIX = "linear_"
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
@@ -30,7 +32,10 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                   beam_table=beam_markdown(beam), cases_table=cases_markdown(rows),
                   case_figures=case_figures, comparison_figures=comparison_figures,
                   beam_figure=eigen_figures.get(BEAM_FIGURE),
-                  eigen_figures={name: path for name, path in eigen_figures.items() if name != BEAM_FIGURE})
+                  eigen_figures={name: path for name, path in eigen_figures.items()
+                                 if name != BEAM_FIGURE and not name.startswith(LINEAR_PREFIX)},
+                  linear_figures={name: path for name, path in eigen_figures.items()
+                                  if name.startswith(LINEAR_PREFIX)})
 
 
 def beam_summary(beam: Mapping) -> list[dict]:

@@ -240,7 +240,7 @@ def test_eigen_figure_script_passes_named_inputs(key, inputs, tmp_path_factory, 
     out = tmp_path / f"{key}.pdf"
     run_script("figure_eigen.py",
                input={name: str(eigen[stem]) for name, stem in inputs.items()} | {"style": "x", "code": []},
-               output={"pdf": str(out)}, params={"function": PAPER_PRODUCTS[key].function})
+               output={"pdf": str(out)}, params={"function": PAPER_PRODUCTS[key].function, "options": {}})
     assert out.is_file() and out.with_suffix(".png").is_file()
 
 

@@ -282,6 +282,9 @@ def script_runs(synthetic, out: Path, config: dict):
     t = {name: str(out / "tables" / f"{name}") for name in
          ("table1.csv", "table1.md", "table1.tex", "table2.csv", "table2.md", "table2.tex",
           "table3.csv", "table3.md", "table3.tex", "critical_speeds.csv")}
+    linear = {"beam": config["beam"], "tip_masses": [0.0], "speeds": {"start": 0.0, "stop": 2.0, "num": 3},
+              "damping": None, "n_modes": 2, "n_quad": 16}
+    models = out / "linear" / "models"
     return [
         ("compile_simulation_kernel.py", {}, {"done": str(out / "kernel_foam.done")}, {"family": "foam"}),
         ("assemble_matrices.py", {}, {"nc": str(out / "matrices" / "mt0p5_l8.nc")},
@@ -307,7 +310,13 @@ def script_runs(synthetic, out: Path, config: dict):
          {"function": PAPER_PRODUCTS["fig04"].function, "cases": fig04}),
         ("figure_eigen.py", {"critical": str(eigen["critical_speeds"]), "style": "x", "code": []},
          {"pdf": str(out / "figures" / "critical_map.pdf"), "png": str(out / "figures" / "critical_map.png")},
-         {"function": PAPER_PRODUCTS["critical_map"].function}),
+         {"function": PAPER_PRODUCTS["critical_map"].function, "options": {}}),
+        ("linear_models.py", {}, {"nc": str(models / "FOAM_free_tip0.nc"), "mat": str(models / "FOAM_free_tip0.mat")},
+         linear | {"files": [[0, "FOAM", "free", str(models / "FOAM_free_tip0.nc"),
+                              str(models / "FOAM_free_tip0.mat")]]}),
+        ("linear_dataset.py", {}, {"nc": str(out / "linear" / "campbell.nc")}, linear | {"product": "campbell"}),
+        ("linear_mode_shapes.py", {"campbell": str(out / "linear" / "campbell.nc")},
+         {"nc": str(out / "linear" / "mode_shapes.nc")}, {"beam": config["beam"], "shapes": 2}),
         ("report_claims.py", {"datasets": [str(sims[c]) for c in cases], "table2": str(eigen["table2"]),
                               "critical_speeds": str(eigen["critical_speeds_csv"])},
          {"claims": str(out / "report" / "claims.csv")}, {"cases": cases}),

@@ -81,7 +81,8 @@ rule linear_mode_shapes:
         ensure(PATHS.linear("mode_shapes"), non_empty=True),
     params:
         beam=config["beam"],
-        shapes=config["linear"]["shapes"],
+        # no more than the vibration modes every model has (SFOAM: numerics.modes)
+        shapes=min(config["linear"]["shapes"], config["numerics"]["modes"]),
     log:
         PATHS.log("linear", "mode_shapes.log"),
     script:

@@ -50,10 +50,6 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
         start, stop = _number(grid.get("start")), _number(grid.get("stop"))
         if start is not None and stop is not None and stop <= start:
             problems.append(Problem(f"{where}.stop", f"got {stop}; allowed: a value > {where}.start = {start}"))
-    shapes, modes = _integer(linear.get("shapes")), _integer(numerics.get("modes"))
-    if shapes is not None and modes is not None and shapes > modes:
-        problems.append(Problem("linear.shapes", f"got {shapes}; allowed: at most numerics.modes = {modes}, "
-                                "the vibration modes of SFOAM, which keeps no axial coordinates"))
     bode_speeds = linear.get("bode_speeds")
     if isinstance(bode_speeds, list) and all(_number(v) is not None for v in bode_speeds) and any(
             b <= a for a, b in zip(bode_speeds, bode_speeds[1:])):

@@ -143,8 +143,7 @@ LINEAR_SHAPES = 4
 def fill_linear(cfg: dict) -> None:
     """Add, in place, every missing key of ``linear`` (the schema's descriptions): the speeds of
     ``eigen.speeds``, no tip mass and the largest of ``eigen.tip_masses``, frequency responses at
-    rest, half and seven eighths of the top speed, the shapes of as many modes as every model has
-    (at most :data:`LINEAR_SHAPES`); ``cfg`` must be valid with ``eigen`` filled."""
+    rest, half and seven eighths of the top speed; ``cfg`` must be valid with ``eigen`` filled."""
     linear = cfg.setdefault("linear", {})
     eigen = cfg["eigen"]
     linear.setdefault("speeds", dict(eigen["speeds"]))
@@ -153,4 +152,4 @@ def fill_linear(cfg: dict) -> None:
     top = float(linear["speeds"]["stop"])
     linear.setdefault("bode_speeds", [fraction * top for fraction in BODE_SPEED_FRACTIONS])
     linear.setdefault("frequencies", dict(LINEAR_FREQUENCIES))
-    linear.setdefault("shapes", min(LINEAR_SHAPES, int(cfg["numerics"]["modes"])))
+    linear.setdefault("shapes", LINEAR_SHAPES)

@@ -7,7 +7,7 @@ The paper is the default study (config/config.yaml, products directly under resu
 `snakemake --configfile studies/<name>.yaml` runs a study instead (docs/studies.md): a config with
 a `study` section replaces config/config.yaml entirely (Snakemake would otherwise merge the two),
 and its products go to results/<name>/ only. Every configuration runs the same rules; what it
-builds is what its products ask for (hubbeam.products.products_for) and where is hubbeam.paths.
+builds is what its products ask for (hubbeam.reporting.products.products_for) and where is hubbeam.results.paths.
 """
 
 import sys
@@ -15,12 +15,12 @@ from pathlib import Path
 
 from snakemake.utils import min_version
 
-from hubbeam.config import ConfigError, validate_config
-from hubbeam.config_schema import CASE_NAME_PATTERN
-from hubbeam.paths import study_paths
-from hubbeam.products import ProductError, check_product_cases, products_for
+from hubbeam.configuration.load import ConfigError, validate_config
+from hubbeam.configuration.schema import CASE_NAME_PATTERN
+from hubbeam.results.paths import study_paths
+from hubbeam.reporting.products import ProductError, check_product_cases, products_for
 from hubbeam.study import StudyError, base_config_files, claim_folder
-from hubbeam.tabular import resolve_files
+from hubbeam.configuration.tabular import resolve_files
 
 min_version("9.0")
 
@@ -32,7 +32,7 @@ for base_config_file in base_config_files(config):
 
 
 # Tables given as `file:` (beam sections, maneuver profiles) are read relative to the last config
-# file and inlined; then the schema (hubbeam/schemas/config.schema.yaml) and the physical checks,
+# file and inlined; then the schema (hubbeam/configuration/schemas/config.schema.yaml) and the physical checks,
 # every problem in one message: a bad config stops here, before any rule, without a traceback.
 try:
     config.update(resolve_files(config, Path(workflow.configfiles[-1]).parent))

@@ -23,10 +23,10 @@ from hubbeam.core.integrate import (
     simulate_kernel,
     tip_watch,
 )
-from hubbeam.damping import damping_matrices
-from hubbeam.models import model
-from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import (
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.models import model
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.simulation.simulate import (
     case_matrices,
     initial_state,
     maneuver_parameters,
@@ -110,7 +110,7 @@ class Run:
 
 def prepare_case(name: str, case: Mapping, params: BeamParameters, numerics: Mapping,
                  output_step: float) -> BenchmarkCase:
-    """A :class:`BenchmarkCase` from a resolved case (``hubbeam.config.case_settings``)."""
+    """A :class:`BenchmarkCase` from a resolved case (``hubbeam.configuration.load.case_settings``)."""
     sm = case_matrices(case, params, numerics)
     kind, mp = maneuver_parameters(case["maneuver"])
     inputs = SimulationInputs(model(case["model"]).traits, kind, mp,
@@ -147,7 +147,7 @@ def run_hubbeam(bench: BenchmarkCase, rtol: float, atol: float, full: bool = Fal
 
 def python_rhs(problem: tuple) -> Callable:
     """``first_order_rhs`` for ``problem`` with every jitted function replaced by its source."""
-    from hubbeam.reference import pure_python
+    from hubbeam.simulation.reference import pure_python
 
     fun = pure_python(first_order_rhs)
     fun.__globals__["problem_rhs"] = pure_python(radau.registered_rhs(type(problem)))

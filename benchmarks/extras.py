@@ -11,12 +11,12 @@ from functools import partial
 import numpy as np
 
 from benchmarks.timing import median_time
-from hubbeam import eigen
-from hubbeam import sweep as sweeps
-from hubbeam.config import case_settings
+from hubbeam.configuration.load import case_settings
 from hubbeam.core import radau
-from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import simulate
+from hubbeam.model import eigen
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.simulation import sweep as sweeps
+from hubbeam.simulation.simulate import simulate
 
 
 def _append_simulation(results: list, case: Mapping, params: BeamParameters, numerics: Mapping) -> None:
@@ -45,7 +45,7 @@ def scaling_rows(cfg: Mapping, params: BeamParameters, settings: Mapping, repeat
 
 
 def eigen_rows(cfg: Mapping, params: BeamParameters, repeats: int, budget: float) -> list[dict]:
-    """``K22`` eigen-analyses per second (:func:`hubbeam.eigen.k22_sweep`, all models) on the
+    """``K22`` eigen-analyses per second (:func:`hubbeam.model.eigen.k22_sweep`, all models) on the
     config's (tip mass, position, speed) grid and on a denser one."""
     grids = {"config eigen grid": (np.asarray(cfg["eigen"]["tip_masses"], float),
                                    np.linspace(**cfg["eigen"]["positions"]),

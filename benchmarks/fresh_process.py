@@ -23,10 +23,10 @@ def first_call(config_files: list[str], case: dict) -> dict:
     """Seconds to import hubbeam, of the first ``simulate`` call and of the second; numba's
     cache misses and hits of the simulation kernels (``FAMILY_KERNELS``)."""
     start = time.perf_counter()
-    from hubbeam.config import case_settings, load_config
+    from hubbeam.configuration.load import case_settings, load_config
     from hubbeam.core.integrate import FAMILY_KERNELS
-    from hubbeam.parameters import BeamParameters
-    from hubbeam.simulate import simulate
+    from hubbeam.model.parameters import BeamParameters
+    from hubbeam.simulation.simulate import simulate
 
     cfg = load_config(config_files)
     resolved = case_settings({**cfg, "cases": {"c": case}}, "c")
@@ -49,9 +49,9 @@ def compile_kernel(kernel: str, config_files: list[str], case: dict) -> dict:
     import numpy as np
 
     from benchmarks.cases import prepare_case, run_hubbeam
-    from hubbeam.config import case_settings, load_config
+    from hubbeam.configuration.load import case_settings, load_config
     from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
-    from hubbeam.parameters import BeamParameters
+    from hubbeam.model.parameters import BeamParameters
 
     cfg = load_config(config_files)
     resolved = case_settings({**cfg, "cases": {"c": case}}, "c")

@@ -11,8 +11,8 @@ import numpy as np
 from benchmarks.timing import median_time
 from hubbeam.linear import linear_model
 from hubbeam.linear.jacobian import jacobian_model
-from hubbeam.matrices import assemble
-from hubbeam.parameters import BeamParameters
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import BeamParameters
 
 #: the measured size: 10 axial and 10 bending modes, 500 frequencies (rad s-1), FOAM at 2 rad s-1
 MODES = 10

@@ -15,10 +15,10 @@ from collections.abc import Mapping
 import numpy as np
 
 from benchmarks.timing import median_time
-from hubbeam.damping import damping_matrices
 from hubbeam.linear import datasets, linear_model, tracking
-from hubbeam.matrices import assemble
-from hubbeam.models import MODELS
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.matrices import assemble
+from hubbeam.model.models import MODELS
 
 #: the benchmark's grid: speeds from rest to the top of the config's eigen grid, modes per block
 SPEEDS = 200

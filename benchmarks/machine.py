@@ -8,8 +8,8 @@ from importlib import metadata
 from pathlib import Path
 
 from hubbeam import __version__
-from hubbeam.provenance import RECORDED_VERSIONS, git_commit
-from hubbeam.sweep import default_threads
+from hubbeam.results.provenance import RECORDED_VERSIONS, git_commit
+from hubbeam.simulation.sweep import default_threads
 
 
 def load_average() -> list[float] | None:

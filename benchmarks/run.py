@@ -31,7 +31,7 @@ median of warm runs (compiled beforehand). The methods:
   ``benchmark.methods``, the other cases only ``benchmark.jacobian_methods`` (the fastest);
   the ``jacobian_methods`` run a second time with the jitted Jacobian;
 * one row with a plain-Python right-hand side (every jitted function replaced by its Python
-  source, :func:`hubbeam.reference.pure_python`, in :func:`benchmarks.cases.python_rhs`) for
+  source, :func:`hubbeam.simulation.reference.pure_python`, in :func:`benchmarks.cases.python_rhs`) for
   ``benchmark.python_rhs_case``, with the fastest scipy method that needs no jitted Jacobian.
 
 A scipy run that exceeds ``--run-cap`` seconds is aborted (its row records the cap as a lower
@@ -67,9 +67,9 @@ from benchmarks.linear_modes import campbell_rows
 from benchmarks.machine import load_average, machine_info
 from benchmarks.search import benchmark_case, case_methods, python_rhs_row
 from benchmarks.settings import BENCHMARK_CONFIG, STUDY_CONFIG, load_settings
-from hubbeam.config import case_settings
+from hubbeam.configuration.load import case_settings
 from hubbeam.core.first_order import first_order_jacobian
-from hubbeam.parameters import BeamParameters
+from hubbeam.model.parameters import BeamParameters
 
 
 def run(config_files: Sequence[str], benchmark_file: os.PathLike | str, output: Path,

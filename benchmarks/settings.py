@@ -7,9 +7,9 @@ import os
 from collections.abc import Sequence
 from pathlib import Path
 
-from hubbeam import limits
-from hubbeam.config import Section, load_config
-from hubbeam.config_schema import Problem, read_schema
+from hubbeam.configuration.load import Section, load_config
+from hubbeam.configuration.schema import Problem, read_schema
+from hubbeam.model import limits
 
 HERE = Path(__file__).resolve().parent
 BENCHMARK_CONFIG = HERE / "config.yaml"
@@ -50,7 +50,7 @@ def cross_checks(cfg: dict) -> list[Problem]:
 
 
 _RTOL_BOUND = {"minimum": limits.MIN_RTOL}
-#: the rtol bound of :mod:`hubbeam.limits`, filled into the benchmark schema as into the config's
+#: the rtol bound of :mod:`hubbeam.model.limits`, filled into the benchmark schema as into the config's
 SCHEMA_LIMITS = {
     ("properties", "tolerances", "items"): _RTOL_BOUND,
     ("properties", "reference_rtol"): _RTOL_BOUND,
@@ -61,5 +61,5 @@ SECTION = Section("benchmark", read_schema(HERE / "schema.yaml", SCHEMA_LIMITS),
 
 def load_settings(study_files: Sequence[os.PathLike | str], benchmark_file: os.PathLike | str) -> dict:
     """The study config of ``study_files`` merged with ``benchmark_file``, validated together
-    (raises :class:`hubbeam.config.ConfigError` naming every problem)."""
+    (raises :class:`hubbeam.configuration.load.ConfigError` naming every problem)."""
     return load_config([*study_files, benchmark_file], section=SECTION)

@@ -17,7 +17,7 @@ from types import CodeType
 
 import pytest
 
-from hubbeam.config import load_config
+from hubbeam.configuration.load import load_config
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 CONFIG_FILE = REPO_ROOT / "config" / "config.yaml"

@@ -4,7 +4,7 @@ The figures, tables, report and archive are built and tested against these files
 besides) the real simulations exist. The signals are smooth closed-form stand-ins (a quasi-static
 lag during the maneuver plus a residual sinusoid of known amplitude and phase), not physics; what
 matters is that names, dimensions, units and attributes are those of ``docs/architecture.md``
-(the variable table is ``hubbeam.simulate.VARIABLES`` itself, so a renamed variable reaches the
+(the variable table is ``hubbeam.simulation.simulate.VARIABLES`` itself, so a renamed variable reaches the
 figure code through these files and breaks its tests on purpose).
 """
 
@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from hubbeam.variables import HIGH_ORDER_VARIABLES, VARIABLES
+from hubbeam.results.variables import HIGH_ORDER_VARIABLES, VARIABLES
 
 BEAM = {"length": 8.0, "density": 2.7667e3, "area": 7.2968e-5, "youngs_modulus": 6.8952e10,
         "second_moment": 8.2189e-9, "hub_inertia": 200.0, "hub_radius": 0.5}
@@ -149,10 +149,10 @@ def write_simulations(directory: Path, cases: dict[str, dict] | None = None, *, 
 
 
 def write_eigen(directory: Path, n_modes: int = 5, n_quad: int = 24) -> dict[str, Path]:
-    """The eigen-analysis products on small grids, written by :mod:`hubbeam.eigen` itself:
+    """The eigen-analysis products on small grids, written by :mod:`hubbeam.model.eigen` itself:
     ``eigen/{k22,critical_speeds,campbell}.nc`` and ``tables/{table2,critical_speeds}.csv``."""
-    from hubbeam import eigen
-    from hubbeam.parameters import BeamParameters
+    from hubbeam.model import eigen
+    from hubbeam.model.parameters import BeamParameters
 
     directory = Path(directory)
     params = BeamParameters.from_config({"beam": BEAM})

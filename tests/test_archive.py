@@ -19,8 +19,8 @@ import xarray as xr
 import yaml
 from synthetic_results import CONFIG_FILE, REPO, SCRIPTS
 
-from hubbeam.crate import sha256
-from hubbeam.io import write_netcdf
+from hubbeam.reporting.crate import sha256
+from hubbeam.results.io import write_netcdf
 
 spec = importlib.util.spec_from_file_location("hubbeam_archive_script", SCRIPTS / "archive.py")
 archive = importlib.util.module_from_spec(spec)

@@ -20,9 +20,9 @@ from benchmarks.run import main
 from benchmarks.search import reference_solution, search_tolerance
 from benchmarks.settings import BENCHMARK_CONFIG, load_settings
 from benchmarks.timing import warm_timing
-from hubbeam.config import ConfigError, case_settings
+from hubbeam.configuration.load import ConfigError, case_settings
 from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
-from hubbeam.parameters import BeamParameters
+from hubbeam.model.parameters import BeamParameters
 
 TINY = {"model": "FOAM", "maneuver": {"kind": "prescribed", "wf": 0.5, "tf": 1.0}, "t_end": 2.0,
         "modes": 1}
@@ -156,7 +156,7 @@ def test_benchmark_settings_are_checked(repo_root, tmp_path):
                        r"benchmark\.cases"):
         load_settings([study], path)
     settings["benchmark"]["python_rhs_case"] = settings["benchmark"]["scipy_cases"][0]
-    settings["benchmark"]["reference_rtol"] = 1e-15  # below hubbeam.limits.MIN_RTOL
+    settings["benchmark"]["reference_rtol"] = 1e-15  # below hubbeam.model.limits.MIN_RTOL
     path.write_text(yaml.safe_dump(settings))
     with pytest.raises(ConfigError, match=r"benchmark\.reference_rtol: got 1e-15.*a number >= 2\.22"):
         load_settings([study], path)

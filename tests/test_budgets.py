@@ -7,13 +7,13 @@ import dataclasses
 
 import pytest
 
-from hubbeam.config import ConfigError, validate_config
+from hubbeam.configuration.load import ConfigError, validate_config
+from hubbeam.configuration.settings import simulation_settings
 from hubbeam.core import radau
-from hubbeam.limits import MEMORY_BUDGET_MB, MIN_STEPS
-from hubbeam.parameters import BeamParameters
-from hubbeam.settings import simulation_settings
-from hubbeam.simulate import simulate
-from hubbeam.variables import simulation_bytes
+from hubbeam.model.limits import MEMORY_BUDGET_MB, MIN_STEPS
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.results.variables import simulation_bytes
+from hubbeam.simulation.simulate import simulate
 
 
 def problems_at(cfg: dict, path: str) -> list[str]:
@@ -92,7 +92,7 @@ def test_a_step_budget_below_the_fewest_steps_is_rejected_and_cannot_finish(stud
             "tip_mass": {"mass": 0.0, "position": 8.0}}
     numerics = {"rtol": 1e-3, "atol": 1.0, "output_step": 0.5, "step_warning": 1,
                 "divergence_limit": 1.0, "quadrature_points": 8}
-    # (the objects of hubbeam.settings are not checked again, so the run can be made below the bound)
+    # (the objects of hubbeam.configuration.settings are not checked again, so the run can be made below the bound)
     checked_case, checked_numerics = simulation_settings(case, dict(numerics, max_steps=1000), params.L)
     short = simulate(checked_case, params, dataclasses.replace(checked_numerics, max_steps=MIN_STEPS - 1))
     assert short.attrs["integrator_status"] == radau.STATUS_NAMES[radau.TOO_MANY_STEPS]

@@ -14,10 +14,10 @@ import pytest
 
 from hubbeam.core import eom
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
-from hubbeam.matrices import assemble
-from hubbeam.paper import TABLE1
-from hubbeam.parameters import BeamParameters, TipMass
-from hubbeam.simulate import kernel_matrices
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.printed import TABLE1
+from hubbeam.simulation.simulate import kernel_matrices
 
 PARAMS = BeamParameters(**TABLE1)
 TIPS = {"none": None, "tip": TipMass(0.5, PARAMS.L), "interior": TipMass(0.5, 6.0)}

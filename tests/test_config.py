@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from hubbeam.config import (
+from hubbeam.configuration.load import (
     ConfigError,
     case_names,
     case_settings,
@@ -20,9 +20,9 @@ from hubbeam.config import (
     read_config_file,
     validate_config,
 )
-from hubbeam.config_schema import CASE_NAME_PATTERN, SCHEMA
-from hubbeam.paper import TABLE1
-from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.configuration.schema import CASE_NAME_PATTERN, SCHEMA
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.printed import TABLE1
 
 
 def set_at(cfg: dict, dotted: str, value) -> None:
@@ -445,9 +445,11 @@ def test_a_config_without_the_cases_of_a_figure_stops_with_one_clear_message(tmp
 
 
 def test_schema_takes_its_limits_from_the_limits_module():
-    """The schema file states no bound of hubbeam.limits; the loaded schema has exactly those."""
-    from hubbeam import config_schema, limits, simulate
+    """The schema file states no bound of hubbeam.model.limits; the loaded schema has exactly those."""
+    from hubbeam.configuration import schema as config_schema
     from hubbeam.core import radau
+    from hubbeam.model import limits
+    from hubbeam.simulation import simulate
 
     raw = yaml.safe_load(config_schema.SCHEMA_RESOURCE.read_text(encoding="utf-8"))
     for keys, bounds in config_schema.SCHEMA_LIMITS.items():
@@ -487,13 +489,13 @@ def test_no_message_dumps_the_schema(study_config, dotted, value, fragment):
 
 @pytest.mark.parametrize("path", ["config/config.yaml", "studies/spinup10m.yaml", "studies/tapered_pd.yaml"])
 def test_a_checked_configuration_becomes_frozen_objects_that_give_back_its_cases(repo_root, path):
-    """hubbeam.settings.from_config: one object per section; each case gives back its resolved
+    """hubbeam.configuration.settings.from_config: one object per section; each case gives back its resolved
     mapping (what a dataset records), and no object can be changed."""
     import dataclasses
 
-    from hubbeam.beam import beam_from_config
-    from hubbeam.settings import Case, from_config, simulation_settings
-    from hubbeam.tabular import resolve_files
+    from hubbeam.configuration.settings import Case, from_config, simulation_settings
+    from hubbeam.configuration.tabular import resolve_files
+    from hubbeam.model.beam import beam_from_config
 
     cfg = validate_config(resolve_files(read_config_file(repo_root / path), (repo_root / path).parent))
     settings = from_config(cfg)
@@ -514,7 +516,7 @@ def test_a_checked_configuration_becomes_frozen_objects_that_give_back_its_cases
 
 def test_every_pattern_of_the_schema_is_said_in_words():
     """explain says a pattern in words (config_schema._PATTERNS): each one the schema uses has them."""
-    from hubbeam.config_schema import _PATTERNS
+    from hubbeam.configuration.schema import _PATTERNS
 
     def patterns(node):
         if isinstance(node, dict):

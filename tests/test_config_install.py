@@ -21,7 +21,7 @@ CHECK = textwrap.dedent("""
     import sys
     from pathlib import Path
     import hubbeam
-    from hubbeam.config import ConfigError, load_config
+    from hubbeam.configuration.load import ConfigError, load_config
     assert Path(hubbeam.__file__).resolve().is_relative_to(Path(sys.prefix).resolve()), hubbeam.__file__
     load_config("good.yaml")
     try:
@@ -56,7 +56,7 @@ def test_an_installed_package_checks_a_configuration_outside_the_source_tree(tmp
     (purelib / "test_dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n", encoding="utf-8")
     # the build backend (setuptools, pyproject.toml) comes from PyPI into pip's isolated build environment
     _run(sys.executable, "-m", "pip", "--python", python, "install", "--quiet", "--no-deps", source, cwd=tmp_path)
-    assert (purelib / "hubbeam" / "schemas" / "config.schema.yaml").is_file()
+    assert (purelib / "hubbeam" / "configuration" / "schemas" / "config.schema.yaml").is_file()
 
     work = tmp_path / "work"
     work.mkdir()

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import pytest
 
-from hubbeam import config_reference
-from hubbeam.config_reference import MARKER, REGENERATE, reference, render, resolve
-from hubbeam.config_schema import SCHEMA
+from hubbeam.configuration import reference as config_reference
+from hubbeam.configuration.reference import MARKER, REGENERATE, reference, render, resolve
+from hubbeam.configuration.schema import SCHEMA
 
 
 def _properties(node: dict, defs: dict, path: str = ""):

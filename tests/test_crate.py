@@ -1,4 +1,4 @@
-"""The Workflow Run RO-Crate of the results archive (hubbeam.crate), on small synthetic archives
+"""The Workflow Run RO-Crate of the results archive (hubbeam.reporting.crate), on small synthetic archives
 (the crate of a real workflow run is checked in test_archive.py), and CITATION.cff."""
 
 from __future__ import annotations
@@ -10,9 +10,10 @@ import xarray as xr
 import yaml
 
 import hubbeam
-from hubbeam import crate, provenance
-from hubbeam.crate import Member, crate_metadata, first_sentence
-from hubbeam.io import write_netcdf
+from hubbeam.reporting import crate
+from hubbeam.reporting.crate import Member, crate_metadata, first_sentence
+from hubbeam.results import provenance
+from hubbeam.results.io import write_netcdf
 
 CONFIG = "config/config.used.yaml"
 

@@ -1,4 +1,4 @@
-"""Damping of the elastic coordinates (``hubbeam.damping``).
+"""Damping of the elastic coordinates (``hubbeam.model.damping``).
 
 * modal damping: after a short spin-up and stop the hub is held (zero speed) and the first
   bending mode of a beam with a tip mass (non-diagonal ``M2``) decays with the logarithmic
@@ -15,12 +15,12 @@ import numpy as np
 import pytest
 from scipy.linalg import eigh
 
-from hubbeam.config import ConfigError
-from hubbeam.damping import damping_matrices
-from hubbeam.matrices import assemble
-from hubbeam.parameters import BeamParameters, TipMass
-from hubbeam.settings import simulation_settings
-from hubbeam.simulate import simulate
+from hubbeam.configuration.load import ConfigError
+from hubbeam.configuration.settings import simulation_settings
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.simulation.simulate import simulate
 
 
 @pytest.fixture(scope="module")

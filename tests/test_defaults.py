@@ -15,14 +15,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from hubbeam import defaults
-from hubbeam.beam import beam_from_config
-from hubbeam.config import load_config, read_config_file, validate_config
-from hubbeam.config_schema import SCHEMA
-from hubbeam.eigen import critical_speed
-from hubbeam.matrices import assemble
-from hubbeam.parameters import TipMass
-from hubbeam.tabular import resolve_files
+from hubbeam.configuration import defaults
+from hubbeam.configuration.load import load_config, read_config_file, validate_config
+from hubbeam.configuration.schema import SCHEMA
+from hubbeam.configuration.tabular import resolve_files
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.eigen import critical_speed
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import TipMass
 
 REPO = Path(__file__).resolve().parents[1]
 FIRST_STUDY = REPO / "studies" / "first_study.yaml"
@@ -117,7 +117,7 @@ def test_the_highest_critical_speed_is_the_bare_beams_first_frequency():
 
 @pytest.mark.parametrize("mass, position", [(0.1, 10.0), (1.0, 10.0), (1.0, 5.0), (5.0, 2.0)])
 def test_no_tip_mass_raises_a_critical_speed_above_the_bound(mass, position):
-    """The bound of the docstring against hubbeam.eigen's exact critical speeds: TLAM's fall with
+    """The bound of the docstring against hubbeam.model.eigen's exact critical speeds: TLAM's fall with
     any tip mass anywhere, FOAM has none."""
     params = beam_from_config(BEAM)
     sm = assemble(params, None, 5, 64)

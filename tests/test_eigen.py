@@ -5,7 +5,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from hubbeam.eigen import (
+from hubbeam.model.eigen import (
     K22,
     campbell,
     critical_speed,
@@ -19,10 +19,10 @@ from hubbeam.eigen import (
     tip_mass_frequency_roots,
     transverse_frequencies,
 )
-from hubbeam.matrices import assemble
-from hubbeam.modes import clamped_free_roots
-from hubbeam.paper import TABLE1
-from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.model.matrices import assemble
+from hubbeam.model.modes import clamped_free_roots
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.printed import TABLE1
 
 PARAMS = BeamParameters(**TABLE1)
 RHO_A = PARAMS.rhoA
@@ -226,7 +226,7 @@ def test_fig09_and_campbell_figures_draw_from_the_datasets():
 def test_printed_table2_supports_the_transverse_subsystem_reading():
     """The paper's TLAM row is sqrt(omega^2 - Omega^2) of its natural row to every printed digit
     (our reading of Table 2: transverse subsystem, no Coriolis coupling)."""
-    from hubbeam import paper
+    from hubbeam.model import printed as paper
 
     natural = 2 * np.pi * np.array(paper.TABLE2["natural"])
     tlam = np.sqrt(natural**2 - paper.TABLE2_SPEED**2) / (2 * np.pi)
@@ -234,9 +234,9 @@ def test_printed_table2_supports_the_transverse_subsystem_reading():
 
 
 def test_table2_k22_maps_critical_speeds_and_validation_share_one_stiffness(monkeypatch):
-    """Eq. (31) has one home (hubbeam.linearised.centrifugal_matrix): changing it there changes
+    """Eq. (31) has one home (hubbeam.model.linearised.centrifugal_matrix): changing it there changes
     Table 2, the K22 map, the critical speed and the published-table validation alike."""
-    from hubbeam import linearised
+    from hubbeam.model import linearised
     from hubbeam.validation import rotating_eigen
 
     sm = assemble(PARAMS, None, 3)
@@ -263,7 +263,7 @@ def test_gyroscopic_eigenvalues_accurate_for_slow_modes_near_the_critical_speed(
     """Slow TLAM mode just below its critical speed, beside axial frequencies ~1e4 times larger:
     each eigenvalue satisfies det(lambda^2 M + lambda G + K) = 0 to Newton-refinement accuracy
     (the refinement uses the smallest singular triplet of the quadratic, not our solver)."""
-    from hubbeam import linearised
+    from hubbeam.model import linearised
 
     sm = assemble(PARAMS, TipMass(0.0, PARAMS.L), 5)
     speed = 0.97 * critical_speed("TLAM", PARAMS, None, 5, 20.0)

@@ -19,9 +19,9 @@ from hubbeam.core.inputs import SimulationInputs, Trajectory
 from hubbeam.core.integrate import N_SCALAR, fill_outputs, integration_problem, n_output_columns
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
 from hubbeam.core.radau import problem_rhs
-from hubbeam.maneuvers import maneuver_parameters
-from hubbeam.matrices import SystemMatrices
-from hubbeam.models import MODELS
+from hubbeam.model.maneuvers import maneuver_parameters
+from hubbeam.model.matrices import SystemMatrices
+from hubbeam.model.models import MODELS
 
 #: the kernels' traits of every model
 TRAITS = {name: m.traits for name, m in MODELS.items()}
@@ -314,7 +314,7 @@ def test_high_order_terms_vanish_to_second_order(sm, state):
     assert sizes[1][1] == pytest.approx(sizes[0][1] / 100, rel=0.05)
 
 
-#: every maneuver kind (hubbeam.maneuvers), each with rows around the times the tests use
+#: every maneuver kind (hubbeam.model.maneuvers), each with rows around the times the tests use
 MANEUVERS = [
     {"kind": "prescribed", "wf": 2.8, "tf": 30.0},
     {"kind": "torque", "tau_max": 200.0, "tf": 10.0},

@@ -23,9 +23,9 @@ from scipy.integrate import simpson
 
 from hubbeam.feedback import simulate_case
 from hubbeam.linear.statespace import linear_model
-from hubbeam.modes import transverse_modes
-from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import SimulationError, case_matrices
+from hubbeam.model.modes import transverse_modes
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.simulation.simulate import SimulationError, case_matrices
 
 SPEED = 2.0  # rad s-1, the design speed (below TLAM's critical speed of this beam, 2.91 rad s-1)
 DESIGN = {"speed": SPEED, "torque_weight": 1e-4,

@@ -1,4 +1,4 @@
-"""The number formats of the reports (hubbeam.formatting) and the Markdown table renderer."""
+"""The number formats of the reports (hubbeam.reporting.formatting) and the Markdown table renderer."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from hubbeam.document import markdown_table, markdown_to_html
-from hubbeam.formatting import csv_cell, fixed, is_missing, number, percent, scientific
+from hubbeam.reporting.document import markdown_table, markdown_to_html
+from hubbeam.reporting.formatting import csv_cell, fixed, is_missing, number, percent, scientific
 
 
 @pytest.mark.parametrize("missing", [None, "", math.nan, np.float64("nan")])

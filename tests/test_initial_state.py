@@ -1,10 +1,10 @@
-"""Runs that start at an operating point (``case["initial"]``, ``hubbeam.simulate.initial_state``).
+"""Runs that start at an operating point (``case["initial"]``, ``hubbeam.simulation.simulate.initial_state``).
 
 * A free hub in steady spin under zero torque (a torque table of zeros) stays there, for every
   model: ``theta_dot`` constant, ``q2 = 0``, ``q1`` at its centrifugal stretch (Eqs. 29-30), all
   to the integrator's tolerance.
 * A small deviation along a mode of the constant-speed linearisation (Eqs. 29-31) oscillates at
-  the frequency :mod:`hubbeam.linearised` gives, for every model, when the hub is heavy enough for
+  the frequency :mod:`hubbeam.model.linearised` gives, for every model, when the hub is heavy enough for
   the free hub to act as the held hub of the linearisation.
 * A prescribed hub starts at its maneuver's speed; the initial state is recorded and reproduced;
   bad initial states are rejected naming the key.
@@ -15,12 +15,12 @@ import dataclasses
 import numpy as np
 import pytest
 
-from hubbeam import linearised
-from hubbeam.config import ConfigError
-from hubbeam.models import MODELS
-from hubbeam.parameters import BeamParameters
-from hubbeam.results import simulation_inputs
-from hubbeam.simulate import SimulationError, case_matrices, simulate
+from hubbeam.configuration.load import ConfigError
+from hubbeam.model import linearised
+from hubbeam.model.models import MODELS
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.results.reader import simulation_inputs
+from hubbeam.simulation.simulate import SimulationError, case_matrices, simulate
 
 SPEED = 2.0  # rad s-1, below TLAM's critical speed (2.91 rad/s without tip mass)
 
@@ -58,7 +58,7 @@ def _linear_mode(sm, variant, axial):
     """Initial deviation and rate ``(x0, x0')`` of the slowest mode of ``M x'' + G x' + K x = 0``
     (Eqs. 29-31), scaled to a unit tip deflection, and its circular frequency, from numpy's
     eigen-solver on ``M^-1`` (a route of its own beside
-    :func:`hubbeam.linearised.quadratic_eigenvalues`)."""
+    :func:`hubbeam.model.linearised.quadratic_eigenvalues`)."""
     M, G, K = linearised.constant_speed_matrices(sm, variant, SPEED, axial)
     N = M.shape[0]
     A = np.block([[np.zeros((N, N)), np.eye(N)], [-np.linalg.solve(M, K), -np.linalg.solve(M, G)]])

@@ -16,8 +16,8 @@ import pytest
 import xarray as xr
 
 import hubbeam
-from hubbeam import provenance
-from hubbeam.io import FILE_TIME_ATTRS, FLOAT_ENCODING, ResultFileError, open_result, write_netcdf
+from hubbeam.results import provenance
+from hubbeam.results.io import FILE_TIME_ATTRS, FLOAT_ENCODING, ResultFileError, open_result, write_netcdf
 
 
 def result_dataset(scale: float = 1.0) -> xr.Dataset:

@@ -4,7 +4,7 @@
   model, with and without tip mass and damping, at rest, at a middle speed and near TLAM's
   critical speed; the steady spin needs no torque;
 * limits with a closed form: a very heavy hub gives the held-hub frequencies of
-  ``hubbeam.linearised`` (error falling like 1/Jh), no hub inertia and radius give the
+  ``hubbeam.model.linearised`` (error falling like 1/Jh), no hub inertia and radius give the
   pinned-free beam (tan(beta L) = tanh(beta L)), the paper's hub gives the roots of the frequency
   equation of a uniform beam clamped to a rigid hub of inertia Jh at radius rA;
 * the collocated identity: the zeros of hub torque -> hub angle are the poles of the
@@ -31,9 +31,6 @@ from scipy.linalg import eig, eigh
 from scipy.optimize import brentq, linear_sum_assignment
 
 from benchmarks.linear import linear_rows
-from hubbeam.damping import damping_matrices
-from hubbeam.eigen import critical_speed
-from hubbeam.io import open_result
 from hubbeam.linear import HUBS, OUTPUTS, linear_model, plant
 from hubbeam.linear.export import to_dataset, write_dataset, write_mat
 from hubbeam.linear.jacobian import (
@@ -43,11 +40,14 @@ from hubbeam.linear.jacobian import (
     nonlinear_accelerations,
     steady_state,
 )
-from hubbeam.linearised import axial_stretch, frequencies
-from hubbeam.matrices import assemble
-from hubbeam.models import MODELS
-from hubbeam.parameters import BeamParameters, TipMass
-from hubbeam.simulate import simulate
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.eigen import critical_speed
+from hubbeam.model.linearised import axial_stretch, frequencies
+from hubbeam.model.matrices import assemble
+from hubbeam.model.models import MODELS
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.results.io import open_result
+from hubbeam.simulation.simulate import simulate
 
 EPS = np.finfo(float).eps
 TIP = TipMass(mass=0.5, position=8.0)

@@ -4,12 +4,12 @@ datasets and figures (hubbeam.linear.datasets)."""
 import numpy as np
 import pytest
 
-from hubbeam import eigen
-from hubbeam.damping import damping_matrices
 from hubbeam.linear import datasets, frequency, linear_model
-from hubbeam.matrices import assemble
-from hubbeam.paper import TABLE1
-from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.model import eigen
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.printed import TABLE1
 
 PARAMS = BeamParameters(**TABLE1)
 N_MODES = 4
@@ -174,9 +174,9 @@ def test_bad_outputs_and_frequencies_are_refused(systems):
 def test_pole_zero_and_bode_datasets_write_and_draw(tmp_path):
     from matplotlib.figure import Figure
 
-    from hubbeam.io import open_result, write_netcdf
     from hubbeam.plotting import bode, pole_zero
     from hubbeam.plotting.style import styled
+    from hubbeam.results.io import open_result, write_netcdf
 
     speeds = np.linspace(0.0, 4.0, 9)
     pz = open_result(write_netcdf(datasets.poles_zeros(PARAMS, [0.0, 0.5], speeds, 3),

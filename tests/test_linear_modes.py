@@ -141,12 +141,12 @@ def test_a_matrix_that_is_not_a_stack_of_mechanical_systems_is_refused():
 # ---------------------------------------------------------------------------------------------
 # the paper's beam: tracked, damped Campbell diagrams and mode shapes
 
-from hubbeam import eigen  # noqa: E402
 from hubbeam.linear import datasets  # noqa: E402
-from hubbeam.matrices import assemble  # noqa: E402
-from hubbeam.modes import transverse_modes  # noqa: E402
-from hubbeam.paper import TABLE1  # noqa: E402
-from hubbeam.parameters import BeamParameters, TipMass  # noqa: E402
+from hubbeam.model import eigen  # noqa: E402
+from hubbeam.model.matrices import assemble  # noqa: E402
+from hubbeam.model.modes import transverse_modes  # noqa: E402
+from hubbeam.model.parameters import BeamParameters, TipMass  # noqa: E402
+from hubbeam.model.printed import TABLE1  # noqa: E402
 
 PARAMS = BeamParameters(**TABLE1)
 N_MODES = 4
@@ -162,7 +162,7 @@ def campbell_ds():
 @pytest.mark.parametrize("mass", [0.0, 0.5])
 def test_tlam_becomes_unstable_at_its_critical_speed_to_the_grid_step(campbell_ds, mass):
     """The first growing mode of TLAM appears at the first grid speed above the exact critical
-    speed of K22 (hubbeam.eigen), held and free hub; FOAM, SFOAM and CFOAM stay stable."""
+    speed of K22 (hubbeam.model.eigen), held and free hub; FOAM, SFOAM and CFOAM stay stable."""
     tip = TipMass(mass=mass, position=PARAMS.L) if mass else None
     critical = eigen.critical_speed("TLAM", PARAMS, tip, N_MODES, 20.0)
     speeds = campbell_ds.speed.values
@@ -195,7 +195,7 @@ def test_modal_damping_ratio_is_recovered_with_the_hub_held_at_rest(campbell_ds)
 
 def test_held_hub_modes_are_the_gyroscopic_eigenvalues_of_eqs_29_to_31():
     """Undamped, hub held, below TLAM's critical speed: the tracked frequencies of TLAM and FOAM
-    are, as sets, those of hubbeam.eigen's gyroscopic eigenproblem (axial and bending)."""
+    are, as sets, those of hubbeam.model.eigen's gyroscopic eigenproblem (axial and bending)."""
     speeds = np.linspace(0.0, 2.8, 15)
     ds = datasets.campbell(PARAMS, [0.0], speeds, N_MODES).sel(tip_mass=0.0, hub="held")
     sm = assemble(PARAMS, None, N_MODES)
@@ -234,9 +234,9 @@ def test_mode_shapes_at_rest_are_the_beam_functions(campbell_ds):
 def test_campbell_and_shapes_write_as_cf_files_and_draw(tmp_path, campbell_ds):
     from matplotlib.figure import Figure
 
-    from hubbeam.io import open_result, write_netcdf
     from hubbeam.plotting import campbell_tracked, linear_mode_shapes
     from hubbeam.plotting.style import styled
+    from hubbeam.results.io import open_result, write_netcdf
 
     back = open_result(write_netcdf(campbell_ds, tmp_path / "campbell.nc"))
     np.testing.assert_array_equal(back.label.values, campbell_ds.label.values)

@@ -18,12 +18,12 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.interpolate import CubicSpline
 
-from hubbeam.config import ConfigError
-from hubbeam.matrices import assemble
-from hubbeam.parameters import BeamParameters
-from hubbeam.results import simulation_inputs
-from hubbeam.settings import simulation_settings
-from hubbeam.simulate import simulate
+from hubbeam.configuration.load import ConfigError
+from hubbeam.configuration.settings import simulation_settings
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.results.reader import simulation_inputs
+from hubbeam.simulation.simulate import simulate
 
 
 @pytest.fixture(scope="module")
@@ -178,8 +178,8 @@ def test_a_bad_maneuver_gives_one_clear_error(setup, maneuver, key, fragments):
 
 def test_the_kernel_layout_of_every_maneuver_kind_has_the_keys_the_schema_declares():
     """maneuvers.py packs each kind's parameters in the kernel's order; the keys are the schema's."""
-    from hubbeam.config_schema import kind_keys
-    from hubbeam.maneuvers import MANEUVERS, REFERENCES, TABLES
+    from hubbeam.configuration.schema import kind_keys
+    from hubbeam.model.maneuvers import MANEUVERS, REFERENCES, TABLES
 
     packed = {kind: set(keys) for kind, (_, keys) in MANEUVERS.items()}
     packed |= {kind: {"time", column} for kind, (_, column, _) in TABLES.items()}

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy.integrate import cumulative_simpson
 
-from hubbeam.matrices import (
+from hubbeam.model.matrices import (
     S_matrix,
     SystemMatrices,
     assemble,
@@ -12,10 +12,10 @@ from hubbeam.matrices import (
     from_dataset,
     to_dataset,
 )
-from hubbeam.modes import axial_modes, clamped_free_roots, transverse_modes
-from hubbeam.paper import TABLE1
-from hubbeam.parameters import BeamParameters, TipMass
-from hubbeam.quadrature import effective_points
+from hubbeam.model.modes import axial_modes, clamped_free_roots, transverse_modes
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.printed import TABLE1
+from hubbeam.model.quadrature import effective_points
 
 PARAMS = BeamParameters(**TABLE1)
 RHO_A = PARAMS.rhoA

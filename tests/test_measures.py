@@ -1,4 +1,4 @@
-"""Signal measures (hubbeam.measures) on signals whose measures are known in closed form."""
+"""Signal measures (hubbeam.results.measures) on signals whose measures are known in closed form."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from hubbeam.measures import (
+from hubbeam.results.measures import (
     after,
     fit_sinusoid,
     late_share,

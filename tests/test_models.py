@@ -1,4 +1,4 @@
-"""The one table of models (``hubbeam.models``), and a guard that nothing else dispatches on a name.
+"""The one table of models (``hubbeam.model.models``), and a guard that nothing else dispatches on a name.
 
 **Dispatch**, as the guard defines it, is code that decides what to compute from a model's (or a
 kernel family's) identity instead of from the traits of the table:
@@ -28,9 +28,10 @@ import pytest
 import yaml
 
 import hubbeam
-from hubbeam import linearised, models, variables
 from hubbeam.core import inputs
 from hubbeam.core.integrate import FAMILY_KERNELS
+from hubbeam.model import linearised, models
+from hubbeam.results import variables
 
 PACKAGE = Path(hubbeam.__file__).parent
 ROOT = PACKAGE.parents[1]
@@ -38,11 +39,11 @@ NAMES = frozenset(models.MODELS) | frozenset(models.FAMILIES)
 #: the modules that show the paper's results (figures, tables, claims, readings, its printed
 #: values): they may name the models they show, also in a comparison
 PRODUCT_MODULES = frozenset({
-    "products.py", "tables.py", "claims.py", "readings.py", "paper.py",
+    "reporting/products.py", "paper/tables.py", "paper/claims.py", "paper/readings.py", "model/printed.py",
     "plotting/critical_map.py",  # the paper's TLAM critical speeds (Sections 4.2, 4.4)
     *(path.relative_to(PACKAGE).as_posix() for path in (PACKAGE / "plotting").glob("fig*.py")),
 })
-EXEMPT = frozenset({"models.py", "core/inputs.py"}) | PRODUCT_MODULES
+EXEMPT = frozenset({"model/models.py", "core/inputs.py"}) | PRODUCT_MODULES
 _WORD = "|".join(sorted(NAMES, key=len, reverse=True))
 #: an alternation of two or more model or family names, as in a regular expression
 ALTERNATION = re.compile(rf"\b(?:{_WORD})\s*\|\s*(?:{_WORD})\b")
@@ -98,7 +99,7 @@ def test_no_code_outside_the_table_dispatches_on_a_model_name():
     rules = [*(ROOT / "workflow").rglob("*.smk"), *ROOT.glob("Snakefile"), *ROOT.glob("workflow/Snakefile")]
     for path in sorted(rules):
         found += [f"{path.relative_to(ROOT)} {hit}" for hit in rule_dispatch(path.read_text())]
-    assert not found, "decide from hubbeam.models traits instead:\n" + "\n".join(found)
+    assert not found, "decide from hubbeam.model.models traits instead:\n" + "\n".join(found)
 
 
 @pytest.mark.parametrize("source", [
@@ -184,7 +185,7 @@ def test_dataset_variables_follow_the_high_order_trait():
 
 
 def test_the_schema_allows_exactly_the_models_of_the_table():
-    schema = yaml.safe_load((PACKAGE / "schemas" / "config.schema.yaml").read_text())
+    schema = yaml.safe_load((PACKAGE / "configuration" / "schemas" / "config.schema.yaml").read_text())
     enums = []
 
     def walk(node):

@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from hubbeam.modes import axial_modes, clamped_free_roots, transverse_modes
-from hubbeam.paper import TABLE1
-from hubbeam.parameters import BeamParameters
-from hubbeam.quadrature import gauss_legendre
+from hubbeam.model.modes import axial_modes, clamped_free_roots, transverse_modes
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.printed import TABLE1
+from hubbeam.model.quadrature import gauss_legendre
 
 PARAMS = BeamParameters(**TABLE1)
 N = 20

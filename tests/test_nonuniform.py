@@ -6,18 +6,18 @@ import pytest
 import scipy.integrate
 from test_matrices import assert_converged_in_quadrature_points
 
-from hubbeam.beam import (
+from hubbeam.model.beam import (
     BeamSections,
     beam_attributes,
     beam_from_attributes,
     beam_from_config,
 )
-from hubbeam.eigen import tip_mass_frequency_roots
-from hubbeam.matrices import assemble
-from hubbeam.modes import clamped_free_roots
-from hubbeam.paper import TABLE1
-from hubbeam.parameters import BeamParameters, TipMass
-from hubbeam.quadrature import beam_rule, segment_points
+from hubbeam.model.eigen import tip_mass_frequency_roots
+from hubbeam.model.matrices import assemble
+from hubbeam.model.modes import clamped_free_roots
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.printed import TABLE1
+from hubbeam.model.quadrature import beam_rule, segment_points
 from hubbeam.validation import fe_beam
 from hubbeam.validation.nonuniform import ritz_vs_fe, tapered_beam
 
@@ -223,7 +223,7 @@ def test_ritz_converges_to_fe_in_modes(case):
 # -- the rest of the package with a non-uniform beam -------------------------------------------
 
 def test_eigen_analysis_of_a_non_uniform_beam():
-    from hubbeam.eigen import campbell, critical_speed_sweep
+    from hubbeam.model.eigen import campbell, critical_speed_sweep
 
     sweep = critical_speed_sweep(KINKED, [0.0, 0.2], [KINKED.L], 5, search_max=50.0)
     assert np.isnan(sweep["continuum_tlam_critical_speed_at_tip"]).all()  # uniform beams only
@@ -238,8 +238,8 @@ def test_eigen_analysis_of_a_non_uniform_beam():
 
 @pytest.mark.parametrize("model", ["TLAM", "FOAM", "SFOAM", "CFOAM"])
 def test_every_model_simulates_a_non_uniform_beam_and_reruns_from_its_attributes(model):
-    from hubbeam.results import simulation_inputs
-    from hubbeam.simulate import simulate
+    from hubbeam.results.reader import simulation_inputs
+    from hubbeam.simulation.simulate import simulate
 
     numerics = {"rtol": 1e-7, "atol": 1e-9, "output_step": 0.1, "max_steps": 100_000,
                 "step_warning": 100_000, "divergence_limit": 1.0, "quadrature_points": 64}

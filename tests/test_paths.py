@@ -1,4 +1,4 @@
-"""The paper is one study: every path from hubbeam.paths, one registry of products for the paper
+"""The paper is one study: every path from hubbeam.results.paths, one registry of products for the paper
 and every study, and one set of rules that every configuration runs."""
 
 import re
@@ -10,9 +10,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from hubbeam.config import ConfigError, validate_config
-from hubbeam.paths import IN_RESULTS, SHARED, study_paths
-from hubbeam.products import (
+from hubbeam.configuration.load import ConfigError, validate_config
+from hubbeam.reporting.products import (
     CAMPBELL,
     DESIGNS_FIGURE,
     GENERAL_PRODUCTS,
@@ -25,6 +24,7 @@ from hubbeam.products import (
     product_sets,
     products_for,
 )
+from hubbeam.results.paths import IN_RESULTS, SHARED, study_paths
 
 REPO = Path(__file__).resolve().parents[1]
 PAPER_CONFIG = REPO / "config" / "config.yaml"
@@ -54,7 +54,7 @@ def test_the_path_literal_pattern_finds_what_it_should(line, found):
 
 
 def test_no_results_or_logs_path_is_spelled_outside_the_paths_module():
-    paths_module = REPO / "src" / "hubbeam" / "paths.py"
+    paths_module = REPO / "src" / "hubbeam" / "results" / "paths.py"
     files = [REPO / "Snakefile", *(REPO / "src").rglob("*.py"), *(REPO / "workflow").rglob("*.smk"),
              *(REPO / "workflow").rglob("*.py")]
     found = [f"{path.relative_to(REPO)}:{number}: {line.strip()}"

@@ -1,4 +1,4 @@
-"""Alternative readings (hubbeam.readings) and the conclusions drawn from them (hubbeam.explain).
+"""Alternative readings (hubbeam.paper.readings) and the conclusions drawn from them (hubbeam.paper.explain).
 
 Each reading must change exactly what it names; a claim the reading does not touch must keep its
 default value; the conclusion logic must identify a planted explanation. Expected values come from
@@ -16,13 +16,12 @@ import sys
 import numpy as np
 import pytest
 
-from hubbeam import claims as claim_defs
-from hubbeam import explain
-from hubbeam.beam import beam_from_config
-from hubbeam.config import case_names, case_settings, load_config
-from hubbeam.eigen import critical_speed_table, table2
-from hubbeam.io import write_netcdf
-from hubbeam.readings import (
+from hubbeam.configuration.load import case_names, case_settings, load_config
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.eigen import critical_speed_table, table2
+from hubbeam.paper import claims as claim_defs
+from hubbeam.paper import explain
+from hubbeam.paper.readings import (
     VERDICT_FLAGS,
     ReadingError,
     check_reading,
@@ -33,8 +32,9 @@ from hubbeam.readings import (
     reading_case,
     reading_cases,
 )
-from hubbeam.results import maneuver
-from hubbeam.simulate import simulate
+from hubbeam.results.io import write_netcdf
+from hubbeam.results.reader import maneuver
+from hubbeam.simulation.simulate import simulate
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""The fast path (Radau IIA kernel) against the slow scipy reference (``hubbeam.reference``).
+"""The fast path (Radau IIA kernel) against the slow scipy reference (``hubbeam.simulation.reference``).
 
 * ``pure_python`` yields a right-hand side free of compiled code that agrees with the kernel;
 * on FOAM, w_f = 2.8 rad/s, t_f = 30 s, 0-50 s (Fig. 5) the fast path at the configured
@@ -17,14 +17,14 @@ import numpy as np
 import pytest
 from numba.core.dispatcher import Dispatcher
 
-from hubbeam.config import case_settings
+from hubbeam.configuration.load import case_settings
 from hubbeam.core import eom
 from hubbeam.core.inputs import SimulationInputs
-from hubbeam.matrices import assemble
-from hubbeam.models import MODELS
-from hubbeam.parameters import BeamParameters
-from hubbeam.reference import pure_python, reference_simulation
-from hubbeam.simulate import kernel_matrices, maneuver_parameters, simulate
+from hubbeam.model.matrices import assemble
+from hubbeam.model.models import MODELS
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.simulation.reference import pure_python, reference_simulation
+from hubbeam.simulation.simulate import kernel_matrices, maneuver_parameters, simulate
 
 
 @pytest.fixture(scope="module")

@@ -37,14 +37,14 @@ import xarray as xr
 import yaml
 from synthetic_results import CONFIG_FILE, REPO, run_script, write_eigen, write_simulations
 
-from hubbeam.config import ConfigError, case_settings
-from hubbeam.io import ResultFileError, open_result, staged, write_netcdf
-from hubbeam.matrices import assemble, to_dataset
-from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.configuration.load import ConfigError, case_settings
+from hubbeam.model.matrices import assemble, to_dataset
+from hubbeam.model.parameters import BeamParameters, TipMass
 from hubbeam.plotting.style import styled
-from hubbeam.products import PAPER_PRODUCTS
-from hubbeam.results import DatasetError, simulation_inputs
-from hubbeam.simulate import compile_kernels, simulate
+from hubbeam.reporting.products import PAPER_PRODUCTS
+from hubbeam.results.io import ResultFileError, open_result, staged, write_netcdf
+from hubbeam.results.reader import DatasetError, simulation_inputs
+from hubbeam.simulation.simulate import compile_kernels, simulate
 
 SNAKEFILE = REPO / "Snakefile"
 
@@ -186,7 +186,7 @@ def test_bad_convergence_settings_are_rejected_by_simulate(setup):
 WRITER = textwrap.dedent("""
     import sys
     import numpy as np, xarray as xr
-    from hubbeam.io import staged, write_netcdf
+    from hubbeam.results.io import staged, write_netcdf
 
     directory = sys.argv[1]
     versions = [xr.Dataset({"x": ("i", np.full(200_000, float(k)))}, attrs={"version": k})
@@ -499,9 +499,9 @@ DETERMINISM_CASE = {"name": "determinism", "model": "CFOAM", "modes": 2, "t_end"
                     "tip_mass": {"mass": 0.1, "position": 6.0}}
 SIMULATE_IN_A_PROCESS = textwrap.dedent("""
     import json, sys
-    from hubbeam.io import write_netcdf
-    from hubbeam.parameters import BeamParameters
-    from hubbeam.simulate import simulate
+    from hubbeam.results.io import write_netcdf
+    from hubbeam.model.parameters import BeamParameters
+    from hubbeam.simulation.simulate import simulate
 
     case, beam, numerics, path = json.loads(sys.argv[1]), json.loads(sys.argv[2]), json.loads(sys.argv[3]), sys.argv[4]
     ds = simulate(case, BeamParameters.from_config({"beam": beam}), numerics,

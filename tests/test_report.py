@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from synthetic_results import run_script, write_eigen, write_simulations, write_validation
 
-from hubbeam import paper
-from hubbeam.claims import (
+from hubbeam.model import printed as paper
+from hubbeam.paper.claims import (
     CLAIM_COLUMNS,
     ClaimInputError,
     Results,
@@ -22,11 +22,11 @@ from hubbeam.claims import (
     read_claims,
     write_claims,
 )
-from hubbeam.document import markdown_to_html
-from hubbeam.io import ResultFileError, open_result
-from hubbeam.products import PAPER_PRODUCTS
-from hubbeam.report import reproduction_markdown
-from hubbeam.tables import Column, Table, table1, table2, table3, to_latex, to_markdown, write_table
+from hubbeam.paper.report import reproduction_markdown
+from hubbeam.paper.tables import Column, Table, table1, table2, table3, to_latex, to_markdown, write_table
+from hubbeam.reporting.document import markdown_to_html
+from hubbeam.reporting.products import PAPER_PRODUCTS
+from hubbeam.results.io import ResultFileError, open_result
 from hubbeam.validation.report import ValidationInputError, published_section, validation_markdown
 
 #: residual vibration after the torque pulse: FOAM (amplitude, omega, phase at t_f) and an SFOAM

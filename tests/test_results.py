@@ -1,4 +1,4 @@
-"""The reader of the simulation dataset (hubbeam.results) against its writer (hubbeam.simulate)."""
+"""The reader of the simulation dataset (hubbeam.results.reader) against its writer (hubbeam.simulation.simulate)."""
 
 from __future__ import annotations
 
@@ -12,16 +12,16 @@ import pytest
 from synthetic_results import paper_cases, simulation_dataset
 
 import hubbeam
-from hubbeam import results
-from hubbeam.io import open_result, write_netcdf
-from hubbeam.parameters import BeamParameters
-from hubbeam.variables import CUMULATIVE_VARIABLES, HIGH_ORDER_VARIABLES, VARIABLES
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.results import reader as results
+from hubbeam.results.io import open_result, write_netcdf
+from hubbeam.results.variables import CUMULATIVE_VARIABLES, HIGH_ORDER_VARIABLES, VARIABLES
 
 
 @pytest.fixture(scope="module")
 def written(_study_config, tmp_path_factory):
     """A short CFOAM spin-up (every variable the writer knows) written to netCDF and read back."""
-    from hubbeam.simulate import simulate
+    from hubbeam.simulation.simulate import simulate
 
     case = {"name": "short_cfoam", "model": "CFOAM", "modes": 2, "t_end": 1.0,
             "maneuver": {"kind": "prescribed", "wf": 1.0, "tf": 0.5},
@@ -55,7 +55,7 @@ def test_the_case_settings_are_read_from_the_attributes(written):
 
 
 def test_the_inputs_read_from_a_dataset_rerun_it(written):
-    from hubbeam.simulate import simulate
+    from hubbeam.simulation.simulate import simulate
 
     _, ds, back = written
     rerun = simulate(**results.simulation_inputs(back.attrs))
@@ -112,7 +112,7 @@ def test_missing_items_are_named_with_the_case():
 
 
 def test_only_drawing_modules_import_the_plotting_package():
-    """Results are read through hubbeam.results: outside the plotting package only the
+    """Results are read through hubbeam.results.reader: outside the plotting package only the
     validation figures (which draw) import it."""
     package = Path(hubbeam.__file__).parent
     importers = set()

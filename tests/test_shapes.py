@@ -10,14 +10,14 @@ import math
 import numpy as np
 import pytest
 
-from hubbeam.beam import beam_from_config
-from hubbeam.eigen import campbell
-from hubbeam.matrices import assemble
-from hubbeam.modes import transverse_modes
-from hubbeam.parameters import TipMass
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.eigen import campbell
+from hubbeam.model.matrices import assemble
+from hubbeam.model.modes import transverse_modes
+from hubbeam.model.parameters import TipMass
+from hubbeam.model.shapes import SPAN_POINTS, beam_dataset, span
 from hubbeam.plotting import beam_properties, mode_shapes
 from hubbeam.plotting.style import styled
-from hubbeam.shapes import SPAN_POINTS, beam_dataset, span
 from hubbeam.study.report import beam_summary, study_markdown
 
 UNIFORM = {"length": 10.0, "density": 1.2e4, "area": 1.0e-4, "youngs_modulus": 2.8e11,
@@ -68,7 +68,7 @@ def test_the_first_shape_at_rest_is_the_continuum_cantilevers():
 
 
 def test_frequencies_agree_with_the_campbell_diagram():
-    """The eigenvectors' solver (scipy's eigh) against hubbeam.eigen's frequencies of the same K22."""
+    """The eigenvectors' solver (scipy's eigh) against hubbeam.model.eigen's frequencies of the same K22."""
     params, ds = dataset()
     reference = campbell(params, [0.0, 0.5], SPEEDS, 5)["frequency"].isel(mode=slice(0, 3))
     for model in ("TLAM", "FOAM"):

@@ -1,4 +1,4 @@
-"""Simulations of the hub-beam (``hubbeam.simulate``) checked against physics and against itself.
+"""Simulations of the hub-beam (``hubbeam.simulation.simulate``) checked against physics and against itself.
 
 * energy and angular momentum stay constant once the torque pulse has ended (FOAM, TLAM, CFOAM
   are Lagrangian with a free hub), to within the tolerance;
@@ -25,9 +25,9 @@ import pytest
 import xarray as xr
 from synthetic_results import HIGH_ORDER_VARIABLES, SIMULATION_VARIABLES
 
-from hubbeam.config import ConfigError, case_settings
-from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import simulate
+from hubbeam.configuration.load import ConfigError, case_settings
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.simulation.simulate import simulate
 
 
 @pytest.fixture(scope="module")
@@ -71,7 +71,7 @@ def test_tip_deflection_converges_as_the_tolerance_tightens(setup):
 def test_cfoam_and_foam_agree_within_the_dropped_terms(setup):
     """The tip deflections differ by at most ten times the relative size of the high-order terms
     (dropped transverse force over elastic force, both along the CFOAM run)."""
-    from hubbeam.matrices import assemble
+    from hubbeam.model.matrices import assemble
 
     params, numerics, config = setup
     cfoam = simulate(case_settings(config, "fig04_cfoam") | {"modes": 2}, params, numerics)
@@ -169,8 +169,8 @@ def test_bad_numerics_are_rejected_naming_the_key(setup, change, key, fragments)
 
 
 def test_the_objects_of_a_configuration_run_unchecked_and_give_the_mapping_result(setup):
-    """simulate takes the objects of hubbeam.settings as well; they give the run of the mapping."""
-    from hubbeam.settings import from_config
+    """simulate takes the objects of hubbeam.configuration.settings as well; they give the run of the mapping."""
+    from hubbeam.configuration.settings import from_config
 
     params, numerics, config = setup
     settings = from_config(config)
@@ -188,9 +188,9 @@ def test_workflow_script_writes_the_case_from_the_leading_matrix_blocks(setup, t
     import xarray as xr
     from synthetic_results import run_script
 
-    from hubbeam.io import open_result, write_netcdf
-    from hubbeam.matrices import assemble, to_dataset
-    from hubbeam.parameters import TipMass
+    from hubbeam.model.matrices import assemble, to_dataset
+    from hubbeam.model.parameters import TipMass
+    from hubbeam.results.io import open_result, write_netcdf
 
     params, numerics, config = setup
     case = case_settings(config, "fig10_tlam_mt0p1") | {"modes": 2, "t_end": 2.0}
@@ -215,9 +215,9 @@ def test_runs_free_every_allocation_of_the_numba_runtime():
     (with a tip mass) must free every block the runtime allocated for them."""
     script = textwrap.dedent("""
         from numba.core.runtime import rtsys
-        from hubbeam.config import load_config
-        from hubbeam.parameters import BeamParameters
-        from hubbeam.simulate import simulate
+        from hubbeam.configuration.load import load_config
+        from hubbeam.model.parameters import BeamParameters
+        from hubbeam.simulation.simulate import simulate
         config = load_config("config/config.yaml")
         params = BeamParameters.from_config(config)
         maneuvers = [{"kind": "prescribed", "wf": 3.0, "tf": 4.0},

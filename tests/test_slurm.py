@@ -24,10 +24,10 @@ import pytest
 import xarray as xr
 import yaml
 
-from hubbeam.config import load_config
-from hubbeam.io import open_result
-from hubbeam.parameters import BeamParameters
-from hubbeam.sweep import n_chunks, run_sweep, sweep_settings
+from hubbeam.configuration.load import load_config
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.results.io import open_result
+from hubbeam.simulation.sweep import n_chunks, run_sweep, sweep_settings
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))

@@ -1,8 +1,8 @@
-"""The package sources a script depends on, found from its imports (``hubbeam.sourcedeps``).
+"""The package sources a script depends on, found from its imports (``hubbeam.reporting.sourcedeps``).
 
 Checked on a throw-away package whose import graph is known by construction (absolute, relative,
 ``from package import submodule``, imports inside functions, a module nobody imports), on the real
-package (a script importing ``hubbeam.simulate`` needs the Radau kernel, not the plotting code),
+package (a script importing ``hubbeam.simulation.simulate`` needs the Radau kernel, not the plotting code),
 and on the rule files: every rule's code inputs are those of the script it runs.
 """
 
@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from hubbeam.sourcedeps import imported_names, script_dependencies
+from hubbeam.reporting.sourcedeps import imported_names, script_dependencies
 
 
 def write(root: Path, files: dict[str, str]) -> None:
@@ -61,12 +61,12 @@ def test_declared_package_data_counts_for_every_importer(toy):
 
 
 def test_the_report_rules_depend_on_the_templates():
-    from hubbeam.sourcedeps import package_dir
+    from hubbeam.reporting.sourcedeps import package_dir
 
     root = package_dir()
     script = Path(__file__).parents[1] / "workflow" / "scripts" / "report_reproduction.py"
     files = relative(script_dependencies(script, root), root)
-    assert "templates/reproduction.md.j2" in files and "document.py" in files
+    assert "reporting/templates/reproduction.md.j2" in files and "reporting/document.py" in files
 
 
 def test_extra_modules_are_added_with_their_imports(toy):
@@ -87,14 +87,14 @@ def test_relative_import_resolution(toy):
 
 def test_real_script_gets_the_integrator_and_not_the_plots(repo_root):
     script = repo_root / "workflow" / "scripts" / "simulate_case.py"
-    assert "from hubbeam.simulate import" in script.read_text()
+    assert "from hubbeam.simulation.simulate import" in script.read_text()
     root = repo_root / "src" / "hubbeam"
     files = relative(script_dependencies(script, root), root)
-    for needed in ("__init__.py", "simulate.py", "core/__init__.py", "core/radau.py",
-                   "core/integrate.py", "core/eom.py", "matrices.py"):
+    for needed in ("__init__.py", "simulation/simulate.py", "core/__init__.py", "core/radau.py",
+                   "core/integrate.py", "core/eom.py", "model/matrices.py"):
         assert needed in files
     assert not any(name.startswith(("plotting/", "validation/")) for name in files)
-    assert "report.py" not in files and "core/first_order.py" not in files
+    assert "paper/report.py" not in files and "core/first_order.py" not in files
 
 
 def test_every_rule_lists_the_code_of_its_own_script(repo_root):

@@ -16,7 +16,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from hubbeam.results import maneuver_end
+from hubbeam.results.reader import maneuver_end
 from hubbeam.study import MARKER
 from hubbeam.study.report import study_html, study_markdown
 from hubbeam.study.summary import COLUMNS, case_summary

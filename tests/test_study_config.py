@@ -13,15 +13,15 @@ from pathlib import Path
 import pytest
 import yaml
 
-from hubbeam.config import ConfigError, case_settings, validate_config
-from hubbeam.paths import study_paths
+from hubbeam.configuration.load import ConfigError, case_settings, validate_config
+from hubbeam.configuration.tabular import SECTION_COLUMNS, TableError, read_table, resolve_files
+from hubbeam.results.paths import study_paths
 from hubbeam.study import (
     MARKER,
     PAPER_FOLDERS,
     StudyError,
     claim_results_dir,
 )
-from hubbeam.tabular import SECTION_COLUMNS, TableError, read_table, resolve_files
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -194,9 +194,9 @@ def test_the_products_give_the_matrices_of_the_factors():
     place of each entry: every entry is linear in one product)."""
     import numpy as np
 
-    from hubbeam.beam import beam_attributes, beam_from_attributes, beam_from_config
-    from hubbeam.matrices import assemble
-    from hubbeam.parameters import BeamParameters, BeamProducts, TipMass
+    from hubbeam.model.beam import beam_attributes, beam_from_attributes, beam_from_config
+    from hubbeam.model.matrices import assemble
+    from hubbeam.model.parameters import BeamParameters, BeamProducts, TipMass
 
     beam = yaml.safe_load((REPO / "studies" / "spinup10m.yaml").read_text())["beam"]
     products = beam_from_config(beam)
@@ -381,9 +381,9 @@ def test_the_snakefile_reports_a_bad_table_file_before_any_rule(tmp_path, study)
 # --- the beam a study's rules build ------------------------------------------------------------
 
 def test_beam_from_config_builds_the_uniform_beam_of_table1_and_a_sectioned_study_beam(sectioned):
-    from hubbeam.beam import BeamSections, beam_from_config
-    from hubbeam.paper import TABLE1
-    from hubbeam.parameters import BeamParameters
+    from hubbeam.model.beam import BeamSections, beam_from_config
+    from hubbeam.model.parameters import BeamParameters
+    from hubbeam.model.printed import TABLE1
 
     paper = yaml.safe_load((REPO / "config" / "config.yaml").read_text())
     assert beam_from_config(paper["beam"]) == BeamParameters.from_config(paper)

@@ -1,4 +1,4 @@
-"""Parameter sweeps (``hubbeam.sweep``, ``hubbeam.core.sweep``) against individual simulations.
+"""Parameter sweeps (``hubbeam.simulation.sweep``, ``hubbeam.core.sweep``) against individual simulations.
 
 * a sweep point reproduces ``simulate`` of the same case (peak tip deflection, its time and the
   residual amplitude), with and without a tip mass, to the sweep's accuracy target;
@@ -21,15 +21,15 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from hubbeam import validity
-from hubbeam.config import ConfigError, validate_config
+from hubbeam.configuration.load import ConfigError, validate_config
 from hubbeam.core import radau
 from hubbeam.core.inputs import ModelTraits
 from hubbeam.core.sweep import hermite_abs_max, output_grid
-from hubbeam.io import open_result, write_netcdf
-from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import simulate
-from hubbeam.sweep import (
+from hubbeam.model import validity
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.results.io import open_result, write_netcdf
+from hubbeam.simulation.simulate import simulate
+from hubbeam.simulation.sweep import (
     _points,
     axis_values,
     gather_chunks,
@@ -132,8 +132,8 @@ def test_diverged_run_is_flagged_not_raised(spinup, params):
 def test_tlam_diverges_exactly_above_its_critical_speed(_study_config, params):
     """The sweep's divergence (time integration) agrees with the eigen-analysis: TLAM diverges
     once the final speed exceeds Omega_c(m_t) (K22 singular) and stays bounded below it."""
-    from hubbeam.eigen import critical_speed
-    from hubbeam.parameters import TipMass
+    from hubbeam.model.eigen import critical_speed
+    from hubbeam.model.parameters import TipMass
 
     masses = (0.0, 0.6)
     critical = [critical_speed("TLAM", params, TipMass(m, params.L), 3, 20.0) for m in masses]

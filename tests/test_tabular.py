@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from hubbeam.tabular import SECTION_COLUMNS, TableError, read_table, resolve_files
+from hubbeam.configuration.tabular import SECTION_COLUMNS, TableError, read_table, resolve_files
 
 PLAIN = "x,rhoA,EI,EA\n0,1.2,14000,2.8e7\n10,1.2,14000,2.8e7\n"
 EXPECTED = {"x": [0.0, 10.0], "rhoA": [1.2, 1.2], "EI": [14000.0, 14000.0], "EA": [2.8e7, 2.8e7]}

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from hubbeam.core.maneuver import hub_motion
-from hubbeam.eigen import tip_mass_frequency_roots
-from hubbeam.modes import clamped_free_roots
-from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.model.eigen import tip_mass_frequency_roots
+from hubbeam.model.modes import clamped_free_roots
+from hubbeam.model.parameters import BeamParameters, TipMass
 from hubbeam.validation import exudyn_model
 
 TABLE1 = BeamParameters(L=8.0, rho=2.7667e3, A=7.2968e-5, E=6.8952e10, I=8.2189e-9, Jh=200.0,
@@ -58,7 +58,7 @@ def test_slow_spin_up_tip_deflection_agrees_with_foam():
     (v_peak / L)^2 v_peak (2.6e-5 m here); the discretisation error of the reference is measured
     by halving the elements. TLAM, without the centrifugal stiffening, must be far off.
     """
-    from hubbeam.simulate import simulate
+    from hubbeam.simulation.simulate import simulate
 
     wf, tf, t_end = 0.5, 10.0, 12.0
     coarse, fine = (exudyn_model.spin_up(TABLE1, None, wf, tf, t_end,

@@ -9,10 +9,10 @@ published must lie in that interval widened by the estimate on both sides.
 import numpy as np
 import pytest
 
-from hubbeam import linearised
-from hubbeam.eigen import gyroscopic_frequencies
-from hubbeam.matrices import assemble
-from hubbeam.parameters import TipMass
+from hubbeam.model import linearised
+from hubbeam.model.eigen import gyroscopic_frequencies
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import TipMass
 from hubbeam.validation import published, rotating_eigen
 
 MODES = (10, 15, 20)
@@ -96,7 +96,7 @@ def test_quadratic_eigensolver_matches_a_state_space_solution():
     """The QZ linearisation of the QEP (M not inverted) against the first-order state-space form
     with the inverse mass matrix, assembled here from Eqs. (29)-(31) term by term; FOAM in
     physical units, with tip mass."""
-    from hubbeam.parameters import BeamParameters
+    from hubbeam.model.parameters import BeamParameters
 
     params = BeamParameters(L=8.0, rho=2.7667e3, A=7.2968e-5, E=6.8952e10, I=8.2189e-9,
                             Jh=200.0, rA=0.5)

@@ -11,9 +11,9 @@ import importlib.util
 import numpy as np
 import pytest
 
-from hubbeam.modes import clamped_free_roots
-from hubbeam.paper import TABLE1
-from hubbeam.parameters import BeamParameters
+from hubbeam.model.modes import clamped_free_roots
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.printed import TABLE1
 from hubbeam.validation.nonuniform import (
     PYBMODES_MESHES,
     pybmodes_comparison,

@@ -1,4 +1,4 @@
-"""Validity flags (hubbeam.validity): runs beyond the small-deflection range the models assume are
+"""Validity flags (hubbeam.model.validity): runs beyond the small-deflection range the models assume are
 flagged, a stop at |v(L)| > divergence_limit * L is "left_range" unless the run went beyond the
 critical speed of its linearisation ("diverged"), and figures and reports say so."""
 
@@ -9,11 +9,11 @@ import math
 import matplotlib
 import pytest
 
-from hubbeam import validity
-from hubbeam.config import case_settings
+from hubbeam.configuration.load import case_settings
 from hubbeam.core import radau
-from hubbeam.parameters import BeamParameters
-from hubbeam.simulate import simulate
+from hubbeam.model import validity
+from hubbeam.model.parameters import BeamParameters
+from hubbeam.simulation.simulate import simulate
 
 matplotlib.use("Agg")
 
@@ -82,9 +82,9 @@ def test_a_blown_up_state_is_diverged_whatever_the_deflection():
 
 
 def test_figures_and_reports_name_a_flagged_run(paper):
+    from hubbeam.paper.report import runs_markdown
     from hubbeam.plotting import case_figure
     from hubbeam.plotting.figures import plot_series
-    from hubbeam.report import runs_markdown
     from hubbeam.study.summary import case_summary
 
     ds = run(paper, "tab3_foam_tau400")

@@ -17,7 +17,7 @@ hub. Its gains ``K`` act on states by name (:func:`hubbeam.linear.statespace.sta
 
 The reference ``x_r`` holds ``q1`` at the centrifugal stretch of the reference speed,
 ``theta_r'^2 s`` with ``s = (K1 - W^2 M1)^-1 V1`` at the reference's final speed ``W`` (the
-stretch ``hubbeam.linearised.axial_stretch`` is ``W^2 s``): exact once the spin-up has ended, so
+stretch ``hubbeam.model.linearised.axial_stretch`` is ``W^2 s``): exact once the spin-up has ended, so
 that a controller with gains on ``q1`` holds the steady spin without a torque offset. Every
 check runs before a simulation: names, weights, the design model, a design speed where the
 design model has a steady spin (``K1 - W^2 M1`` positive definite for a model that keeps ``q1``;
@@ -34,12 +34,12 @@ from collections.abc import Mapping
 import numpy as np
 import scipy.linalg
 
-from hubbeam.damping import damping_matrices
 from hubbeam.linear.statespace import OUTPUTS, linear_model, state_names
-from hubbeam.maneuvers import FeedbackLaw
-from hubbeam.models import MODELS
-from hubbeam.models import model as model_traits
-from hubbeam.simulate import SimulationError, simulate
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.maneuvers import FeedbackLaw
+from hubbeam.model.models import MODELS
+from hubbeam.model.models import model as model_traits
+from hubbeam.simulation.simulate import SimulationError, simulate
 
 #: the measured signals a controller may feed back or weight: outputs without feedthrough
 SIGNALS = tuple(name for name in OUTPUTS if name != "tip_acceleration")
@@ -152,7 +152,7 @@ def reference_speed(reference: Mapping) -> float:
 
 
 def feedback_law(case: Mapping, sm, beam) -> tuple[FeedbackLaw, dict]:
-    """The :class:`~hubbeam.maneuvers.FeedbackLaw` of the ``state_feedback`` case ``case`` with
+    """The :class:`~hubbeam.model.maneuvers.FeedbackLaw` of the ``state_feedback`` case ``case`` with
     the system matrices ``sm`` of ``beam``, and the dataset attributes that record it."""
     maneuver = case["maneuver"]
     n = sm.M1.shape[0]
@@ -185,7 +185,7 @@ def feedback_law(case: Mapping, sm, beam) -> tuple[FeedbackLaw, dict]:
 
 
 def simulate_case(case, params, numerics, matrices=None, **options):
-    """:func:`hubbeam.simulate.simulate` of any case, a ``state_feedback`` one with its gains
+    """:func:`hubbeam.simulation.simulate.simulate` of any case, a ``state_feedback`` one with its gains
     resolved (:func:`feedback_law`) for the matrices of every run."""
     return simulate(case, params, numerics, matrices,
                     feedback=functools.partial(feedback_law, beam=params), **options)

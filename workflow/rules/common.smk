@@ -3,9 +3,9 @@
 Rules reach the experiment through these helpers: case names for wildcards, the resolved case for
 `params:` (so that editing a case reruns exactly that case), and the package sources a rule's
 script imports, as inputs (Snakemake watches a script's own mtime, not the modules it imports).
-Every path comes from `PATHS` (hubbeam.paths: results/ and logs/ for the paper, results/<name>/
+Every path comes from `PATHS` (hubbeam.results.paths: results/ and logs/ for the paper, results/<name>/
 and logs/<name>/ for a study; `SHARED` for the compiled kernels' markers), every figure and table
-from `PRODUCTS`, the configuration's products (hubbeam.products.products_for).
+from `PRODUCTS`, the configuration's products (hubbeam.reporting.products.products_for).
 """
 
 import os
@@ -13,13 +13,13 @@ from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
 
-from hubbeam.config import case_names, case_settings
-from hubbeam.models import FAMILIES, model, wildcard_pattern
-from hubbeam.paths import FIGURE_FORMATS, SHARED, TABLE_FORMATS, study_paths
-from hubbeam.products import (CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE, EIGEN_FIGURE, PAPER,
-                              PAPER_PRODUCTS, SIMULATION_FIGURE, TABLE, designed_cases, of_kind,
-                              product_cases, product_sets, products_for)
-from hubbeam.sourcedeps import script_dependencies
+from hubbeam.configuration.load import case_names, case_settings
+from hubbeam.model.models import FAMILIES, model, wildcard_pattern
+from hubbeam.results.paths import FIGURE_FORMATS, SHARED, TABLE_FORMATS, study_paths
+from hubbeam.reporting.products import (CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE, EIGEN_FIGURE, PAPER,
+                                        PAPER_PRODUCTS, SIMULATION_FIGURE, TABLE, designed_cases, of_kind,
+                                        product_cases, product_sets, products_for)
+from hubbeam.reporting.sourcedeps import script_dependencies
 
 PACKAGE_DIR = Path(workflow.basedir, "src", "hubbeam")
 SCRIPTS_DIR = Path(workflow.basedir, "workflow", "scripts")
@@ -29,7 +29,7 @@ PATHS = study_paths(config)
 PRODUCTS = products_for(config)
 #: the paper's own products (Tables 1-3, Figs. 3-10, claims, reproduction report) are asked for
 WITH_PAPER = PAPER in product_sets(config)
-#: the kernel families, each compiled once (hubbeam.models)
+#: the kernel families, each compiled once (hubbeam.model.models)
 FAMILY_PATTERN = wildcard_pattern(FAMILIES)
 
 
@@ -51,7 +51,7 @@ def case_params(wildcards):
 def script_code(script, *modules):
     """The package sources workflow/scripts/`script` runs, as inputs relative to the working
     directory: every hubbeam module it imports, transitively, with the package data those modules
-    declare (`hubbeam.sourcedeps`), and the `modules` it imports by a name computed at run time
+    declare (`hubbeam.reporting.sourcedeps`), and the `modules` it imports by a name computed at run time
     (e.g. "hubbeam.plotting.fig05")."""
     try:
         files = script_dependencies(SCRIPTS_DIR / script, PACKAGE_DIR, modules)
@@ -92,7 +92,7 @@ PRODUCT_CAPTION = "../report/product.rst"
 
 
 def product(key):
-    """The paper's product `key` (`hubbeam.products.PAPER_PRODUCTS`)."""
+    """The paper's product `key` (`hubbeam.reporting.products.PAPER_PRODUCTS`)."""
     return PAPER_PRODUCTS[key]
 
 
@@ -168,7 +168,7 @@ def linear_model_exports():
     """One `[tip-mass index, model, hub, netCDF, MATLAB]` per exported set of linear models (rule
     in linear.smk): every model and hub condition at every tip mass of `linear.tip_masses`."""
     from hubbeam.linear.statespace import HUBS
-    from hubbeam.models import MODELS
+    from hubbeam.model.models import MODELS
 
     return [[k, model, hub, *(PATHS.linear(f"models/{model}_{hub}_tip{k}", ext) for ext in ("nc", "mat"))]
             for k in range(len(config["linear"]["tip_masses"])) for model in MODELS for hub in HUBS]
@@ -195,8 +195,8 @@ def archive_inputs(wildcards):
 
 def simulation_matrices(wildcards):
     """The matrices file of the job's case: its tip-mass configuration (rule in matrices.smk)."""
-    from hubbeam.matrices import configuration_name
-    from hubbeam.parameters import TipMass
+    from hubbeam.model.matrices import configuration_name
+    from hubbeam.model.parameters import TipMass
 
     tip = TipMass(**case_config(wildcards.case)["tip_mass"])
     return PATHS.matrices(configuration_name(tip))
@@ -204,7 +204,7 @@ def simulation_matrices(wildcards):
 
 def simulation_numerics():
     """The `numerics` settings a simulation reads (changing any other one does not rerun it)."""
-    from hubbeam.simulate import NUMERICS_KEYS, OPTIONAL_NUMERICS
+    from hubbeam.simulation.simulate import NUMERICS_KEYS, OPTIONAL_NUMERICS
 
     return {key: config["numerics"].get(key, default) for key, default in
             {**dict.fromkeys(NUMERICS_KEYS), **OPTIONAL_NUMERICS}.items()}
@@ -215,8 +215,8 @@ def simulation_numerics():
 
 def matrices_configurations():
     """{name: {"mass", "position", "modes"}} over the tip masses of the configured cases."""
-    from hubbeam.matrices import configuration_name
-    from hubbeam.parameters import TipMass
+    from hubbeam.model.matrices import configuration_name
+    from hubbeam.model.parameters import TipMass
 
     configurations = {}
     for case in cases():
@@ -400,21 +400,21 @@ def validation_targets(wildcards):
 
 def sweeps():
     """Names of the configured parameter sweeps (`sweeps.maps`), sorted; none without `sweeps`."""
-    from hubbeam.sweep import sweep_names
+    from hubbeam.simulation.sweep import sweep_names
 
     return sweep_names(config)
 
 
 def sweep_params(wildcards):
     """`params:` function: the resolved sweep of the job's `{sweep}` wildcard."""
-    from hubbeam.sweep import sweep_settings
+    from hubbeam.simulation.sweep import sweep_settings
 
     return sweep_settings(config, wildcards.sweep)
 
 
 def sweep_chunks(wildcards):
     """Input function of `sweep`: the chunk files of the job's `{sweep}` wildcard."""
-    from hubbeam.sweep import n_chunks
+    from hubbeam.simulation.sweep import n_chunks
 
     count = n_chunks(sweep_params(wildcards))
     return [PATHS.sweep_chunk(wildcards.sweep, str(chunk)) for chunk in range(count)]
@@ -423,7 +423,7 @@ def sweep_chunks(wildcards):
 def sweep_targets(in_all=True):
     """The netCDF result and the figure (PDF and PNG) of every sweep whose `in_all` is `in_all`
     (the maps of `all`, or the large ones of `large_sweeps`)."""
-    from hubbeam.sweep import sweep_settings
+    from hubbeam.simulation.sweep import sweep_settings
 
     names = [name for name in sweeps() if sweep_settings(config, name)["in_all"] == in_all]
     return [PATHS.sweep(name) for name in names] + [
@@ -450,7 +450,7 @@ def reading_inputs():
 
 
 def _reading_cases(name):
-    from hubbeam.readings import ReadingError, reading_cases
+    from hubbeam.paper.readings import ReadingError, reading_cases
 
     if name not in config.get("readings", {}):
         raise WorkflowError(f"{PATHS.reading(name)}: unknown reading {name!r}; "

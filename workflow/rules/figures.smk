@@ -1,7 +1,7 @@
 """Figures (Figs. 3-10 and beyond, the eigen-analysis figures of every configuration) and Tables
 1-3, drawn from the result files only.
 
-Every figure and table is a product of the registry (`hubbeam.products`; `PRODUCTS` in common.smk
+Every figure and table is a product of the registry (`hubbeam.reporting.products`; `PRODUCTS` in common.smk
 holds the configuration's), which names the cases or result files it reads, the function that
 draws it and its caption. One rule per figure (defined in a loop) so that each figure has its own
 caption in `snakemake --report`. The figures per case and per comparison are in study.smk.

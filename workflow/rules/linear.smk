@@ -1,5 +1,5 @@
 """Linear models about a steady spin for control design (hubbeam.linear, docs/linear-models.md),
-from the `linear` section of the configuration (defaults in hubbeam.defaults): the state-space
+from the `linear` section of the configuration (defaults in hubbeam.configuration.defaults): the state-space
 models of every model, free and prescribed hub, over the speed grid as CF netCDF and MATLAB files
 (`linear_models`), and the datasets the linear-model figures of the registry read: the tracked,
 damped Campbell diagram, the mode shapes along the span, the poles and zeros over speed and the

@@ -2,7 +2,7 @@
 
 One file per configuration, `matrices/<name>.nc` of the results folder (`PATHS` in common.smk:
 results/ for the paper, results/<name>/ for a study), named by
-`hubbeam.matrices.configuration_name` (`mt0`, `mt0p1_l8`, ...), with as many modes as the most
+`hubbeam.model.matrices.configuration_name` (`mt0`, `mt0p1_l8`, ...), with as many modes as the most
 demanding case that uses it (the matrices of fewer modes are its leading blocks). The helpers
 (`matrices_configurations`, `matrices_configuration`, `matrices_results`) are in common.smk.
 """

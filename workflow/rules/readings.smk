@@ -1,8 +1,8 @@
-"""Alternative readings of the paper (config `readings`, hubbeam.readings and hubbeam.explain).
+"""Alternative readings of the paper (config `readings`, hubbeam.paper.readings and hubbeam.paper.explain).
 
 Each reading is one job: it simulates the runs its change generates (`reading-<reading>--<case>`,
 held in memory; unchanged runs are the default results) and evaluates its claims with the
-functions of hubbeam.claims -> readings/claims/<reading>.csv of the results folder.
+functions of hubbeam.paper.claims -> readings/claims/<reading>.csv of the results folder.
 `readings_matrix` collects them into the claims x readings matrix, readings/readings.csv and
 readings.nc, which the
 reproduction report reads. The default results never depend on these rules. Part of `all` (the

@@ -1,6 +1,6 @@
 """Parameter sweeps beyond the paper (`sweeps` of the config): maps of the peak tip deflection.
 
-A map is split into chunks of `chunk_size` simulations (hubbeam.sweep.chunk_points): one
+A map is split into chunks of `chunk_size` simulations (hubbeam.simulation.sweep.chunk_points): one
 `sweep_chunk` job per chunk runs them in the parallel numba kernel on its threads (one by default,
 a chunk being sized for about a minute on one core) and writes the temporary
 `sweeps/chunks/<name>/<i>.nc` of the results folder; `sweep` gathers the chunks into

@@ -5,7 +5,7 @@ The archive holds, under one top directory (``hubbeam-results/`` for the paper,
 ``<name>-results/`` for a study, rule parameter ``top``): every file given (netCDF results,
 figures, tables, report), the workflow that made them (``Snakefile`` and every file under
 ``workflow/``), the configuration the workflow ran with (``config/config.used.yaml``),
-``ro-crate-metadata.json`` (``hubbeam.crate``: what each file is, the software versions, the run)
+``ro-crate-metadata.json`` (``hubbeam.reporting.crate``: what each file is, the software versions, the run)
 and ``MANIFEST.sha256``, one ``<sha256>  <path>`` line per file in the format of ``sha256sum``, so
 ``tar xzf hubbeam-results.tar.gz && cd hubbeam-results && sha256sum -c MANIFEST.sha256`` checks
 it. The archive is written under a temporary name beside the target and renamed when complete.
@@ -21,8 +21,8 @@ from pathlib import Path
 
 import yaml
 
-from hubbeam.crate import MAIN_WORKFLOW, METADATA_NAME, WORKFLOW_DIR, Member, crate_metadata, sha256
-from hubbeam.io import staged
+from hubbeam.reporting.crate import MAIN_WORKFLOW, METADATA_NAME, WORKFLOW_DIR, Member, crate_metadata, sha256
+from hubbeam.results.io import staged
 
 TOP = "hubbeam-results"
 MANIFEST = "MANIFEST.sha256"
@@ -62,7 +62,7 @@ def build_archive(files: Iterable[os.PathLike | str], config: Mapping, output: o
                   top: str = TOP) -> Path:
     """Write ``output`` (.tar.gz) with ``files`` (paths relative to ``root``), the workflow in
     ``workflow_root``, the config, the crate and the manifest, all under the directory ``top``;
-    atomic (``hubbeam.io.staged``: temporary file + rename). Raises FileNotFoundError naming a missing file."""
+    atomic (``hubbeam.results.io.staged``: temporary file + rename). Raises FileNotFoundError naming a missing file."""
     root, output = Path(root), Path(output)
     names = sorted({Path(os.path.relpath(Path(root, f), root)).as_posix() for f in files})
     workflow = workflow_files(workflow_root)

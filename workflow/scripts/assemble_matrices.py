@@ -1,10 +1,10 @@
 """Snakemake shim: assemble and write the system matrices of one tip-mass configuration."""
 
-from hubbeam.beam import beam_from_config
-from hubbeam.io import write_netcdf
-from hubbeam.matrices import assemble, to_dataset
-from hubbeam.parameters import TipMass
-from hubbeam.provenance import global_attributes
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.matrices import assemble, to_dataset
+from hubbeam.model.parameters import TipMass
+from hubbeam.results.io import write_netcdf
+from hubbeam.results.provenance import global_attributes
 
 p = snakemake.params
 params = beam_from_config(p.beam)

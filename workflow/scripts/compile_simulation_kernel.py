@@ -3,8 +3,8 @@ cache (once per source; rule simulation_kernel)."""
 
 import os
 
-from hubbeam.io import write_text
-from hubbeam.simulate import compile_kernels
+from hubbeam.results.io import write_text
+from hubbeam.simulation.simulate import compile_kernels
 
 family = snakemake.params.family
 seconds = compile_kernels(family)

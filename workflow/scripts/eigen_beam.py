@@ -1,10 +1,10 @@
-"""Snakemake shim: the study's beam as data, its properties and first mode shapes (``hubbeam.shapes``)."""
+"""Snakemake shim: the study's beam as data, its properties and first mode shapes (``hubbeam.model.shapes``)."""
 
-from hubbeam.beam import beam_from_config
-from hubbeam.io import write_netcdf
-from hubbeam.parameters import TipMass
-from hubbeam.provenance import global_attributes
-from hubbeam.shapes import beam_dataset
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.parameters import TipMass
+from hubbeam.model.shapes import beam_dataset
+from hubbeam.results.io import write_netcdf
+from hubbeam.results.provenance import global_attributes
 
 p = snakemake.params
 ds = beam_dataset(beam_from_config(p.beam), {case: TipMass(**tip) for case, tip in p.tips.items()},

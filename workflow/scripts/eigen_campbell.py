@@ -2,10 +2,10 @@
 
 import numpy as np
 
-from hubbeam.beam import beam_from_config
-from hubbeam.eigen import campbell
-from hubbeam.io import write_netcdf
-from hubbeam.provenance import global_attributes
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.eigen import campbell
+from hubbeam.results.io import write_netcdf
+from hubbeam.results.provenance import global_attributes
 
 p = snakemake.params
 ds = campbell(beam_from_config(p.beam), p.tip_masses, np.linspace(**p.speeds), p.n_modes, p.n_quad)

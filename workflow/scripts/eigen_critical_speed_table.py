@@ -1,8 +1,8 @@
 """Snakemake shim: critical speeds with each tip mass at the beam tip (csv), which the claims read."""
 
-from hubbeam.beam import beam_from_config
-from hubbeam.eigen import critical_speed_table
-from hubbeam.io import staged
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.eigen import critical_speed_table
+from hubbeam.results.io import staged
 
 p = snakemake.params
 table = critical_speed_table(beam_from_config(p.beam), p.tip_masses, p.n_modes, p.search_max, p.n_quad)

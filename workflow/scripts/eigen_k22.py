@@ -2,10 +2,10 @@
 
 import numpy as np
 
-from hubbeam.beam import beam_from_config
-from hubbeam.eigen import k22_sweep
-from hubbeam.io import write_netcdf
-from hubbeam.provenance import global_attributes
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.eigen import k22_sweep
+from hubbeam.results.io import write_netcdf
+from hubbeam.results.provenance import global_attributes
 
 p = snakemake.params
 params = beam_from_config(p.beam)

@@ -1,8 +1,8 @@
 """Snakemake shim: Table 2, natural and TLAM/FOAM frequencies (Hz) beside the printed values."""
 
-from hubbeam.beam import beam_from_config
-from hubbeam.eigen import table2
-from hubbeam.io import staged
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.eigen import table2
+from hubbeam.results.io import staged
 
 p = snakemake.params
 table = table2(beam_from_config(p.beam), p.speed, p.n_modes, p.n_quad)

@@ -7,9 +7,9 @@ product's ``options`` (e.g. the tip mass a linear-model figure shows).
 
 from pathlib import Path
 
-from hubbeam.io import open_result, staged
 from hubbeam.plotting import draw
-from hubbeam.products import resolve
+from hubbeam.reporting.products import resolve
+from hubbeam.results.io import open_result, staged
 
 files = {name: path for name, path in snakemake.input.items() if name not in ("style", "code")}
 datasets = {name: open_result(path) for name, path in files.items()}

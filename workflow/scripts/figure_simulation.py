@@ -2,9 +2,9 @@
 
 from pathlib import Path
 
-from hubbeam.io import staged
 from hubbeam.plotting import render_files
-from hubbeam.products import resolve
+from hubbeam.reporting.products import resolve
+from hubbeam.results.io import staged
 
 p = snakemake.params
 written = [Path(snakemake.output.pdf), Path(snakemake.output.pdf).with_suffix(".png")]

@@ -1,8 +1,8 @@
 """Snakemake shim: draw a parameter-sweep map from its result file (rule figure_sweep)."""
 
-from hubbeam.io import open_result
 from hubbeam.plotting import draw
 from hubbeam.plotting.sweep_maps import plot
+from hubbeam.results.io import open_result
 
 written = draw(plot, snakemake.output.pdf, open_result(snakemake.input.sweep))
 with open(snakemake.log[0], "w") as log:

@@ -3,10 +3,10 @@ diagram, the poles and zeros over speed or the Bode diagrams, ``hubbeam.linear.d
 
 import numpy as np
 
-from hubbeam.beam import beam_from_config
-from hubbeam.io import write_netcdf
 from hubbeam.linear import datasets
-from hubbeam.provenance import global_attributes
+from hubbeam.model.beam import beam_from_config
+from hubbeam.results.io import write_netcdf
+from hubbeam.results.provenance import global_attributes
 
 p = snakemake.params
 beam = beam_from_config(p.beam)

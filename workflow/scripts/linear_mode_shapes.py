@@ -1,10 +1,10 @@
 """Snakemake shim: the first vibration mode shapes along the span at the first and the last speed
 of the tracked Campbell diagram (``hubbeam.linear.datasets.mode_shapes``)."""
 
-from hubbeam.beam import beam_from_config
-from hubbeam.io import open_result, write_netcdf
 from hubbeam.linear.datasets import mode_shapes
-from hubbeam.provenance import global_attributes
+from hubbeam.model.beam import beam_from_config
+from hubbeam.results.io import open_result, write_netcdf
+from hubbeam.results.provenance import global_attributes
 
 p = snakemake.params
 ds = mode_shapes(open_result(snakemake.input.campbell), beam_from_config(p.beam), p.shapes)

@@ -3,12 +3,12 @@ netCDF and one MATLAB file per model, hub and tip mass (``hubbeam.linear.export`
 
 import numpy as np
 
-from hubbeam.beam import beam_from_config
-from hubbeam.damping import damping_matrices
+from hubbeam.configuration.settings import damping_settings
 from hubbeam.linear.export import to_dataset, write_dataset, write_mat
-from hubbeam.matrices import assemble
-from hubbeam.parameters import TipMass
-from hubbeam.settings import damping_settings
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import TipMass
 
 p = snakemake.params
 beam = beam_from_config(p.beam)

@@ -1,8 +1,8 @@
 """Snakemake shim: every reading's claim rows -> results/readings/readings.csv and readings.nc."""
 
-from hubbeam.io import staged, write_netcdf
-from hubbeam.provenance import global_attributes
-from hubbeam.readings import matrix, read_rows, write_rows
+from hubbeam.paper.readings import matrix, read_rows, write_rows
+from hubbeam.results.io import staged, write_netcdf
+from hubbeam.results.provenance import global_attributes
 
 rows = [row for path in snakemake.input.readings for row in read_rows(path)]
 with staged(snakemake.output.csv) as (csv,):

@@ -2,9 +2,9 @@
 
 import logging
 
-from hubbeam.claims import read_claims
-from hubbeam.io import staged
-from hubbeam.readings import evaluate_reading, reading_rows, write_rows
+from hubbeam.paper.claims import read_claims
+from hubbeam.paper.readings import evaluate_reading, reading_rows, write_rows
+from hubbeam.results.io import staged
 
 logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
                     format="%(asctime)s %(name)s %(levelname)s %(message)s")

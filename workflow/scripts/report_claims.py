@@ -2,8 +2,8 @@
 
 from collections import Counter
 
-from hubbeam.claims import Results, evaluate, write_claims
-from hubbeam.io import staged
+from hubbeam.paper.claims import Results, evaluate, write_claims
+from hubbeam.results.io import staged
 
 results = Results(dict(zip(snakemake.params.cases, snakemake.input.datasets)),
                   table2_csv=snakemake.input.table2,

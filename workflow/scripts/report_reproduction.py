@@ -7,12 +7,12 @@ has those inputs (the config has a `validation` or `readings` section, see
 
 from pathlib import Path
 
-from hubbeam.claims import read_claims
-from hubbeam.document import markdown_to_html
-from hubbeam.explain import section
-from hubbeam.io import open_result, write_text
-from hubbeam.readings import read_rows
-from hubbeam.report import reproduction_markdown
+from hubbeam.paper.claims import read_claims
+from hubbeam.paper.explain import section
+from hubbeam.paper.readings import read_rows
+from hubbeam.paper.report import reproduction_markdown
+from hubbeam.reporting.document import markdown_to_html
+from hubbeam.results.io import open_result, write_text
 from hubbeam.validation.report import published_section
 
 out = Path(snakemake.output.markdown)

@@ -2,8 +2,8 @@
 
 from pathlib import Path
 
-from hubbeam.document import markdown_to_html
-from hubbeam.io import write_text
+from hubbeam.reporting.document import markdown_to_html
+from hubbeam.results.io import write_text
 from hubbeam.validation.report import validation_markdown
 
 inputs = dict(snakemake.input.items())

@@ -2,10 +2,10 @@
 
 import logging
 
-from hubbeam.beam import beam_from_config
 from hubbeam.feedback import simulate_case
-from hubbeam.io import open_result, write_netcdf
-from hubbeam.matrices import from_dataset
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.matrices import from_dataset
+from hubbeam.results.io import open_result, write_netcdf
 
 logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
                     format="%(asctime)s %(name)s %(levelname)s %(message)s")

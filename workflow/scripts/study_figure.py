@@ -5,9 +5,9 @@ inputs other than ``code`` are the simulation files (``params.per_case``: one, p
 
 from pathlib import Path
 
-from hubbeam.io import open_result, staged
 from hubbeam.plotting import draw
-from hubbeam.products import resolve
+from hubbeam.reporting.products import resolve
+from hubbeam.results.io import open_result, staged
 
 p = snakemake.params
 files = {name: path for name, path in snakemake.input.items() if name != "code"}

@@ -4,7 +4,7 @@ import csv
 import os
 from pathlib import Path
 
-from hubbeam.io import open_result, staged, write_text
+from hubbeam.results.io import open_result, staged, write_text
 from hubbeam.study.report import study_html, study_markdown
 from hubbeam.study.summary import COLUMNS, case_summary
 from hubbeam.study.trust import design_table

@@ -2,9 +2,9 @@
 
 import logging
 
-from hubbeam.beam import beam_from_config
-from hubbeam.io import write_netcdf
-from hubbeam.sweep import run_chunk
+from hubbeam.model.beam import beam_from_config
+from hubbeam.results.io import write_netcdf
+from hubbeam.simulation.sweep import run_chunk
 
 logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
                     format="%(asctime)s %(name)s %(levelname)s %(message)s")

@@ -2,8 +2,8 @@
 
 import os
 
-from hubbeam.io import write_text
-from hubbeam.sweep import compile_kernel
+from hubbeam.results.io import write_text
+from hubbeam.simulation.sweep import compile_kernel
 
 seconds = compile_kernel()
 message = f"sweep kernel ready in {seconds:.1f} s (numba cache {os.environ.get('NUMBA_CACHE_DIR')})"

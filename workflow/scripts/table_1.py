@@ -1,7 +1,7 @@
 """Snakemake shim: Table 1 (physical parameters) from the configuration, csv + md + tex."""
 
-from hubbeam.io import staged
-from hubbeam.tables import table1, to_markdown, write_table
+from hubbeam.paper.tables import table1, to_markdown, write_table
+from hubbeam.results.io import staged
 
 table = table1(snakemake.params.beam)
 out = snakemake.output

@@ -1,7 +1,7 @@
 """Snakemake shim: Markdown and LaTeX renderings of Table 2 (its csv comes from the eigen rule)."""
 
-from hubbeam.io import staged
-from hubbeam.tables import table2, to_markdown, write_table
+from hubbeam.paper.tables import table2, to_markdown, write_table
+from hubbeam.results.io import staged
 
 table = table2(snakemake.input.csv, snakemake.params.speed)
 with staged(snakemake.output.md, snakemake.output.tex) as (md, _tex):

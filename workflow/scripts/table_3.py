@@ -1,7 +1,7 @@
 """Snakemake shim: Table 3 (largest |Q_theta| per torque amplitude, FOAM), csv + md + tex."""
 
-from hubbeam.io import open_result, staged
-from hubbeam.tables import table3, to_markdown, write_table
+from hubbeam.paper.tables import table3, to_markdown, write_table
+from hubbeam.results.io import open_result, staged
 
 files = zip(snakemake.params.cases, snakemake.input.datasets)
 table = table3({case: open_result(path) for case, path in files})

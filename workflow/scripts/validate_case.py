@@ -1,7 +1,7 @@
 """Snakemake shim: Exudyn reference and model tip deflections of one case, with differences."""
 
-from hubbeam.io import open_result, write_netcdf
-from hubbeam.provenance import global_attributes
+from hubbeam.results.io import open_result, write_netcdf
+from hubbeam.results.provenance import global_attributes
 from hubbeam.validation.comparison import comparison_dataset
 
 ds = comparison_dataset(open_result(snakemake.input.reference), open_result(snakemake.input.models))

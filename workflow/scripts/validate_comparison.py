@@ -2,8 +2,8 @@
 
 from pathlib import Path
 
-from hubbeam.io import open_result, staged
 from hubbeam.plotting import draw
+from hubbeam.results.io import open_result, staged
 from hubbeam.validation.comparison import comparison_table
 from hubbeam.validation.figures import exudyn_comparison
 

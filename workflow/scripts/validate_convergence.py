@@ -2,10 +2,10 @@
 
 import xarray as xr
 
-from hubbeam.beam import beam_from_config
-from hubbeam.io import staged, write_netcdf
-from hubbeam.parameters import TipMass
-from hubbeam.provenance import global_attributes
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.parameters import TipMass
+from hubbeam.results.io import staged, write_netcdf
+from hubbeam.results.provenance import global_attributes
 from hubbeam.validation.comparison import convergence_table
 from hubbeam.validation.exudyn_model import ExudynNumerics, spin_up
 

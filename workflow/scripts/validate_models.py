@@ -1,8 +1,8 @@
 """Snakemake shim: tip outputs of the hubbeam models for one validation case."""
 
-from hubbeam.beam import beam_from_config
-from hubbeam.io import write_netcdf
-from hubbeam.provenance import global_attributes
+from hubbeam.model.beam import beam_from_config
+from hubbeam.results.io import write_netcdf
+from hubbeam.results.provenance import global_attributes
 from hubbeam.validation.comparison import simulate_models
 
 p = snakemake.params

@@ -4,8 +4,8 @@ from pathlib import Path
 
 import pandas as pd
 
-from hubbeam.beam import beam_from_config
-from hubbeam.io import open_result, staged
+from hubbeam.model.beam import beam_from_config
+from hubbeam.results.io import open_result, staged
 from hubbeam.validation.comparison import mode_study
 
 p = snakemake.params

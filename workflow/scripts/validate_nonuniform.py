@@ -1,7 +1,7 @@
 """Snakemake shim: frequencies of a non-uniform beam, Ritz vs our finite elements vs pyBModes."""
 
-from hubbeam.beam import beam_from_config
-from hubbeam.io import staged
+from hubbeam.model.beam import beam_from_config
+from hubbeam.results.io import staged
 from hubbeam.validation.nonuniform import nonuniform_tables
 
 outputs = dict(snakemake.output.items())

@@ -4,9 +4,9 @@ import sys
 
 import numpy as np
 
-from hubbeam.io import staged, write_netcdf
 from hubbeam.plotting import draw
-from hubbeam.provenance import global_attributes
+from hubbeam.results.io import staged, write_netcdf
+from hubbeam.results.provenance import global_attributes
 from hubbeam.validation import figures, published, rotating_eigen
 
 p = snakemake.params

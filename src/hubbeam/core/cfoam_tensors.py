@@ -43,7 +43,7 @@ and with them every entry of ``M = Jh e e^T + sum w J^T J`` and ``F = tau e - K 
     F_q2[i]   = -2 thd (R^T q1' - C2 q2')_i + thd^2 (M2c q2)_i - (G q2)_i - 2 thd (C2^T q2')_i
                 - thd^2 (D q2 + B1^T q1 - W q2 / 2)_i - (K2 q2)_i
 
-(``M1, M2, K1, K2, Jh`` are the :class:`~hubbeam.matrices.SystemMatrices` fields the point-cloud
+(``M1, M2, K1, K2, Jh`` are the :class:`~hubbeam.model.matrices.SystemMatrices` fields the point-cloud
 kernel uses directly; ``M1c, M2c`` are their point-cloud sums, equal to them up to rounding.)
 
 Symmetry. ``W`` and ``G`` are symmetric, and so are the quadratic forms in ``q2`` and ``q2'``, so
@@ -88,10 +88,10 @@ _M1, _M2, _K1, _K2, _M1C, _M2C, _R, _D = range(8)
 
 @kernel
 def cfoam_tensors(sm):
-    """The :data:`CfoamTensors` of the :class:`~hubbeam.matrices.SystemMatrices` ``sm``.
+    """The :data:`CfoamTensors` of the :class:`~hubbeam.model.matrices.SystemMatrices` ``sm``.
 
     Contracts the point cloud ``(sm.x, sm.w, sm.F1, sm.F2, sm.S)`` into the tensors of the module
-    docstring. Every ``S(x_k)`` of Eq. (20) must be symmetric (``hubbeam.matrices`` makes it so
+    docstring. Every ``S(x_k)`` of Eq. (20) must be symmetric (``hubbeam.model.matrices`` makes it so
     exactly); the tensors use its symmetric part.
     """
     n = sm.M1.shape[0]

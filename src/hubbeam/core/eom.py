@@ -5,7 +5,7 @@ Every model is written in the generalised coordinates ``y = (theta, q1, q2)`` (s
     M(y) y'' = F(t, y, y'),        F_theta = tau + Q_theta,
 
 the form of Eq. (24) with the gyroscopic, stiffness and velocity terms moved to the right-hand side.
-``sm`` is the :class:`hubbeam.matrices.SystemMatrices` namedtuple (tip-mass terms included).
+``sm`` is the :class:`hubbeam.model.matrices.SystemMatrices` namedtuple (tip-mass terms included).
 
 * FOAM, Eqs. (25)-(34) without the Delta terms, with M_thq1 = -q2^T R^T and
   M_thq2 = V2 + q1^T R (reproduction note 2).
@@ -21,7 +21,7 @@ the form of Eq. (24) with the gyroscopic, stiffness and velocity terms moved to 
   summed over the point cloud (Gauss nodes of the beam and the tip mass).
 
 A model enters as its :class:`~hubbeam.core.inputs.ModelTraits` (``traits``), built from the one
-table of models (``hubbeam.models``): the kernels branch on what a model keeps, never on its name.
+table of models (``hubbeam.model.models``): the kernels branch on what a model keeps, never on its name.
 
 The kernels only use loops over small arrays: for the 5 to 20 modes of this study explicit loops
 beat BLAS calls. These are the general equations (dataset outputs, the tests' reference); the
@@ -76,7 +76,7 @@ def _quad(A, a, b, n, off_a, off_b):
 @borrowing_kernel
 def add_damping(C, v, F):
     """Subtract the damping forces ``C1 q1'`` and ``C2 q2'`` (``C = [C1, C2]``, shape
-    ``(2, n, n)``, from ``hubbeam.damping``) from the q1 and q2 rows of ``F``."""
+    ``(2, n, n)``, from ``hubbeam.model.damping``) from the q1 and q2 rows of ``F``."""
     n = C.shape[1]
     for b in range(2):
         o = 1 + b * n

@@ -14,7 +14,7 @@ affine in the hub rate and acceleration:
 
 all restricted to the free elastic coordinates, so that an evaluation costs a few ``n x n``
 products instead of assembling and factoring ``M(y)``; ``C1, C2`` are the damping matrices of
-the elastic coordinates (``hubbeam.damping``; zero by default, when ``P3 = 0`` adds exact zeros).
+the elastic coordinates (``hubbeam.model.damping``; zero by default, when ``P3 = 0`` adds exact zeros).
 For a prescribed hub (Eq. 43, a speed table) theta_ddot is known. For a free hub (Eq. 44, a
 torque table, PD or state feedback) the hub row ``m00 theta_ddot + c . e'' = tau + Q_theta``
 (Eqs. 25-27, 32) with ``c = C0 + C1 e = (-R q2, V2 + R^T q1)`` is solved by eliminating ``e''``

@@ -1,7 +1,7 @@
 """The values the kernels receive, as numba-friendly named tuples (importable without numba).
 
 * :class:`ModelTraits`: what a model computes, as flags the kernels branch on (built from the one
-  table of models, ``hubbeam.models``, which the core does not import);
+  table of models, ``hubbeam.model.models``, which the core does not import);
 * :class:`SimulationInputs`: the problem of one simulation (model traits, maneuver, damping,
   system matrices);
 * :class:`IntegratorSettings`: tolerances, the watched tip limit and the step budget of
@@ -21,7 +21,7 @@ from hubbeam.core.system_matrices import SystemMatrices
 
 
 class ModelTraits(NamedTuple):
-    """What the equations of a model keep (Section 3; ``hubbeam.models`` states them per model)."""
+    """What the equations of a model keep (Section 3; ``hubbeam.model.models`` states them per model)."""
 
     keeps_axial: bool  # q1 integrated (SFOAM holds q1 = 0, Eq. 40)
     softening_terms: bool  # the underlined D terms of Eqs. (25), (31), (32) (all but TLAM)

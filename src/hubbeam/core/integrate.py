@@ -3,7 +3,7 @@ equations of motion.
 
 :func:`simulate_kernel` integrates the free coordinates of ``y = (theta, q1, q2)`` (theta is
 dropped for a prescribed maneuver, q1 for SFOAM; see ``eom.free_dofs``) from a given initial
-state (rest, or a steady spin, ``hubbeam.simulate``) with :func:`hubbeam.core.radau.radau5`,
+state (rest, or a steady spin, ``hubbeam.simulation.simulate``) with :func:`hubbeam.core.radau.radau5`,
 then evaluates every output of the simulation dataset on the uniform output grid from the
 interpolated states. Nothing returns to Python per step. TLAM,
 FOAM and SFOAM share one compiled kernel, CFOAM has its own (:data:`FAMILY_KERNELS`): each holds

@@ -1,7 +1,7 @@
 """Jitted hub maneuvers: Section 4's Eqs. (43)-(44) and tabulated or feedback-driven hubs.
 
 A maneuver is an integer ``kind`` and a float array ``mp`` of its parameters (tables packed into
-it by ``hubbeam.maneuvers``). The hub is *prescribed* (``PRESCRIBED``, ``SPEED_TABLE``: theta and
+it by ``hubbeam.model.maneuvers``). The hub is *prescribed* (``PRESCRIBED``, ``SPEED_TABLE``: theta and
 its rates are known functions of time, the torque that drives them is an output) or *free*
 (``TORQUE``, ``TORQUE_TABLE``, ``PD``, ``STATE_FEEDBACK``: the applied torque enters the hub row
 of Eq. 24).

@@ -53,7 +53,7 @@ from hubbeam.core.step_control import INITIAL_STEP_FRACTION, MAX_FACTOR, MIN_FAC
 # Status codes returned by :func:`radau5`, the one home of a run's status (the names are stored
 # in the datasets as ``integrator_status`` and as the sweeps' flag meanings).
 # Whether a stopped run diverged or left the range of the models is decided from these codes by
-# ``hubbeam.validity``.
+# ``hubbeam.model.validity``.
 SUCCESS = 0         # reached the end time
 LEFT_RANGE = 1      # the watched quantity (tip deflection) exceeded its limit
 NON_FINITE = 2      # the state or the right-hand side became NaN or infinite

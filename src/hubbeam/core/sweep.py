@@ -19,7 +19,7 @@ coarse grid does not clip the peaks.
 The points run in parallel on threads: :func:`sweep_tip_extrema` runs one strided share of the
 points (thread ``k`` of ``T`` takes points ``k, k + T, k + 2T, ...``, which balances the load as
 neighbouring grid points cost about the same) and releases the GIL, so ``T`` Python threads run
-``T`` shares at once (:func:`hubbeam.sweep.run_sweep`). This was chosen over a ``numba.prange``
+``T`` shares at once (:func:`hubbeam.simulation.sweep.run_sweep`). This was chosen over a ``numba.prange``
 loop (``parallel=True``), which caches as well but took about 10 s more to compile (measured,
 README), a large part of the workflow's time budget. The per-point kernels are inlined into the
 loop, which saves one more compilation of the integrator they call. A run that stops early

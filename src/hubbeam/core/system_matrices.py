@@ -1,7 +1,7 @@
 """The system matrices every kernel reads, as one numba-friendly namedtuple type.
 
 Defined in the core so that jitted code can build it (``core.sweep.matrices_at``) without
-importing the rest of the package; :func:`hubbeam.matrices.assemble` fills it (Eqs. 13-20 and the
+importing the rest of the package; :func:`hubbeam.model.matrices.assemble` fills it (Eqs. 13-20 and the
 tip-mass terms of the Appendix).
 """
 

@@ -3,9 +3,9 @@ frequency responses and mode shapes along the span.
 
 Each function takes the beam, the tip masses (kg, at the beam tip ``l = L``; 0 for none), the hub
 speeds (rad s-1) and the discretisation, and returns an :class:`xarray.Dataset` with CF units and
-long names over the models of :data:`hubbeam.models.MODELS`; a workflow script adds the provenance
-attributes (``hubbeam.provenance.global_attributes``) and writes it with
-``hubbeam.io.write_netcdf``. ``damping`` is a case's ``damping`` mapping (``hubbeam.damping``) or
+long names over the models of :data:`hubbeam.model.models.MODELS`; a workflow script adds the provenance
+attributes (``hubbeam.results.provenance.global_attributes``) and writes it with
+``hubbeam.results.io.write_netcdf``. ``damping`` is a case's ``damping`` mapping (``hubbeam.model.damping``) or
 None. Models without a mode or a root where others have one (SFOAM keeps no axial coordinates)
 are padded with NaN (``kind`` and ``stable`` -1, ``none``).
 
@@ -29,18 +29,18 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
-from hubbeam.beam import beam_attributes
-from hubbeam.damping import damping_matrices
-from hubbeam.eigen import critical_speed
+from hubbeam.configuration.settings import damping_settings
 from hubbeam.linear import frequency, tracking
 from hubbeam.linear.statespace import HUBS, INPUT_UNITS, OUTPUTS, check_speeds, linear_model, second_order
-from hubbeam.matrices import MODE_NORMALISATION, assemble
-from hubbeam.models import MODELS
-from hubbeam.models import model as model_traits
-from hubbeam.modes import transverse_modes
-from hubbeam.parameters import TipMass
-from hubbeam.provenance import without_provenance
-from hubbeam.settings import damping_settings
+from hubbeam.model.beam import beam_attributes
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.eigen import critical_speed
+from hubbeam.model.matrices import MODE_NORMALISATION, assemble
+from hubbeam.model.models import MODELS
+from hubbeam.model.models import model as model_traits
+from hubbeam.model.modes import transverse_modes
+from hubbeam.model.parameters import TipMass
+from hubbeam.results.provenance import without_provenance
 
 #: the outputs of the transfer functions from the hub torque (free hub)
 TRANSFER_OUTPUTS = ("hub_angle", "tip_deflection", "tip_arc")
@@ -120,7 +120,7 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
     group there (numbered by frequency within the group), ``label`` its dominant coordinate at each
     speed. ``unstable_from`` is the lowest grid speed with an unstable mode; ``critical_speed`` that
     of ``K22`` (Eq. 31, hub held) of the model's linearisation
-    (:func:`hubbeam.eigen.critical_speed`), NaN where none up to the last speed.
+    (:func:`hubbeam.model.eigen.critical_speed`), NaN where none up to the last speed.
     """
     speeds, systems = _checked(beam, tip_masses, speeds, n_modes, n_quad, damping)
     coordinates = _coordinate_names(n_modes)

@@ -7,7 +7,7 @@ over the dimension ``speed``; the names of the states, inputs and outputs are st
 poles) says where a plant is unstable (TLAM above its critical speed): it is not an error. The
 ``.mat`` file (:func:`write_mat`) holds the same arrays with the speed last (``A(:, :, k)`` in
 MATLAB), the speed vector and the names as cell arrays. Both are written atomically
-(``hubbeam.io``); ``docs/linear-models.md`` shows how to load each.
+(``hubbeam.results.io``); ``docs/linear-models.md`` shows how to load each.
 """
 
 from __future__ import annotations
@@ -18,8 +18,6 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from hubbeam.beam import beam_attributes
-from hubbeam.io import staged, write_netcdf
 from hubbeam.linear.statespace import (
     INPUT_UNITS,
     OUTPUTS,
@@ -27,7 +25,9 @@ from hubbeam.linear.statespace import (
     check_speeds,
     linear_model,
 )
-from hubbeam.provenance import global_attributes
+from hubbeam.model.beam import beam_attributes
+from hubbeam.results.io import staged, write_netcdf
+from hubbeam.results.provenance import global_attributes
 
 
 def _state_units(name: str) -> str:

@@ -28,11 +28,11 @@ from __future__ import annotations
 import numpy as np
 
 from hubbeam.linear.statespace import LinearModel
-from hubbeam.linearised import pair_frequencies
+from hubbeam.model.linearised import pair_frequencies
 
 #: relative tolerance of the comparisons of pole and zero frequencies (alternation, right
 #: half-plane): the QZ zeros of the unbalanced pencil, whose stiff axial rows make ``|A|`` 1e7
-#: to 1e8 times the bending ones, carry relative errors up to about 1e-9 (``hubbeam.linearised``
+#: to 1e8 times the bending ones, carry relative errors up to about 1e-9 (``hubbeam.model.linearised``
 #: measured 4e-10 to 1e-9 for the same pencil structure); 100 times that.
 RELATIVE_TOLERANCE = 1e-7
 

@@ -30,7 +30,7 @@ from hubbeam.linear.statespace import (
     checked_damping,
     state_space,
 )
-from hubbeam.linearised import axial_stretch
+from hubbeam.model.linearised import axial_stretch
 
 #: relative step of the central differences, eps^(1/3)
 RELATIVE_STEP = np.finfo(float).eps ** (1.0 / 3.0)

@@ -18,7 +18,7 @@ with (``p = V1 + M1 q1s``; derivation in ``docs/linear-models.md``)
 * ``K``: Eqs. (30)-(31), zero hub row and column (theta is cyclic); CFOAM adds
   ``Omega^2 E(q1s)``, ``E = sum_k w_k (f1(x_k) q1s) S(x_k)``, to ``K22``: the stretch moves the
   mass outward, which scales its foreshortening term (the one high-order term of first order);
-* ``C``: the damping matrices ``diag(0, C1, C2)`` of ``hubbeam.damping`` (elastic coordinates
+* ``C``: the damping matrices ``diag(0, C1, C2)`` of ``hubbeam.model.damping`` (elastic coordinates
   only, so the steady spin still needs no torque).
 
 Free hub: the input is the hub torque, ``b = e_theta``. Prescribed hub: the input is the hub's
@@ -34,12 +34,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubbeam.damping import damping_matrices
-from hubbeam.linearised import axial_stretch, constant_speed_matrices
-from hubbeam.matrices import assemble
-from hubbeam.models import model as model_traits
-from hubbeam.modes import transverse_modes
-from hubbeam.settings import damping_settings
+from hubbeam.configuration.settings import damping_settings
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.linearised import axial_stretch, constant_speed_matrices
+from hubbeam.model.matrices import assemble
+from hubbeam.model.models import model as model_traits
+from hubbeam.model.modes import transverse_modes
 
 #: hub conditions -> name of the input
 HUBS = {"free": "hub_torque", "prescribed": "hub_acceleration"}
@@ -138,7 +138,7 @@ def checked_damping(damping, n: int) -> np.ndarray:
     C = np.asarray(damping, dtype=float)
     if C.shape != (2, n, n) or not np.all(np.isfinite(C)):
         raise ValueError(f"damping of shape {C.shape}; allowed: the finite (2, {n}, {n}) "
-                         "matrices [C1, C2] of hubbeam.damping.damping_matrices")
+                         "matrices [C1, C2] of hubbeam.model.damping.damping_matrices")
     return C
 
 
@@ -207,7 +207,7 @@ def check_matrices(beam, sm) -> None:
             and np.allclose(sm.f2L, transverse_modes(beam.L, n, beam)[0], rtol=1e-12, atol=0.0))
     if not same:
         raise ValueError("sm: system matrices assembled for another beam; allowed: "
-                         "hubbeam.matrices.assemble(beam, tip, n_modes) of this beam")
+                         "hubbeam.model.matrices.assemble(beam, tip, n_modes) of this beam")
 
 
 def output_rows(beam, sm, traits, speed: float, q1s, names):
@@ -249,10 +249,10 @@ def linear_model(beam, sm, model: str, speed: float, hub: str = "free", damping=
                  outputs=None) -> LinearModel:
     """The :class:`LinearModel` of ``model`` about the steady spin at ``speed`` (rad s-1).
 
-    ``beam`` (``BeamParameters`` or ``BeamSections``) and ``sm`` (``hubbeam.matrices.assemble``
+    ``beam`` (``BeamParameters`` or ``BeamSections``) and ``sm`` (``hubbeam.model.matrices.assemble``
     of it, with the tip mass as configured); ``hub``: ``"free"`` (input hub torque) or
     ``"prescribed"`` (input hub angular acceleration); ``damping``: the ``(2, n, n)`` matrices of
-    ``hubbeam.damping.damping_matrices`` or None; ``outputs``: a name or a list of names of
+    ``hubbeam.model.damping.damping_matrices`` or None; ``outputs``: a name or a list of names of
     :data:`OUTPUTS` (all by default). Every argument is checked before anything is computed. A TLAM operating point
     above its critical speed is a valid, unstable plant.
     """
@@ -282,8 +282,8 @@ def plant(beam, model: str, speed: float, hub: str = "free", tip=None, n_modes: 
     """The python-control ``StateSpace`` of ``model`` for a case's beam, tip mass and damping.
 
     ``tip``: a ``TipMass`` or None; ``damping``: a case's ``damping`` mapping
-    (``hubbeam.damping``) or None; ``n_modes`` and ``n_quad`` as in
-    :func:`hubbeam.matrices.assemble`. The other arguments as :func:`linear_model`; all are checked
+    (``hubbeam.model.damping``) or None; ``n_modes`` and ``n_quad`` as in
+    :func:`hubbeam.model.matrices.assemble`. The other arguments as :func:`linear_model`; all are checked
     before the matrices are assembled.
     """
     check_request(model, hub, outputs)

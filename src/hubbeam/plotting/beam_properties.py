@@ -1,6 +1,6 @@
 """The beam of a study: mass per unit length, bending and axial stiffness against the span.
 
-Reads the dataset of :func:`hubbeam.shapes.beam_dataset`: one panel per property, its stations
+Reads the dataset of :func:`hubbeam.model.shapes.beam_dataset`: one panel per property, its stations
 marked (the properties are linear between them; a uniform beam has two, root and tip), and the tip
 mass of every case that has one marked at its position.
 """

@@ -16,7 +16,7 @@ from hubbeam.plotting.style import LABEL_BOX, axis_label, model_style, new_figur
 
 
 def plot(campbell: xr.Dataset, critical: xr.Dataset):
-    """Campbell diagram from the ``campbell`` and ``critical`` datasets of :mod:`hubbeam.eigen`."""
+    """Campbell diagram from the ``campbell`` and ``critical`` datasets of :mod:`hubbeam.model.eigen`."""
     masses = campbell["tip_mass"].values
     fig, axes = new_figure(1, len(masses), width=2.8 * len(masses), height=3.2, sharex=True)
     axes = axes[0]

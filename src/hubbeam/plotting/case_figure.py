@@ -18,7 +18,7 @@ from hubbeam.plotting.style import (
     new_figure,
     panel_title,
 )
-from hubbeam.results import (
+from hubbeam.results.reader import (
     attr,
     diverged_at,
     left_range_at,
@@ -38,7 +38,7 @@ SERIES = {"tip": ("tip_transverse", axis_label("tip deflection $v(L)$", "m")),
 
 def mark_events(ax, case: str, ds: xr.Dataset, end: float) -> None:
     """Mark the end of the maneuver and, for a run stopped early, its stop: diverged, or left
-    the range of the models (:mod:`hubbeam.validity`)."""
+    the range of the models (:mod:`hubbeam.model.validity`)."""
     if end < float(times(ds)[-1]):
         mark_time(ax, end, f"maneuver end {end:g} s")
     t_div = diverged_at(case, ds)

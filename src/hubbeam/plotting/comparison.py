@@ -12,7 +12,7 @@ from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam import validity
+from hubbeam.model import validity
 from hubbeam.plotting.case_figure import SERIES
 from hubbeam.plotting.figures import limit_to_bounded
 from hubbeam.plotting.style import (
@@ -22,7 +22,7 @@ from hubbeam.plotting.style import (
     new_figure,
     panel_title,
 )
-from hubbeam.results import attr, model, n_modes, times, variable
+from hubbeam.results.reader import attr, model, n_modes, times, variable
 
 
 def plot(name: str, datasets: Mapping[str, xr.Dataset]):

@@ -2,7 +2,7 @@
 
 (a) tip deflection v(L) for every mode count given; (b) its difference from the run with the most
 modes; (c) peak and residual amplitude of v(L) and (d) the dominant residual frequency (least-squares
-sinusoid of ``hubbeam.measures.fit_sinusoid`` after t_f) against the number of modes.
+sinusoid of ``hubbeam.results.measures.fit_sinusoid`` after t_f) against the number of modes.
 """
 
 from __future__ import annotations
@@ -12,10 +12,10 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from hubbeam.measures import after, fit_sinusoid, peak, residual_amplitude
 from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
-from hubbeam.results import maneuver_value, model, n_modes, times, variable
+from hubbeam.results.measures import after, fit_sinusoid, peak, residual_amplitude
+from hubbeam.results.reader import maneuver_value, model, n_modes, times, variable
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):

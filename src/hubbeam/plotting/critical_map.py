@@ -11,15 +11,15 @@ from __future__ import annotations
 
 import xarray as xr
 
-from hubbeam import paper
+from hubbeam.model import printed as paper
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, panel_title
-from hubbeam.results import DatasetError
+from hubbeam.results.reader import DatasetError
 
 MAP_MIN_MASSES = 4
 
 
 def plot(critical: xr.Dataset, model: str = "TLAM"):
-    """The critical-speed figure from the ``critical`` speed sweep of :mod:`hubbeam.eigen`."""
+    """The critical-speed figure from the ``critical`` speed sweep of :mod:`hubbeam.model.eigen`."""
     ds = critical
     if "critical_speed" not in ds.data_vars:
         raise DatasetError("critical-speed dataset has no variable 'critical_speed' "

@@ -16,7 +16,7 @@ import xarray as xr
 from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import VARIANT_LINESTYLES as LINESTYLES
 from hubbeam.plotting.style import axis_label, new_figure, panel_title, symbol_tex
-from hubbeam.results import maneuver_value, select, units, variable
+from hubbeam.results.reader import maneuver_value, select, units, variable
 
 #: (variable, what the panel shows)
 PANELS = (

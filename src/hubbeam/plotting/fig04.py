@@ -12,7 +12,7 @@ import xarray as xr
 
 from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
-from hubbeam.results import maneuver_value, model, n_modes, select, times, variable
+from hubbeam.results.reader import maneuver_value, model, n_modes, select, times, variable
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):

@@ -14,7 +14,7 @@ import xarray as xr
 
 from hubbeam.plotting.figures import limit_to_bounded, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
-from hubbeam.results import distinct, select
+from hubbeam.results.reader import distinct, select
 
 ROWS = (
     ("tip_transverse", "Transverse tip deflection", "$v(L)$"),

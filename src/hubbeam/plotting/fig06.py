@@ -14,7 +14,7 @@ import xarray as xr
 
 from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, number_tex, panel_title
-from hubbeam.results import maneuver_value, n_modes, times, units, variable
+from hubbeam.results.reader import maneuver_value, n_modes, times, units, variable
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):

@@ -12,7 +12,7 @@ import xarray as xr
 
 from hubbeam.plotting.figures import curve_label, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, panel_title
-from hubbeam.results import distinct, model, select
+from hubbeam.results.reader import distinct, model, select
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):

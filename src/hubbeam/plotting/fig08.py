@@ -12,7 +12,7 @@ import xarray as xr
 
 from hubbeam.plotting.figures import mark_maneuver_end, plot_series
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
-from hubbeam.results import DatasetError, distinct, model, n_modes, select
+from hubbeam.results.reader import DatasetError, distinct, model, n_modes, select
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):

@@ -14,7 +14,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.colors import TwoSlopeNorm
 
-from hubbeam import paper
+from hubbeam.model import printed as paper
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, panel_title
 
 EIGENVALUE_LABEL = r"$\lambda_{\min}(K_{22})$ (s$^{-2}$), modes of unit modal mass"
@@ -40,7 +40,7 @@ def labelled(ds: xr.Dataset, variable: str, what: str, **selection) -> xr.DataAr
 
 def plot(k22: xr.Dataset, critical: xr.Dataset, masses=(0.1, 0.5), speed: float = 2.0,
          model: str = "TLAM"):
-    """Fig. 9 from the ``k22`` sweep and the ``critical`` speed sweep of :mod:`hubbeam.eigen`.
+    """Fig. 9 from the ``k22`` sweep and the ``critical`` speed sweep of :mod:`hubbeam.model.eigen`.
 
     ``masses`` (kg) get one map each; ``speed`` (rad/s, a grid value) is the hub speed of the
     single curves of the last panel.

@@ -12,7 +12,7 @@ import xarray as xr
 
 from hubbeam.plotting.figures import limit_to_bounded, mark_maneuver_end, plot_series, require_datasets
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
-from hubbeam.results import distinct, maneuver_value, model, select, tip_position
+from hubbeam.results.reader import distinct, maneuver_value, model, select, tip_position
 
 
 def plot(datasets: Mapping[str, xr.Dataset]):

@@ -1,7 +1,7 @@
-"""Drawing shared by the figure modules (which cases feed a figure: hubbeam.products).
+"""Drawing shared by the figure modules (which cases feed a figure: hubbeam.reporting.products).
 
 The figure functions receive ``{case name: xarray.Dataset}`` following the simulation dataset
-contract of ``docs/architecture.md``, read them through :mod:`hubbeam.results` and never touch
+contract of ``docs/architecture.md``, read them through :mod:`hubbeam.results.reader` and never touch
 files.
 """
 
@@ -12,9 +12,9 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from hubbeam.formatting import number
 from hubbeam.plotting.style import mark_time, model_style
-from hubbeam.results import (
+from hubbeam.reporting.formatting import number
+from hubbeam.results.reader import (
     DatasetError,
     diverged_at,
     large_deflection_ratio,
@@ -46,7 +46,7 @@ def plot_series(ax, case: str, ds: xr.Dataset, name: str, *, label: str | None =
 
     A diverged run, or one stopped outside the range of the models, is drawn up to its stop (its
     data are NaN after it) and marked; a run beyond the small-deflection limit is named so in the
-    legend (:mod:`hubbeam.validity`).
+    legend (:mod:`hubbeam.model.validity`).
     """
     da = variable(case, ds, name)
     if mode is not None:

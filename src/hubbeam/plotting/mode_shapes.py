@@ -1,6 +1,6 @@
 """The first transverse mode shapes of a study's beam, at rest and at the top of its speed grid.
 
-Reads the dataset of :func:`hubbeam.shapes.beam_dataset`: one panel per hub speed, one colour per
+Reads the dataset of :func:`hubbeam.model.shapes.beam_dataset`: one panel per hub speed, one colour per
 mode, one dash pattern per tip mass (at the tip), each shape scaled to a largest deflection of 1
 with the tip deflection positive; FOAM's shapes (at rest TLAM's are the same;
 beyond its critical speed TLAM has no first mode). The legend gives each mode's frequency.

@@ -1,6 +1,6 @@
 """Critical hub speeds of a study's beam against tip-mass position, one curve per tip mass.
 
-Reads the dataset of :func:`hubbeam.eigen.critical_speed_sweep`: the speed at which the
+Reads the dataset of :func:`hubbeam.model.eigen.critical_speed_sweep`: the speed at which the
 transverse stiffness K22 of TLAM (or FOAM) becomes singular (Sections 4.2, 4.4); models without
 any critical speed up to the search limit (FOAM stiffens) are named in the title instead.
 """

@@ -1,11 +1,11 @@
-"""Beyond the paper: maps of the peak tip deflection from the parameter sweeps (hubbeam.sweep).
+"""Beyond the paper: maps of the peak tip deflection from the parameter sweeps (hubbeam.simulation.sweep).
 
 ``plot(sweep)`` draws the figure the sweep's configuration asks for (``figure.kind`` in the
 ``sweep_config`` attribute), from the sweep dataset only:
 
 * ``peak``: one panel per model, the peak transverse tip deflection over the two swept
   parameters (logarithmic colour scale), the runs each validity category of
-  :mod:`hubbeam.validity` flags hatched (diverged, left the models' range, large deflection);
+  :mod:`hubbeam.model.validity` flags hatched (diverged, left the models' range, large deflection);
 * ``departure``: (a) the relative difference ``|peak_model - peak_reference| / peak_reference``
   with the ``threshold`` contour, runs where ``model`` stopped early hatched (they depart by
   definition), (b) the reference model's peak with the same contour.
@@ -15,7 +15,7 @@ of them evenly spread over its grid (one row per model for ``peak``; the relativ
 the ``threshold`` contour for ``departure``), all on one colour scale.
 
 Where ``wf`` is swept, TLAM's critical speed (``critical_speed`` of the dataset, from
-:func:`hubbeam.eigen.critical_speed_sweep`) is drawn: a line at ``wf = Omega_c``, or the curve
+:func:`hubbeam.model.eigen.critical_speed_sweep`) is drawn: a line at ``wf = Omega_c``, or the curve
 ``Omega_c(m_t)`` / ``Omega_c(l)`` when the tip mass or its position is the other axis.
 """
 
@@ -30,13 +30,13 @@ from matplotlib.colors import LogNorm
 from matplotlib.patches import Patch
 from matplotlib.ticker import NullFormatter
 
-from hubbeam import validity
+from hubbeam.model import validity
 from hubbeam.plotting.style import axis_label, new_figure, panel_title
-from hubbeam.results import DatasetError
+from hubbeam.results.reader import DatasetError
 
 PEAK = "peak_tip_deflection"
 DIVERGED_COLOR = "0.8"
-#: hatch and legend text of the cells of each flagged validity category (hubbeam.validity)
+#: hatch and legend text of the cells of each flagged validity category (hubbeam.model.validity)
 MARKS = {
     "diverged": ("////", "diverged (beyond the critical speed)"),
     "left_range": ("\\\\", "left the model's range ($|v(L)| >$ limit)"),

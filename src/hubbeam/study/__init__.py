@@ -2,7 +2,7 @@
 
 A study is one config file with a top-level ``study`` section (``name``, optional ``title``,
 ``description``, ``comparisons``); ``snakemake --configfile studies/<name>.yaml`` runs it and
-writes only under ``results/<name>/`` (:func:`hubbeam.paths.study_paths`). A config without
+writes only under ``results/<name>/`` (:func:`hubbeam.results.paths.study_paths`). A config without
 ``study`` is the paper (Bai et al. 2009), whose products stay directly under ``results/``. Two
 config files that claim the same folder are rejected: the first run writes the marker
 ``results/<name>/.study`` with the path of the config file that owns the folder.
@@ -14,7 +14,7 @@ import os
 from collections.abc import Mapping
 from pathlib import Path
 
-from hubbeam.paths import DEFAULT_CONFIG_FILE, StudyPaths
+from hubbeam.results.paths import DEFAULT_CONFIG_FILE, StudyPaths
 
 #: folders of the paper's products directly under results/, which a study name must not take
 PAPER_FOLDERS = ("benchmarks", "eigen", "figures", "matrices", "readings", "report", "simulations",

@@ -1,5 +1,5 @@
-"""The study report: Markdown from the template ``templates/study_report.md.j2``, HTML from the
-Markdown (``hubbeam.document``).
+"""The study report: Markdown from the template ``reporting/templates/study_report.md.j2``, HTML from the
+Markdown (``hubbeam.reporting.document``).
 
 :func:`study_markdown` summarises the study's beam in a few rows (:func:`beam_summary`; the full
 table of stations stays in the archived configuration) beside the figure of its properties, lists
@@ -14,16 +14,16 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from hubbeam.beam import SECTION_PROPERTIES, SECTION_UNITS, beam_from_config
-from hubbeam.document import markdown_table, markdown_to_html, render
-from hubbeam.formatting import number
+from hubbeam.model.beam import SECTION_PROPERTIES, SECTION_UNITS, beam_from_config
+from hubbeam.reporting.document import markdown_table, markdown_to_html, render
+from hubbeam.reporting.formatting import number
 from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, verdicts
 
 #: the eigen figure shown in the report's beam section rather than with the eigen-analysis
 BEAM_FIGURE = "beam_properties"
 #: the figure of the feedback designs, shown in their section
 DESIGNS_FIGURE = "controller_trust"
-#: the registry's linear-model figures (``hubbeam.products``), shown in a section of their own
+#: the registry's linear-model figures (``hubbeam.reporting.products``), shown in a section of their own
 LINEAR_PREFIX = "linear_"
 
 

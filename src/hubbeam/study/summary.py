@@ -1,8 +1,8 @@
 """One row of the study report per simulation: the measures of the tip deflection v(L).
 
-Every measure reads the simulation dataset through :mod:`hubbeam.results`: the peak
+Every measure reads the simulation dataset through :mod:`hubbeam.results.reader`: the peak
 ``max |v(L)|`` and its time, the residual amplitude ``max |v(L)|`` after the maneuver ends, its
-validity (:mod:`hubbeam.validity`: beyond the small-deflection range, left the range of the
+validity (:mod:`hubbeam.model.validity`: beyond the small-deflection range, left the range of the
 models, diverged), and the result of the optional convergence check
 (``numerics.convergence_check``).
 """
@@ -14,8 +14,9 @@ import math
 import numpy as np
 import xarray as xr
 
-from hubbeam import measures, validity
-from hubbeam.results import (
+from hubbeam.model import validity
+from hubbeam.results import measures
+from hubbeam.results.reader import (
     attr,
     convergence_result,
     diverged_at,

@@ -24,8 +24,8 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from hubbeam import measures
-from hubbeam.results import attr, maneuver, model, times, variable
+from hubbeam.results import measures
+from hubbeam.results.reader import attr, maneuver, model, times, variable
 
 #: the model the designs are tried on (the most complete of the four)
 REFERENCE_MODEL = "CFOAM"

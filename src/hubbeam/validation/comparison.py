@@ -1,7 +1,7 @@
 """Tip deflection of the assumed-mode models against the Exudyn ANCF reference.
 
 For each validation case (a prescribed spin-up of Eq. 43, optionally with a tip mass) the models
-(FOAM, CFOAM, TLAM) are simulated with :func:`hubbeam.simulate.simulate` and compared with
+(FOAM, CFOAM, TLAM) are simulated with :func:`hubbeam.simulation.simulate.simulate` and compared with
 :func:`hubbeam.validation.exudyn_model.spin_up` on the same uniform time grid. Metrics
 (:func:`tip_metrics`, :func:`comparison_table`): the largest absolute difference of the tip
 deflection over the run, the peak ``max |v|`` and the residual amplitude ``max |v|`` for ``t >
@@ -18,8 +18,8 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from hubbeam import measures
-from hubbeam.simulate import simulate
+from hubbeam.results import measures
+from hubbeam.simulation.simulate import simulate
 
 #: reference label in tables and figures
 REFERENCE = "Exudyn"
@@ -27,7 +27,7 @@ REFERENCE = "Exudyn"
 
 def model_case(name: str, validation_case: Mapping, model: str, modes: int,
                beam_length: float) -> dict:
-    """The resolved simulation case (``hubbeam.config.case_settings`` form) of ``model``."""
+    """The resolved simulation case (``hubbeam.configuration.load.case_settings`` form) of ``model``."""
     tip = validation_case.get("tip_mass") or {"mass": 0.0, "position": beam_length}
     return {
         "name": f"validation_{name}_{model}",
@@ -53,7 +53,7 @@ def simulate_models(name: str, validation_case: Mapping, models: Sequence[str], 
                 "tip_axial_total": (ds["tip_axial"] + ds["tip_foreshortening"]).assign_attrs(
                     units="m", long_name="tip axial displacement w1(L) + wc(L)"),
                 "diverged": ((), int(ds.attrs["diverged"]),
-                             {"units": "1", "long_name": "1 if the run diverged (hubbeam.validity)"}),
+                             {"units": "1", "long_name": "1 if the run diverged (hubbeam.model.validity)"}),
                 "diverged_at_s": ((), float(ds.attrs["diverged_at_s"]),
                                   {"units": "s", "long_name": "time of divergence (NaN: none)"}),
                 "n_steps": ((), int(ds.attrs["n_steps"]),
@@ -70,7 +70,7 @@ def simulate_models(name: str, validation_case: Mapping, models: Sequence[str], 
 
 def tip_metrics(time: np.ndarray, deflection: np.ndarray, tf: float) -> dict:
     """Peak ``max |v|`` (and its time) and residual amplitude ``max |v|`` for ``t > tf``
-    (:mod:`hubbeam.measures`).
+    (:mod:`hubbeam.results.measures`).
 
     NaN samples (after a divergence) are ignored; a residual over no finite sample is NaN.
     """

@@ -40,9 +40,9 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import xarray as xr
 
-from hubbeam.beam import BeamSections
-from hubbeam.config_checks import is_multiple
+from hubbeam.configuration.checks import is_multiple
 from hubbeam.core.maneuver import hub_motion
+from hubbeam.model.beam import BeamSections
 
 INSTALL_HINT = "pip install -e .[validation]"
 
@@ -121,7 +121,7 @@ class HubBeamModel:
 def build_model(params, tip=None, maneuver=None, elements: int = 16) -> HubBeamModel:
     """Assemble the Exudyn hub-beam (module docstring).
 
-    ``params`` :class:`hubbeam.parameters.BeamParameters`; ``tip`` :class:`TipMass` or None;
+    ``params`` :class:`hubbeam.model.parameters.BeamParameters`; ``tip`` :class:`TipMass` or None;
     ``maneuver`` ``(wf, tf)`` of Eq. (43), or None for a hub held at ``theta = 0``.
     """
     if isinstance(params, BeamSections):

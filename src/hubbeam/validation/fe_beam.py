@@ -13,7 +13,7 @@ The deflection ``w`` is either in the plane of rotation (in-plane, lag) or perpe
 of in-plane motion (the centrifugal force of a point moved sideways has a component along the
 motion). These are the continuum equations behind Eq. (31) with the tip-mass terms of the
 Appendix: ``q^T D q = int T w'^2 dx / Omega^2``, so the Ritz frequencies of ``(K2 + Omega^2 D -
-c Omega^2 M2, M2)`` (``hubbeam.eigen``, ``hubbeam.validation.rotating_eigen``) converge to these
+c Omega^2 M2, M2)`` (``hubbeam.model.eigen``, ``hubbeam.validation.rotating_eigen``) converge to these
 as modes are added, and these converge under mesh refinement at the rate of cubic elements.
 
 The mesh has a node at every station of the property tables (where the properties have kinks), at
@@ -69,7 +69,7 @@ def matrices(params, tip=None, n_elements: int = 160):
     """Global ``(M, Kb, G)`` of the clamped beam: mass (with the tip mass), bending stiffness and
     geometric stiffness per ``Omega^2`` (``int T N'^T N' / Omega^2``), root DOFs removed.
 
-    ``tip`` is a :class:`~hubbeam.parameters.TipMass` or ``None``.
+    ``tip`` is a :class:`~hubbeam.model.parameters.TipMass` or ``None``.
     """
     mass, position = (0.0, params.L) if tip is None else (float(tip.mass), float(tip.position))
     if not (math.isfinite(mass) and mass >= 0.0):
@@ -107,7 +107,7 @@ def frequencies(params, speeds, direction: str, tip=None, n_elements: int = 160,
     ``K a = omega^2 M a`` lose digits in proportion to the condition number of ``K`` (about
     ``n_elements^4``, 1e-8 relative at 80 elements), the largest ``mu`` do not (1e-9 at 160).
     ``K`` is positive definite in both directions: in-plane, ``int T w'^2 >= Omega^2 int rhoA
-    w^2`` for every ``w`` with ``w(0) = 0`` when ``rA > 0`` (``hubbeam.eigen``: no critical speed).
+    w^2`` for every ``w`` with ``w(0) = 0`` when ``rA > 0`` (``hubbeam.model.eigen``: no critical speed).
     """
     if direction not in _SOFTENING:
         raise ValueError(f"direction = {direction!r}: expected one of {', '.join(DIRECTIONS)}")

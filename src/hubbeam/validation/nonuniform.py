@@ -4,7 +4,7 @@ Three independent solutions of the rotating-beam frequencies at constant hub spe
 
 * the Ritz (assumed-mode) model of the simulations, ``(K2 + Omega^2 D - c Omega^2 M2, M2)``
   (Eq. 31 with the tip-mass terms; ``c = 1`` in the plane of rotation, the FOAM frequencies of
-  ``hubbeam.eigen.transverse_frequencies``; ``c = 0`` flapwise, see
+  ``hubbeam.model.eigen.transverse_frequencies``; ``c = 0`` flapwise, see
   ``hubbeam.validation.rotating_eigen``), with the clamped-free modes of the uniform beam as the
   basis;
 * the cubic Hermite finite elements of :mod:`hubbeam.validation.fe_beam`;
@@ -23,9 +23,9 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from hubbeam.beam import BeamSections
-from hubbeam.matrices import assemble
-from hubbeam.parameters import TipMass
+from hubbeam.model.beam import BeamSections
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import TipMass
 from hubbeam.validation import fe_beam, rotating_eigen
 
 #: our FE direction -> the Ritz direction of rotating_eigen (the q2 problem without q1)

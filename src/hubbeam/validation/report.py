@@ -15,7 +15,7 @@
 Every number of the text (counts, ratios, the evidence for how a table's last digit was
 obtained, the key findings of docs/validation.md) is computed here from those files; none is
 typed in; the prose is in the templates ``validation_published.md.j2`` and
-``validation_exudyn.md.j2``. A missing file raises :class:`hubbeam.io.ResultFileError` naming it
+``validation_exudyn.md.j2``. A missing file raises :class:`hubbeam.results.io.ResultFileError` naming it
 and the command that builds it; a file without a needed column raises
 :class:`ValidationInputError`.
 """
@@ -34,9 +34,9 @@ import numpy as np
 import pandas as pd
 
 from hubbeam import __version__
-from hubbeam.document import markdown_table, render
-from hubbeam.formatting import fixed, number, percent, scientific
-from hubbeam.io import ResultFileError, open_result
+from hubbeam.reporting.document import markdown_table, render
+from hubbeam.reporting.formatting import fixed, number, percent, scientific
+from hubbeam.results.io import ResultFileError, open_result
 from hubbeam.validation import nonuniform, published
 from hubbeam.validation.rotating_eigen import allowed_interval
 

@@ -18,7 +18,7 @@ The steady stretch does not enter the chordwise stiffness: FOAM's centrifugal st
 about its stretched state would differ at relative order ``(gamma / alpha)^2``, the axial strain
 of the steady state; the chordwise benchmark of Hamza-Cherif and Houmat is the small-strain model,
 like FOAM.) The matrices and the solver of this gyroscopic quadratic eigenproblem (QEP) are those
-of :mod:`hubbeam.linearised`.
+of :mod:`hubbeam.model.linearised`.
 
 Flapwise (out of the plane). With ``w = f2 q3`` perpendicular to the plane of rotation the
 foreshortening is ``wc = -1/2 int_0^x (v'^2 + w'^2) dxi``. The velocity of a beam point gains
@@ -42,12 +42,12 @@ import pandas as pd
 import scipy.optimize
 import xarray as xr
 
-from hubbeam import linearised
-from hubbeam.matrices import MODE_NORMALISATION, assemble
-from hubbeam.parameters import BeamParameters, TipMass
+from hubbeam.model import linearised
+from hubbeam.model.matrices import MODE_NORMALISATION, assemble
+from hubbeam.model.parameters import BeamParameters, TipMass
 from hubbeam.validation import published
 
-#: direction -> (variant of Eq. 31 in :mod:`hubbeam.linearised`, axial coordinates coupled)
+#: direction -> (variant of Eq. 31 in :mod:`hubbeam.model.linearised`, axial coordinates coupled)
 _DIRECTION_SYSTEMS = {"flapwise": ("flapwise", False), "chordwise": ("FOAM", True),
                       "chordwise_uncoupled": ("FOAM", False)}
 DIRECTIONS = tuple(_DIRECTION_SYSTEMS)
@@ -80,12 +80,12 @@ def frequencies(sm, speed: float, direction: str) -> np.ndarray:
 
     ``direction`` is ``"flapwise"`` (``K2 + Omega^2 D``), ``"chordwise"`` (q1 and q2 with the
     Coriolis coupling, FOAM's Eqs. 29-31) or ``"chordwise_uncoupled"`` (q2 alone, ``R``
-    removed); the matrices are :func:`hubbeam.linearised.constant_speed_matrices`, tip-mass
+    removed); the matrices are :func:`hubbeam.model.linearised.constant_speed_matrices`, tip-mass
     terms included when ``sm`` has them.
 
     Without gyroscopic terms this is the symmetric problem ``K x = omega^2 M x``; a negative
     ``omega^2`` (beyond a critical speed) gives NaN. With them, one frequency ``|Im lambda|`` per
-    conjugate pair of :func:`hubbeam.linearised.quadratic_eigenvalues`; a divergent pair (real
+    conjugate pair of :func:`hubbeam.model.linearised.quadratic_eigenvalues`; a divergent pair (real
     ``lambda``) gives 0.
     """
     model, axial = _system(direction)

@@ -1,0 +1,417 @@
+"""Checks of a configuration that a JSON schema cannot express (:func:`physical_problems`).
+
+The tip mass lies on the beam (``0 <= l <= L``), every case spans at least one output step, grids
+increase, numbers are finite, case names stay distinct on case-insensitive file systems, keys are
+text; a beam has the keys of one form only (the forms and their keys are the schema's), stations
+run from x = 0 to x = L, tables of stations and times increase, a study (``study`` section) neither
+takes a folder of the paper's products nor compares unknown cases, and no case, validation run or
+sweep would need more memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.results.variables`). Each
+check runs only on values the schema accepted, and each problem names the key, the value and what
+is allowed.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import os
+from collections.abc import Mapping
+from typing import Any
+
+from hubbeam.configuration.schema import SCHEMA, Problem, Validator, allowed, key_path, kind_keys, show, type_name
+from hubbeam.model import limits
+from hubbeam.model.models import MODELS
+from hubbeam.reporting.products import PAPER
+from hubbeam.results import variables
+from hubbeam.study import PAPER_FOLDERS
+
+
+def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
+    """Checks the schema cannot express; each runs only on values the schema accepted. ``whole``:
+    ``cfg`` is a whole configuration (the paper or a study), not the Python API's bare case and
+    numerics, which have no study to check."""
+    if not isinstance(cfg, dict):
+        return []
+    problems = _non_finite_numbers_and_non_text_keys(cfg, [])
+    beam, numerics, eigen, cases = (_section(cfg, key) for key in ("beam", "numerics", "eigen", "cases"))
+    # bounds derived from a length or step the schema rejects would only repeat that problem
+    length = _positive(beam.get("length"))
+    output_step = _positive(numerics.get("output_step"))
+
+    max_steps, step_warning = _integer(numerics.get("max_steps")), _integer(numerics.get("step_warning"))
+    if max_steps is not None and step_warning is not None and step_warning > max_steps:
+        problems.append(Problem("numerics.step_warning",
+                                f"got {step_warning}; allowed: at most numerics.max_steps = {max_steps}"))
+
+    linear = _section(cfg, "linear")
+    grids = {"eigen.speeds": _section(eigen, "speeds"), "eigen.positions": _section(eigen, "positions"),
+             "linear.speeds": _section(linear, "speeds"), "linear.frequencies": _section(linear, "frequencies")}
+    for where, grid in grids.items():
+        start, stop = _number(grid.get("start")), _number(grid.get("stop"))
+        if start is not None and stop is not None and stop <= start:
+            problems.append(Problem(f"{where}.stop", f"got {stop}; allowed: a value > {where}.start = {start}"))
+    bode_speeds = linear.get("bode_speeds")
+    if isinstance(bode_speeds, list) and all(_number(v) is not None for v in bode_speeds) and any(
+            b <= a for a, b in zip(bode_speeds, bode_speeds[1:])):
+        problems.append(Problem("linear.bode_speeds", f"got {show(bode_speeds)}; allowed: strictly increasing speeds"))
+    stop = _number(grids["eigen.positions"].get("stop"))
+    if stop is not None and length is not None and stop > length:
+        problems.append(Problem("eigen.positions.stop",
+                                f"got {stop}; allowed: a position on the beam, <= beam.length = {length}"))
+
+    first_spelling: dict[str, str] = {}
+    for name, case in cases.items():
+        if isinstance(name, str):
+            other = first_spelling.setdefault(name.lower(), name)
+            if other != name:
+                problems.append(Problem(f"cases.{name}", f"case name {name!r} differs from {other!r} only in "
+                                        "letter case; allowed: names distinct ignoring case (they are file names)"))
+        if not isinstance(case, dict):
+            continue
+        t_end = _number(case.get("t_end"))
+        if t_end is not None and output_step is not None and t_end < output_step:
+            problems.append(Problem(f"cases.{name}.t_end", f"got {t_end}; allowed: at least one output step, "
+                                    f"t_end >= numerics.output_step = {output_step}"))
+        position = _number(_section(case, "tip_mass").get("position"))
+        if position is not None and length is not None and position > length:
+            problems.append(Problem(f"cases.{name}.tip_mass.position",
+                                    f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+        problems += _case_entry_problems(f"cases.{name}", case)
+    problems += _beam_problems(beam, length)
+    if whole:
+        problems += _study_problems(cfg, eigen, cases)
+    problems += _sweep_problems(_section(cfg, "sweeps"), length)
+    problems += _validation_problems(_section(cfg, "validation"), length, output_step)
+    problems += _memory_problems(cfg, output_step)
+    return problems
+
+
+def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
+    """Every case, validation run and sweep whose outputs would exceed ``numerics.memory_budget_mb``
+    (:mod:`hubbeam.results.variables`), each named with its estimated size and the budget."""
+    numerics = _section(cfg, "numerics")
+    budget_mb = _positive(numerics.get("memory_budget_mb", limits.MEMORY_BUDGET_MB))
+    default_modes = _integer(numerics.get("modes"))
+    if budget_mb is None or output_step is None:
+        return []  # the schema reports it
+    budget = budget_mb * variables.MIB
+    problems = []
+
+    def check_run(where: str, what: str, model: str, modes: int, t_end: float) -> None:
+        size = variables.simulation_bytes(model, modes, t_end, output_step)
+        if size <= budget:
+            return
+        values = variables.values_per_time(model, modes)
+        count = variables.output_count(t_end, output_step)
+        longest = (math.floor((budget / variables.BYTES_PER_VALUE - modes) / values) - 1) * output_step
+        problems.append(Problem(where, f"got {t_end:g} s: {what} ({model}, {modes} modes) would store "
+                                f"{count} output times x {values} values x {variables.BYTES_PER_VALUE} "
+                                f"bytes = {variables.budget_text(size, budget_mb)}; allowed: " + (
+                                    f"t_end <= {longest:.6g} s at numerics.output_step = {output_step:g} s "
+                                    "(or a longer output step, or a larger numerics.memory_budget_mb)"
+                                    if longest >= 0 else "a larger numerics.memory_budget_mb (it holds not "
+                                    "even the first output time)")))
+
+    for name, case in _section(cfg, "cases").items():
+        case = case if isinstance(case, dict) else {}
+        t_end, modes, model = _positive(case.get("t_end")), case.get("modes", default_modes), case.get("model")
+        if t_end is not None and _integer(modes) is not None and model in MODELS:  # else the schema reports it
+            check_run(f"cases.{name}.t_end", f"case {name}", model, modes, t_end)
+    validation = _section(cfg, "validation")
+    models = [m for m in validation.get("models", []) if m in MODELS] if isinstance(
+        validation.get("models"), list) else []
+    study = validation.get("mode_study") if isinstance(validation.get("mode_study"), list) else []
+    modes = max((m for m in [default_modes, *study] if _integer(m) is not None), default=None)
+    for name, case in _section(validation, "cases").items():
+        t_end = _positive(case.get("t_end")) if isinstance(case, dict) else None
+        if t_end is not None and models and modes is not None:
+            model = max(models, key=lambda m: variables.values_per_time(m, modes))
+            check_run(f"validation.cases.{name}.t_end", f"validation run {name}", model, modes, t_end)
+    problems += _sweep_memory_problems(_section(cfg, "sweeps"), default_modes, budget_mb)
+    return problems
+
+
+def _sweep_memory_problems(sweeps: Mapping, default_modes: int, budget_mb: float) -> list[Problem]:
+    """The sweeps whose per-run values and dense outputs would exceed the memory budget."""
+    output_step = _positive(_section(sweeps, "numerics").get("output_step"))
+    problems = []
+    for name, spec in _section(sweeps, "maps").items():
+        if not isinstance(spec, dict) or output_step is None:
+            continue
+        grid, maneuver = _section(spec, "grid"), _section(spec, "maneuver")
+        counts = [_integer(_section(grid, key).get("num")) for key in grid]
+        tf = _positive(_section(grid, "tf").get("stop")) if "tf" in grid else _positive(maneuver.get("tf"))
+        t_after, modes = _number(spec.get("t_after")), spec.get("modes", default_modes)
+        models, outputs = spec.get("models"), spec.get("outputs")
+        if (None in counts or tf is None or t_after is None or _integer(modes) is None
+                or not isinstance(models, list) or not isinstance(outputs, list)):
+            continue  # the schema reports it
+        points = len(models) * math.prod(counts)
+        threads = os.cpu_count() or 1
+        size = variables.sweep_bytes(points, len(outputs) + variables.SWEEP_VALUES_PER_RUN, tf + t_after,
+                                     output_step, modes, threads)
+        if size > budget_mb * variables.MIB:
+            problems.append(Problem(f"sweeps.maps.{name}", f"got {points} runs ({len(models)} models x "
+                                    f"{' x '.join(map(str, counts))} grid points) up to t = {tf + t_after:g} s "
+                                    f"on {threads} threads: sweep {name} would take "
+                                    f"{variables.budget_text(size, budget_mb)}; allowed: fewer grid points, "
+                                    "a shorter t_after or tf, a longer sweeps.numerics.output_step, or a "
+                                    "larger numerics.memory_budget_mb"))
+    return problems
+
+
+#: maneuver parameters of each kind (a sweep gives each of the first two kinds either fixed or swept)
+MANEUVER_PARAMETERS = kind_keys("maneuver")
+#: parameters of each kind of a pd maneuver's reference motion
+REFERENCE_PARAMETERS = kind_keys("reference")
+
+
+def _table_problems(where: str, entry: Mapping, abscissa: str, columns: tuple[str, ...],
+                    unit: str) -> list[Problem]:
+    """A table's abscissa strictly increases and every column has its length."""
+    first = entry.get(abscissa)
+    if not isinstance(first, list) or any(_number(v) is None for v in first):
+        return []  # the schema reports it
+    problems = [Problem(f"{where}.{abscissa}", f"got {show(first)}; allowed: strictly increasing "
+                        f"values ({unit})")] if any(b <= a for a, b in itertools.pairwise(first)) else []
+    for column in columns:
+        values = entry.get(column)
+        if isinstance(values, list) and len(values) != len(first) and len(values) >= 2:  # shorter: minItems
+            problems.append(Problem(f"{where}.{column}", f"got {len(values)} values; allowed: one "
+                                    f"per entry of {where}.{abscissa} ({len(first)})"))
+    return problems
+
+
+def _case_entry_problems(where: str, case: Mapping) -> list[Problem]:
+    """The time tables of a maneuver and of its pd reference start at t >= 0 and increase (the
+    schema checks each kind's keys)."""
+    maneuver = _section(case, "maneuver")
+    reference = _section(maneuver, "reference")
+    problems = []
+    for path, entry, kinds in ((f"{where}.maneuver", maneuver, MANEUVER_PARAMETERS),
+                               (f"{where}.maneuver.reference", reference, REFERENCE_PARAMETERS)):
+        columns = kinds.get(entry.get("kind"), ())
+        if "time" not in columns:
+            continue
+        problems += _table_problems(path, entry, "time", columns[1:], "s")
+        start = _number((entry.get("time") or [None])[0]) if isinstance(entry.get("time"), list) else None
+        if start is not None and start < 0:
+            problems.append(Problem(f"{path}.time", f"starts at {start}; allowed: times >= 0 s"))
+    return problems
+
+
+#: the forms of a beam (schema ``beam.allOf``): (condition, title, the keys of the form)
+BEAM_FORMS = tuple((rule["if"], rule["then"]["title"], tuple(rule["then"]["required"]))
+                   for rule in SCHEMA["properties"]["beam"]["allOf"])
+
+
+def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
+    """A beam has the keys of one form only (:data:`BEAM_FORMS`; the schema requires the form's
+    keys); stations run from 0 to L."""
+    own = next((keys for condition, _, keys in BEAM_FORMS if Validator(condition).is_valid(beam)), ())
+    given = next((key for key in own if key in beam), None)
+    forms = "; ".join(f"{title.removeprefix('for ')}: {', '.join(keys)}" for _, title, keys in BEAM_FORMS)
+    problems = [Problem(f"beam.{key}", f"got {show(beam[key])}; not allowed together with beam.{given} "
+                        f"(allowed: the keys of one form of the beam -- {forms})")
+                for _, _, keys in BEAM_FORMS if keys is not own for key in keys if key in beam and given]
+    sections = _section(beam, "sections")
+    problems += _table_problems("beam.sections", sections, "x", ("rhoA", "EI", "EA"), "m")
+    x = sections.get("x")
+    if isinstance(x, list) and x and all(_number(v) is not None for v in x):
+        if x[0] != 0:
+            problems.append(Problem("beam.sections.x", f"starts at {x[0]}; allowed: the first "
+                                    "station at the root, x = 0"))
+        if length is not None and abs(x[-1] - length) > 1e-9 * length:
+            problems.append(Problem("beam.sections.x", f"ends at {x[-1]}; allowed: the last "
+                                    f"station at the tip, x = beam.length = {length}"))
+    return problems
+
+
+def _study_problems(cfg: Mapping, eigen: Mapping, cases: Mapping) -> list[Problem]:
+    """A study keeps out of the paper's folders, compares its own cases and ends its eigen grid of
+    positions at the tip; the paper's products (``products: [paper]``) need ``eigen.table2_speed``
+    for Table 2."""
+    problems = []
+    products = cfg.get("products")
+    if isinstance(products, list) and PAPER in products and "table2_speed" not in eigen:
+        problems.append(Problem("eigen.table2_speed", "missing (required for the paper's Table 2, "
+                                f"`products: [{PAPER}]`); allowed: {allowed(['eigen', 'table2_speed'], SCHEMA)}"))
+    if "study" not in cfg:
+        return problems
+    study = _section(cfg, "study")
+    if study.get("name") in PAPER_FOLDERS:
+        problems.append(Problem("study.name", f"got {study['name']!r}, a folder of the paper's "
+                                f"products in results/; allowed: any other name ({', '.join(PAPER_FOLDERS)} "
+                                "are taken)"))
+    stop, length = _number(_section(eigen, "positions").get("stop")), _positive(_section(cfg, "beam").get("length"))
+    if stop is not None and length is not None and stop < length:
+        problems.append(Problem("eigen.positions.stop", f"got {stop}; allowed: beam.length = {length} "
+                                "for a study (its Campbell diagram marks the critical speed with the "
+                                "tip mass at the tip)"))
+    for name, members in _section(study, "comparisons").items():
+        for index, case in enumerate(members if isinstance(members, list) else []):
+            if isinstance(case, str) and case not in cases:
+                problems.append(Problem(f"study.comparisons.{name}[{index}]", f"got {case!r}; allowed: "
+                                        f"a name of cases ({', '.join(sorted(map(str, cases)))})"))
+    return problems
+
+
+def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
+    """A sweep's grids increase, and its fixed and swept parameters complete the maneuver and the
+    tip mass without overlapping; the figure compares models of the sweep."""
+    problems = []
+    for name, spec in _section(sweeps, "maps").items():
+        if not isinstance(spec, dict):
+            continue
+        where = f"sweeps.maps.{name}"
+        grid = _section(spec, "grid")
+        for key in grid:
+            axis = _section(grid, key)
+            start, stop = _number(axis.get("start")), _number(axis.get("stop"))
+            if start is not None and stop is not None and stop <= start:
+                problems.append(Problem(f"{where}.grid.{key}.stop", f"got {stop}; allowed: a value > "
+                                        f"{where}.grid.{key}.start = {start}"))
+            if key in ("wf", "tf", "tau_max") and start is not None and start <= 0:
+                problems.append(Problem(f"{where}.grid.{key}.start", f"got {start}; allowed: a value > 0"))
+            if key == "tip_position" and stop is not None and length is not None and stop > length:
+                problems.append(Problem(f"{where}.grid.tip_position.stop", f"got {stop}; allowed: a "
+                                        f"position on the beam, <= beam.length = {length}"))
+        maneuver = _section(spec, "maneuver")
+        needed = MANEUVER_PARAMETERS.get(maneuver.get("kind"))
+        if needed is not None:
+            for key in ("wf", "tf", "tau_max"):
+                fixed, swept = key in maneuver, key in grid
+                if key not in needed and swept:
+                    problems.append(Problem(f"{where}.grid.{key}", f"swept, but kind is {maneuver['kind']!r}; "
+                                            f"allowed parameters: {', '.join(needed)}"))
+                elif key not in needed and fixed:
+                    problems.append(Problem(f"{where}.maneuver.{key}",
+                                            f"got {show(maneuver[key])}; not allowed when kind is "
+                                            f"{maneuver['kind']!r}; allowed keys: kind, {', '.join(needed)}"))
+                elif key in needed and fixed == swept:
+                    problems.append(Problem(f"{where}.maneuver.{key}",
+                                            ("given both here and under grid" if fixed else "missing")
+                                            + f"; allowed: exactly one of {where}.maneuver.{key} or "
+                                            f"{where}.grid.{key}"))
+        tip = _section(spec, "tip_mass")
+        for key, grid_key in (("mass", "tip_mass"), ("position", "tip_position")):
+            if key in tip and grid_key in grid:
+                problems.append(Problem(f"{where}.tip_mass.{key}", f"given, but {grid_key} is swept; "
+                                        f"allowed: either {where}.tip_mass.{key} or {where}.grid.{grid_key}"))
+        position = _number(tip.get("position"))
+        if position is not None and length is not None and position > length:
+            problems.append(Problem(f"{where}.tip_mass.position",
+                                    f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+        models = spec.get("models") if isinstance(spec.get("models"), list) else []
+        figure = _section(spec, "figure")
+        for key in ("model", "reference"):
+            if key in figure and figure[key] not in models:
+                problems.append(Problem(f"{where}.figure.{key}",
+                                        f"got {figure[key]!r}; allowed: one of {where}.models = {models}"))
+        if "model" in figure and figure.get("model") == figure.get("reference"):
+            problems.append(Problem(f"{where}.figure.reference",
+                                    f"got {figure['reference']!r}; allowed: a model other than figure.model"))
+    return problems
+
+
+def is_multiple(value: float, step: float) -> bool:
+    """``value`` is a whole number of ``step`` (to 1e-9 relative): the rule of the startup checks
+    and of the Exudyn model (``hubbeam.validation.exudyn_model``), which relies on them."""
+    ratio = value / step
+    return abs(ratio - round(ratio)) <= 1e-9 * max(ratio, 1.0)
+
+
+def _validation_problems(validation: Mapping, length: float | None,
+                         output_step: float | None) -> list[Problem]:
+    """The validation section's mode counts increase, its grids and steps fit the output grid,
+    and a tip mass sits on a node of every Exudyn mesh it is simulated on."""
+    problems = []
+    published = _section(validation, "published")
+    modes = published.get("modes")
+    if isinstance(modes, list) and all(_integer(m) is not None for m in modes):
+        if any(later <= earlier for earlier, later in zip(modes, modes[1:])):
+            problems.append(Problem("validation.published.modes", f"got {modes}; allowed: increasing "
+                                    "integers (the largest count is the result)"))
+    gammas = _section(published, "gammas")
+    start, stop = _number(gammas.get("start")), _number(gammas.get("stop"))
+    if start is not None and stop is not None and stop <= start:
+        problems.append(Problem("validation.published.gammas.stop",
+                                f"got {stop}; allowed: a value > validation.published.gammas.start = {start}"))
+    exudyn, convergence = _section(validation, "exudyn"), _section(validation, "convergence")
+    if output_step is not None:
+        steps = [("validation.exudyn.time_step", exudyn.get("time_step"))]
+        time_steps = convergence.get("time_steps")
+        if isinstance(time_steps, list):
+            steps += [(f"validation.convergence.time_steps[{i}]", v) for i, v in enumerate(time_steps)]
+        for where, value in steps:
+            step = _positive(value)
+            if step is not None and not is_multiple(output_step, step):
+                problems.append(Problem(where, f"got {step}; allowed: a step that divides "
+                                        f"numerics.output_step = {output_step} a whole number of times"))
+    meshes = [("validation.exudyn.elements", _integer(exudyn.get("elements")))]
+    elements = convergence.get("elements")
+    study_meshes = [(f"validation.convergence.elements[{i}]", _integer(e))
+                    for i, e in enumerate(elements)] if isinstance(elements, list) else []
+    for name, case in _section(validation, "cases").items():
+        if not isinstance(case, dict):
+            continue
+        where = f"validation.cases.{name}"
+        t_end = _positive(case.get("t_end"))
+        if t_end is not None and output_step is not None and not is_multiple(t_end, output_step):
+            problems.append(Problem(f"{where}.t_end", f"got {t_end}; allowed: a multiple of "
+                                    f"numerics.output_step = {output_step}"))
+        tip = _section(case, "tip_mass")
+        position, mass = _number(tip.get("position")), _number(tip.get("mass"))
+        if position is None or length is None:
+            continue
+        if position > length:
+            problems.append(Problem(f"{where}.tip_mass.position",
+                                    f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+            continue
+        if not mass:
+            continue
+        for mesh, count in meshes + (study_meshes if convergence.get("case") == name else []):
+            if count is not None and count >= 1 and not is_multiple(position, length / count):
+                problems.append(Problem(f"{where}.tip_mass.position", f"got {position}; allowed: a node "
+                                        f"of the Exudyn mesh, a multiple of beam.length / {mesh} = "
+                                        f"{length / count:g} m"))
+    return problems
+
+
+def _section(mapping: Mapping, key: str) -> Mapping:
+    value = mapping.get(key)
+    return value if isinstance(value, dict) else {}
+
+
+def _number(value: Any) -> float | None:
+    """``value`` as float if it is a finite YAML number, else None (the schema reports it)."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+        return float(value)
+    return None
+
+
+def _positive(value: Any) -> float | None:
+    """``value`` as float if it is a finite YAML number > 0, else None (the schema reports it)."""
+    number = _number(value)
+    return number if number is not None and number > 0.0 else None
+
+
+def _integer(value: Any) -> int | None:
+    return value if isinstance(value, int) and not isinstance(value, bool) else None
+
+
+def _non_finite_numbers_and_non_text_keys(node: Any, parts: list) -> list[Problem]:
+    problems = []
+    if isinstance(node, dict):
+        for key, value in node.items():
+            if not isinstance(key, str):
+                problems.append(Problem(key_path(parts + [str(key)]),
+                                        f"key {key!r} is read by YAML as {type_name(key)}; "
+                                        f"allowed: text keys (write \"{key}\")"))
+            problems += _non_finite_numbers_and_non_text_keys(value, parts + [str(key)])
+    elif isinstance(node, list):
+        for index, item in enumerate(node):
+            problems += _non_finite_numbers_and_non_text_keys(item, parts + [index])
+    elif isinstance(node, float) and not math.isfinite(node):
+        problems.append(Problem(key_path(parts), f"got {node}; allowed: a finite number"))
+    return problems

@@ -1,0 +1,155 @@
+"""Physical parameters of the hub-beam system (Table 1 of the paper) and of the tip mass.
+
+A uniform beam is given either by the paper's factors (:class:`BeamParameters`: density, area,
+Young's modulus, second moment of area) or by the products the equations use
+(:class:`BeamProducts`: ``rho A``, ``E I``, ``E A``); both are a :class:`UniformBeam`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+#: BeamParameters field -> key of the ``beam`` section of the config.
+CONFIG_KEYS = {
+    "L": "length",
+    "rho": "density",
+    "A": "area",
+    "E": "youngs_modulus",
+    "I": "second_moment",
+    "Jh": "hub_inertia",
+    "rA": "hub_radius",
+}
+#: BeamProducts field -> key of the ``beam`` section of the config.
+PRODUCT_KEYS = {"L": "length", "rhoA": "rhoA", "EI": "EI", "EA": "EA", "Jh": "hub_inertia", "rA": "hub_radius"}
+
+
+class UniformBeam:
+    """What a uniform beam offers (``hubbeam.model.matrices`` uses nothing else), from its length ``L``,
+    hub radius ``rA`` and the products ``rhoA``, ``EI``, ``EA`` of a subclass."""
+
+    L: float
+    rA: float
+    rhoA: float
+    EI: float
+    EA: float
+
+    @property
+    def beam_mass(self) -> float:
+        """Mass of the beam, kg."""
+        return self.rhoA * self.L
+
+    @property
+    def rhoA_ref(self) -> float:
+        """Mass per unit length that normalises the admissible functions (``hubbeam.model.modes``)."""
+        return self.rhoA
+
+    @property
+    def stations(self) -> tuple[float, float]:
+        """Abscissae (m) between which the properties are smooth: the two ends."""
+        return (0.0, self.L)
+
+    def rhoA_at(self, x):
+        """Mass per unit length (kg m-1) at abscissae ``x``: the constant ``rho A``."""
+        return np.full(np.shape(x), self.rhoA)
+
+    def EI_at(self, x):
+        """Bending stiffness (N m2) at abscissae ``x``: the constant ``E I``."""
+        return np.full(np.shape(x), self.EI)
+
+    def EA_at(self, x):
+        """Axial stiffness (N) at abscissae ``x``: the constant ``E A``."""
+        return np.full(np.shape(x), self.EA)
+
+    def outboard_moment(self, x):
+        """``int_x^L rho A (rA + s) ds`` (kg m) at ``x``: the centrifugal tension per ``Omega^2``.
+
+        The weight ``g`` of ``D`` (Eq. 18, order of integration swapped) times ``rho A``.
+        """
+        x = np.asarray(x, dtype=float)
+        return self.rhoA * (self.rA * (self.L - x) + 0.5 * (self.L**2 - x**2))
+
+
+@dataclass(frozen=True)
+class BeamProducts(UniformBeam):
+    """Uniform Euler-Bernoulli beam clamped radially to a rigid hub, by its products (SI units).
+
+    ``L`` length (m), ``rhoA`` mass per unit length (kg m-1), ``EI`` bending stiffness (N m2),
+    ``EA`` axial stiffness (N), ``Jh`` hub inertia (kg m2), ``rA`` hub radius (m); stored as float.
+    """
+
+    L: float
+    rhoA: float
+    EI: float
+    EA: float
+    Jh: float
+    rA: float
+
+    def __post_init__(self) -> None:
+        _store_floats(self)
+
+
+@dataclass(frozen=True)
+class BeamParameters(UniformBeam):
+    """Uniform Euler-Bernoulli beam clamped radially to a rigid hub (Table 1, SI units).
+
+    ``L`` length (m), ``rho`` density (kg m-3), ``A`` cross-section area (m2), ``E`` Young's
+    modulus (N m-2), ``I`` second moment of area (m4), ``Jh`` hub inertia (kg m2), ``rA`` hub
+    radius (m). Values are stored as float and not checked here: user input is checked by
+    ``hubbeam.configuration.load``, and the functions that use the parameters check what they rely on.
+    """
+
+    L: float
+    rho: float
+    A: float
+    E: float
+    I: float  # noqa: E741 (the paper's symbol)
+    Jh: float
+    rA: float
+
+    def __post_init__(self) -> None:
+        _store_floats(self)
+
+    @classmethod
+    def from_config(cls, cfg: Mapping) -> BeamParameters:
+        """Build from a validated config (its ``beam`` section)."""
+        beam = cfg["beam"]
+        return cls(**{name: beam[key] for name, key in CONFIG_KEYS.items()})
+
+    @property
+    def rhoA(self) -> float:
+        """Mass per unit length, kg m-1."""
+        return self.rho * self.A
+
+    @property
+    def EI(self) -> float:
+        """Bending stiffness, N m2."""
+        return self.E * self.I
+
+    @property
+    def EA(self) -> float:
+        """Axial stiffness, N."""
+        return self.E * self.A
+
+
+@dataclass(frozen=True)
+class TipMass:
+    """Point mass ``mass`` (kg) at distance ``position`` (m) from the clamped root, 0 <= l <= L."""
+
+    mass: float
+    position: float
+
+    def __post_init__(self) -> None:
+        _store_floats(self)
+
+    @classmethod
+    def from_case(cls, case: Mapping) -> TipMass:
+        """Build from a resolved case (``hubbeam.configuration.load.case_settings``)."""
+        return cls(**case["tip_mass"])
+
+
+def _store_floats(instance) -> None:
+    for field in fields(instance):
+        object.__setattr__(instance, field.name, float(getattr(instance, field.name)))

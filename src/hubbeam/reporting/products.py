@@ -1,0 +1,425 @@
+"""The registry of products: every figure and table, what it reads, how it is drawn, what it says.
+
+A :class:`Product` declares its key (``fig05``, ``campbell``, ``table3``), its kind (a figure drawn
+from simulation runs, one figure per case or per comparison of a study, a figure of the
+eigen-analysis, or a table), the function that draws it (an import path ``"module:attribute"``,
+imported only when the product is drawn, so that importing the registry stays cheap), the
+simulation cases it reads by their exact names (no name patterns), or the result files it reads
+(relative to the results folder, :data:`hubbeam.results.paths.IN_RESULTS`), the configuration keys it
+needs, its caption and the claims of the paper it carries.
+
+:data:`GENERAL_PRODUCTS` are those of every configuration whose keys they need are present (the
+Campbell diagram always; the study report's figures with a ``study`` section);
+:data:`PAPER_PRODUCTS` are the paper's own, built when the configuration asks for them
+(``products: [paper]``, :data:`PRODUCT_SETS`). :func:`products_for` gives a configuration's
+products: the Snakemake rules (targets, inputs, ``snakemake --report`` captions), the figure
+sections of the reproduction report (with their captions) and of the study report are derived
+from it. A new product of
+every study is one entry of :data:`GENERAL_PRODUCTS` (plus a rule when no rule of its kind exists).
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+from hubbeam.results.paths import IN_RESULTS
+
+#: kinds of product
+SIMULATION_FIGURE = "simulation figure"
+#: one figure per configured case (``<key>_<case>``), drawn from that case's run
+CASE_FIGURE = "figure per case"
+#: one figure per comparison of ``study.comparisons`` (``<key>_<comparison>``), its runs overlaid
+COMPARISON_FIGURE = "figure per comparison"
+EIGEN_FIGURE = "eigen figure"
+#: one figure (``<key>``) of every case whose state feedback was designed (``maneuver.design``)
+DESIGNS_FIGURE = "figure of the feedback designs"
+TABLE = "table"
+KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, DESIGNS_FIGURE, TABLE)
+
+CRITICAL_SPEEDS_NC = IN_RESULTS.eigen("critical_speeds")
+#: the linear-model datasets the figures read (hubbeam.linear.datasets)
+LINEAR_NC = {name: IN_RESULTS.linear(name) for name in ("campbell", "mode_shapes", "poles_zeros", "bode")}
+#: the study's beam as data: its properties along the span and first mode shapes (hubbeam.model.shapes)
+BEAM_NC = IN_RESULTS.eigen("beam")
+
+
+class ProductError(ValueError):
+    """A product declaration or a case it names is invalid (names the key, value and what is allowed)."""
+
+
+@dataclass(frozen=True)
+class Product:
+    """One figure or table.
+
+    ``cases``: the simulation cases it reads (simulation figures, tables from runs); ``files``: the
+    result files it reads relative to the results folder, by the keyword its function takes them
+    under (eigen figures, tables from csv). ``needs``: the configuration keys (dotted, e.g.
+    ``study.comparisons``; a number indexes a list) without which it is not built. ``options``: keyword arguments of the
+    drawing function besides the files (e.g. which tip mass a linear-model figure shows).
+    ``paper``: what the paper shows in it; ``ours``: what our product shows.
+    """
+
+    key: str
+    kind: str
+    function: str
+    title: str
+    ours: str
+    paper: str = ""
+    in_paper: bool = True
+    cases: tuple[str, ...] = ()
+    files: Mapping[str, str] = field(default_factory=dict)
+    claims: tuple[str, ...] = ()
+    needs: tuple[str, ...] = ()
+    options: Mapping[str, object] = field(default_factory=dict)
+
+    def __post_init__(self):
+        if self.kind not in KINDS:
+            raise ProductError(f"product {self.key}: kind {self.kind!r} is not allowed; "
+                               f"allowed: {', '.join(KINDS)}")
+        module, _, attribute = self.function.partition(":")
+        if not module or not attribute:
+            raise ProductError(f"product {self.key}: function {self.function!r} is not allowed; "
+                               "allowed: an import path 'package.module:function'")
+        object.__setattr__(self, "cases", tuple(self.cases))
+        object.__setattr__(self, "files", MappingProxyType(dict(self.files)))
+        object.__setattr__(self, "claims", tuple(self.claims))
+        object.__setattr__(self, "needs", tuple(self.needs))
+        object.__setattr__(self, "options", MappingProxyType(dict(self.options)))
+
+    @property
+    def is_figure(self) -> bool:
+        return self.kind != TABLE
+
+    @property
+    def category(self) -> str:
+        """Category of the product in ``snakemake --report``."""
+        if self.kind == TABLE:
+            return "Tables"
+        return "Figures of the paper" if self.in_paper else "Beyond the paper"
+
+    def is_built_for(self, cfg: Mapping) -> bool:
+        """Whether the configuration ``cfg`` has every key the product needs (and, for a figure of
+        the feedback designs, a designed case)."""
+        return (all(_has(cfg, key.split(".")) for key in self.needs)
+                and (self.kind != DESIGNS_FIGURE or bool(designed_cases(cfg))))
+
+    @property
+    def module(self) -> str:
+        """The drawing function's module, e.g. ``hubbeam.plotting.fig05``."""
+        return self.function.partition(":")[0]
+
+    def resolve(self):
+        """The function that draws the product (imported now)."""
+        return resolve(self.function)
+
+    def caption(self) -> str:
+        """The caption of ``snakemake --report`` (reStructuredText): title, the paper's and our text."""
+        parts = [f"**{_rst(self.title)}.**"]
+        if self.paper:
+            parts.append(f"*Paper:* {_rst(self.paper)}")
+        parts.append(f"*This study:* {_rst(self.ours)}" if self.paper else _rst(self.ours))
+        return " ".join(parts)
+
+
+def designed_cases(cfg: Mapping) -> list[str]:
+    """The cases of ``cfg`` whose state feedback is designed by LQR (``maneuver.design``), sorted."""
+    return sorted(name for name, case in cfg.get("cases", {}).items()
+                  if isinstance(case, Mapping) and "design" in case.get("maneuver", {}))
+
+
+def _has(cfg, keys: list[str]) -> bool:
+    """Whether ``cfg`` has the dotted path ``keys``; a number is an index into a list
+    (``linear.tip_masses.1``: a second tip mass)."""
+    if not keys:
+        return True
+    if isinstance(cfg, list) and keys[0].isdigit():
+        return int(keys[0]) < len(cfg) and _has(cfg[int(keys[0])], keys[1:])
+    return isinstance(cfg, Mapping) and keys[0] in cfg and _has(cfg[keys[0]], keys[1:])
+
+
+def _rst(text: str) -> str:
+    """``text`` with the reStructuredText markup characters escaped."""
+    for char in "\\*`|_":
+        text = text.replace(char, "\\" + char)
+    return text
+
+
+def resolve(path: str):
+    """The object named by an import path ``"package.module:attribute"``."""
+    module, _, attribute = path.partition(":")
+    return getattr(importlib.import_module(module), attribute)
+
+
+def product_from_entry(key: str, entry: Mapping) -> Product:
+    """A product from a plain mapping (e.g. a study's configuration), with a clear error."""
+    allowed = set(Product.__dataclass_fields__) - {"key"}
+    unknown = sorted(set(entry) - allowed)
+    if unknown:
+        raise ProductError(f"product {key}: unknown key(s) {', '.join(unknown)}; "
+                           f"allowed: {', '.join(sorted(allowed))}")
+    try:
+        return Product(key=key, **entry)
+    except TypeError as error:
+        raise ProductError(f"product {key}: {error}") from None
+
+
+def registry(*products: Product) -> Mapping[str, Product]:
+    """``{key: product}`` in declaration order; a repeated key is an error."""
+    out: dict[str, Product] = {}
+    for product in products:
+        if product.key in out:
+            raise ProductError(f"product key {product.key!r} is declared twice")
+        out[product.key] = product
+    return MappingProxyType(out)
+
+
+def merged(*registries: Mapping[str, Product]) -> Mapping[str, Product]:
+    """One registry of the products of ``registries``; a product listed in several (the same
+    declaration) counts once, two different products under one key are an error."""
+    out: dict[str, Product] = {}
+    for products in registries:
+        for key, product in products.items():
+            if out.setdefault(key, product) is not product:
+                raise ProductError(f"product key {key!r} is declared twice")
+    return MappingProxyType(out)
+
+
+def of_kind(products: Mapping[str, Product], *kinds: str) -> dict[str, Product]:
+    return {key: p for key, p in products.items() if p.kind in kinds}
+
+
+def product_cases(products: Mapping[str, Product]) -> list[str]:
+    """Every case some product reads, sorted."""
+    return sorted({case for product in products.values() for case in product.cases})
+
+
+def check_product_cases(products: Mapping[str, Product], case_names: Iterable[str]) -> None:
+    """Raise one :class:`ProductError` listing every case a product names that is not configured."""
+    configured = set(case_names)
+    missing = [f"  - {key}: {', '.join(c for c in p.cases if c not in configured)}"
+               for key, p in products.items() if any(c not in configured for c in p.cases)]
+    if missing:
+        raise ProductError("invalid hubbeam configuration: the figures and tables read cases that "
+                           "the config `cases` does not define:\n" + "\n".join(missing))
+
+
+# --- the products of every configuration ------------------------------------------------------
+
+#: the Campbell diagram: a general product that the paper's products include
+CAMPBELL = Product(
+    "campbell", EIGEN_FIGURE, "hubbeam.plotting.campbell:plot",
+    "Beyond the paper: Campbell diagram", in_paper=False,
+    paper="Not in the paper; Table 2 is one vertical slice of it (1 rad/s).",
+    ours="Frequencies of TLAM and FOAM against hub speed: TLAM's first frequency reaches zero at the "
+         "critical speed, FOAM's rises with speed (dynamic stiffening).",
+    files={"campbell": IN_RESULTS.eigen("campbell"), "critical": CRITICAL_SPEEDS_NC},
+    claims=("table2_tlam_softens_foam_stiffens",))
+
+GENERAL_PRODUCTS: Mapping[str, Product] = registry(
+    Product(
+        "case", CASE_FIGURE, "hubbeam.plotting.case_figure:plot", "The response of one case",
+        ours="Tip deflection, hub angular velocity, hub torque and energy balance of one run of the "
+             "study.", in_paper=False, needs=("study",)),
+    Product(
+        "compare", COMPARISON_FIGURE, "hubbeam.plotting.comparison:plot", "A comparison of cases",
+        ours="Tip deflection, hub angular velocity and hub torque of the runs of one comparison of the "
+             "study, overlaid.", in_paper=False,
+        needs=("study.comparisons",)),
+    CAMPBELL,
+    Product(
+        "critical_speeds", EIGEN_FIGURE, "hubbeam.plotting.study_critical:plot",
+        "Critical speeds over tip-mass position", in_paper=False,
+        ours="The hub speed at which each model's transverse stiffness K22 becomes singular, against "
+             "the tip-mass position, one curve per tip mass.",
+        files={"critical": CRITICAL_SPEEDS_NC}, needs=("study",)),
+    Product(
+        "beam_properties", EIGEN_FIGURE, "hubbeam.plotting.beam_properties:plot", "The beam",
+        ours="rhoA, EI and EA along the span, the stations marked, and the tip mass of every case at "
+             "its position.", in_paper=False,
+        files={"beam": BEAM_NC}, needs=("study",)),
+    Product(
+        "mode_shapes", EIGEN_FIGURE, "hubbeam.plotting.mode_shapes:plot", "First mode shapes",
+        ours="The first transverse mode shapes of FOAM at rest and at the top of the speed grid.",
+        in_paper=False, files={"beam": BEAM_NC}, needs=("study",)),
+    *(product for key, function, title, what, files in (
+        ("linear_campbell", "campbell_tracked", "Tracked, damped Campbell diagram",
+         "Frequency and damping ratio of every mode of every model against hub speed, with the hub "
+         "held and free; each mode followed through crossings and veering by the similarity of its "
+         "shape (MAC), labelled by its dominant content; the speeds where a model is unstable shaded.",
+         {"campbell": LINEAR_NC["campbell"]}),
+        ("linear_mode_shapes", "linear_mode_shapes", "Mode shapes of the linear models",
+         "The first vibration mode shapes along the span at rest and at the highest speed, held and "
+         "free hub, for every model.",
+         {"shapes": LINEAR_NC["mode_shapes"]}),
+        ("linear_poles_zeros", "pole_zero", "Poles and zeros over hub speed",
+         "Poles and zeros from the hub torque against hub speed for "
+         "every model: the collocated hub angle's zeros alternate with its poles; the tip's arc "
+         "position has a mirrored pair of real zeros (non-minimum phase) that dynamic stiffening "
+         "moves; TLAM's first pole reaches zero at its critical speed.",
+         {"poles_zeros": LINEAR_NC["poles_zeros"]}),
+        ("linear_bode", "bode", "Bode diagrams from the hub torque",
+         "Bode diagrams (magnitude and phase) from the hub torque to the hub "
+         "angle, the tip deflection v(L) and the tip's arc position, every model, at several hub "
+         "speeds.", {"bode": LINEAR_NC["bode"]}),
+    ) for product in (
+        Product(key, EIGEN_FIGURE, f"hubbeam.plotting.{function}:plot",
+                f"{title}, no tip mass",
+                ours=what, in_paper=False, files=files, options={"tip_mass": 0.0}),
+        Product(f"{key}_tip", EIGEN_FIGURE, f"hubbeam.plotting.{function}:plot",
+                f"{title}, the largest tip mass",
+                ours=what, in_paper=False, files=files, options={"tip_mass": "largest"},
+                needs=("linear.tip_masses.1",)),
+    )),
+    Product(
+        "controller_trust", DESIGNS_FIGURE, "hubbeam.plotting.controller_trust:plot",
+        "Controllers designed on one model, run on another", in_paper=False,
+        ours="Peak and residual tip deflection, settling time of v(L) and peak torque of every LQR "
+             "design of the study against its design speed, on CFOAM and on its own design model; "
+             "the paper's conclusion (iii) that SFOAM can be used for controller design, tested.",
+        needs=("study",)),
+)
+
+# --- the paper's products ------------------------------------------------------------------------
+
+_TAB3 = ("tab3_foam_tau100", "tab3_foam_tau200", "tab3_foam_tau400", "tab3_foam_tau50")
+_FIG06 = ("fig06_foam_n1", "fig06_foam_n3", "fig06_foam_n5")
+
+PAPER_PRODUCTS: Mapping[str, Product] = registry(
+    Product(
+        "fig03", SIMULATION_FIGURE, "hubbeam.plotting.fig03:plot",
+        "Fig. 3: high-order terms of CFOAM",
+        paper="The terms that distinguish CFOAM from FOAM, evaluated for a one-mode model during the "
+              "spin-up to 3 rad/s; the paper finds them small and fading after the 30 s maneuver.",
+        ours="Each panel is one difference CFOAM minus FOAM evaluated along the CFOAM trajectory (case "
+             "fig03_cfoam_n1, 1 mode): the rotary inertia M_thth, the generalised force of the "
+             "hub equation, and the generalised forces of the axial (q1) and transverse (q2) equations "
+             "(note 5; derivation in docs/cfoam.md).",
+        cases=("fig03_cfoam_n1",), claims=("cfoam_terms_small_after_tf",)),
+    Product(
+        "fig04", SIMULATION_FIGURE, "hubbeam.plotting.fig04:plot",
+        "Fig. 4: CFOAM against FOAM",
+        paper="Tip deflection of CFOAM and FOAM for the spin-up to 3 rad/s; the paper calls them "
+              "identical.",
+        ours="Panel (a) overlays both 5-mode runs, panel (b) shows their difference, so that "
+             "'identical' becomes a number (claim below).",
+        cases=("fig04_cfoam", "fig04_foam"), claims=("cfoam_foam_coincide_wf3",)),
+    Product(
+        "fig05", SIMULATION_FIGURE, "hubbeam.plotting.fig05:plot",
+        "Fig. 5: TLAM against FOAM",
+        paper="Transverse and axial tip response of TLAM and FOAM at 2.8 and 3.5 rad/s: TLAM diverges "
+              "above about 3 rad/s and overshoots FOAM strongly at 2.8 rad/s (0.49 m against 0.22 m, "
+              "residual vibration about 100 times larger).",
+        ours="Columns are the two final speeds: panels (a), (b) the transverse tip deflection, (c), (d) "
+             "the pure axial deformation w1(L) (note 11). A diverged run is drawn until it stops and "
+             "labelled with its divergence time.",
+        cases=("fig05_foam_wf2p8", "fig05_foam_wf3p5", "fig05_tlam_wf2p8", "fig05_tlam_wf3p5"),
+        claims=("tlam_diverges_wf3p5", "foam_bounded_wf3p5", "peak_tip_tlam_wf2p8",
+                "peak_tip_foam_wf2p8", "residual_ratio_tlam_foam_wf2p8")),
+    Product(
+        "fig06", SIMULATION_FIGURE, "hubbeam.plotting.fig06:plot",
+        "Fig. 6: modal responses and mode count (FOAM, 5 rad/s)",
+        paper="The five transverse modal coordinates during the spin-up to 5 rad/s (the first two "
+              "dominate) and the axial tip response for different numbers of modes (identical); the "
+              "transverse peak is about 1500 times the axial one.",
+        ours="Panel (a): q2_i of the 5-mode run, modes normalised to unit modal mass (note 7), so q2_i "
+             "is in kg^1/2 m; panel (b): w1(L) for n = 1, 3, 5.",
+        cases=_FIG06,
+        claims=("transverse_axial_ratio_wf5", "first_two_modes_dominate_wf5", "axial_same_for_n1_n5")),
+    Product(
+        "fig07", SIMULATION_FIGURE, "hubbeam.plotting.fig07:plot",
+        "Fig. 7: inertia torque Q_theta under the torque pulse",
+        paper="Q_theta for a 400 N m torque pulse; its largest value, 2.62 N m, is called a small "
+              "disturbance ('about 6.5 %' of the torque, note 9: the ratio is 0.65 %).",
+        ours="Panel (a) is the paper's figure; panel (b) shows Q_theta relative to the torque amplitude "
+             "for all four torque cases (the numbers behind Table 3).",
+        cases=_TAB3, claims=("table3_tau400", "q_theta_percent_of_tau400")),
+    Product(
+        "fig08", SIMULATION_FIGURE, "hubbeam.plotting.fig08:plot",
+        "Fig. 8: SFOAM against FOAM under the torque pulse",
+        paper="Tip deflection of FOAM and SFOAM at 50 and 200 N m: nearly equal at 50 N m; at 200 N m "
+              "the residual vibration of SFOAM leads FOAM's by 0.45 rad with a 24 % smaller amplitude, "
+              "and SFOAM with one mode equals SFOAM with five.",
+        ours="One panel per torque amplitude; FOAM solid, SFOAM dashed (5 modes) and dotted (1 mode). "
+             "Residual vibration is the response after the pulse (t > t_f = 10 s).",
+        cases=("fig08_sfoam_tau200", "fig08_sfoam_tau200_n1", "fig08_sfoam_tau50") + _TAB3,
+        claims=("sfoam_foam_close_tau50", "sfoam_phase_lead_tau200", "sfoam_amplitude_reduction_tau200",
+                "sfoam_n1_equals_n5_tau200")),
+    Product(
+        "fig09", EIGEN_FIGURE, "hubbeam.plotting.fig09:plot",
+        "Fig. 9: dominant eigenvalue of K22",
+        paper="The sign of the lowest eigenvalue of TLAM's stiffness K22 against the tip-mass position, "
+              "for 0.1 and 0.5 kg; the critical speeds are 2.91 rad/s (mass on the hub), 2.60 and "
+              "1.91 rad/s (mass at the tip).",
+        ours="The hub speed of the printed curves is not stated (note 10): we show the dominant "
+             "eigenvalue over position and speed and mark where it crosses zero; eigenvalues depend on "
+             "the unit modal mass normalisation (note 7).",
+        files={"k22": IN_RESULTS.eigen("k22"), "critical": CRITICAL_SPEEDS_NC},
+        claims=("critical_speed_tlam_mt0", "critical_speed_tlam_mt0p1", "critical_speed_tlam_mt0p5",
+                "tip_mass_lowers_tlam_critical_speed", "foam_no_critical_speed")),
+    Product(
+        "fig10", SIMULATION_FIGURE, "hubbeam.plotting.fig10:plot",
+        "Fig. 10: TLAM with a tip mass at 2 rad/s",
+        paper="TLAM tip deflection with 0.1 and 0.5 kg at the beam tip for a spin-up to 2 rad/s: with "
+              "0.5 kg (critical speed 1.91 rad/s) TLAM fails, while without tip mass TLAM and FOAM "
+              "nearly agree.",
+        ours="One panel per tip mass, each with TLAM and FOAM (note 12 for the settings).",
+        cases=("fig10_foam_mt0", "fig10_foam_mt0p1", "fig10_foam_mt0p5", "fig10_tlam_mt0",
+               "fig10_tlam_mt0p1", "fig10_tlam_mt0p5"),
+        claims=("tlam_fails_mt0p5_wf2", "tlam_foam_close_mt0_wf2")),
+    CAMPBELL,
+    Product(
+        "critical_map", EIGEN_FIGURE, "hubbeam.plotting.critical_map:plot",
+        "Beyond the paper: critical speed over tip mass and position", in_paper=False,
+        paper="Not in the paper, which quotes three points of it.",
+        ours="TLAM's critical speed for every tip mass and position of the eigen grid (FOAM has none).",
+        files={"critical": CRITICAL_SPEEDS_NC}, claims=("critical_speed_equals_omega1",)),
+    Product(
+        "convergence", SIMULATION_FIGURE, "hubbeam.plotting.convergence:plot",
+        "Beyond the paper: convergence in the number of modes", in_paper=False,
+        paper="The paper uses five modes throughout and shows, for the axial response only, that fewer "
+              "give the same result.",
+        ours="Tip deflection and the dominant residual frequency of the FOAM spin-up to 5 rad/s with 1, "
+             "3 and 5 modes.",
+        cases=_FIG06),
+    Product(
+        "table1", TABLE, "hubbeam.paper.tables:table1", "Table 1: physical parameters",
+        ours="The physical parameters of the hub-beam beside the printed ones (csv; Markdown and LaTeX "
+             "renderings beside it)."),
+    Product(
+        "table2", TABLE, "hubbeam.paper.tables:table2", "Table 2: vibration frequencies",
+        ours="The first five vibration frequencies of the beam, natural and of TLAM and FOAM at the hub "
+             "speed of the table, beside the printed ones; the journal prints this table under Table "
+             "3's caption (note 3).",
+        files={"csv": IN_RESULTS.table("table2", "csv")}),
+    Product(
+        "table3", TABLE, "hubbeam.paper.tables:table3", "Table 3: largest inertia torque",
+        ours="The largest inertia torque |Q_theta| of FOAM under the torque pulse for each torque "
+             "amplitude beside the printed values; the journal prints this table under Table 2's "
+             "caption (note 3).",
+        cases=_TAB3),
+)
+
+#: the name of the paper's product set
+PAPER = "paper"
+#: the products a configuration may ask for beside the general ones (``products: [paper]``)
+PRODUCT_SETS: Mapping[str, Mapping[str, Product]] = MappingProxyType({PAPER: PAPER_PRODUCTS})
+
+
+def product_sets(cfg: Mapping) -> list[str]:
+    """The product sets the configuration asks for (``products``), each checked to exist."""
+    names = list(cfg.get("products", []))
+    unknown = [name for name in names if name not in PRODUCT_SETS]
+    if unknown:
+        raise ProductError(f"products: got {', '.join(map(repr, unknown))}; allowed: "
+                           f"{', '.join(PRODUCT_SETS)}")
+    return names
+
+
+def products_for(cfg: Mapping) -> Mapping[str, Product]:
+    """Every product of the configuration ``cfg``: the general products it has the keys for and
+    those of the product sets it asks for."""
+    general = {key: p for key, p in GENERAL_PRODUCTS.items() if p.is_built_for(cfg)}
+    return merged(general, *(PRODUCT_SETS[name] for name in product_sets(cfg)))

@@ -1,0 +1,101 @@
+"""The variables of a simulation dataset, and the memory a run's outputs take.
+
+The tables here name every variable :func:`hubbeam.simulation.simulate.build_dataset` writes; the startup
+checks (:mod:`hubbeam.configuration.load`) count them to estimate, before anything runs, the memory a case, a
+validation run or a sweep needs (:func:`simulation_bytes`, :func:`sweep_bytes`) and reject one
+above ``numerics.memory_budget_mb``. Importing this module is cheap (no numba, no xarray).
+"""
+
+from __future__ import annotations
+
+import math
+
+from hubbeam.model.models import model
+
+#: variable -> (dimensions, UDUNITS units, long name)
+VARIABLES = {
+    "theta": (("time",), "rad", "hub angle theta"),
+    "theta_dot": (("time",), "rad s-1", "hub angular velocity"),
+    "theta_ddot": (("time",), "rad s-2", "hub angular acceleration"),
+    "hub_torque": (("time",), "N m",
+                   "hub torque (applied to a free hub, or required by a prescribed motion)"),
+    "Q_theta": (("time",), "N m", "velocity-dependent generalised force Q_theta (Eq. 32)"),
+    "q1": (("time", "mode"), "kg1/2 m", "axial modal coordinates q1 (unit modal mass modes)"),
+    "q2": (("time", "mode"), "kg1/2 m", "transverse modal coordinates q2 (unit modal mass modes)"),
+    "tip_transverse": (("time",), "m", "transverse tip deflection v(L) = f2(L) q2"),
+    "tip_axial": (("time",), "m", "pure axial tip deformation w1(L) = f1(L) q1"),
+    "tip_foreshortening": (("time",), "m", "tip foreshortening wc(L) = -q2' S(L) q2 / 2"),
+    "energy": (("time",), "J", "total mechanical energy T + U"),
+    "angular_momentum": (("time",), "kg m2 s-1", "angular momentum about the hub axis"),
+}
+#: cumulative integrals from t = 0 (``simulate.cumulative_integral``) -> (integrand: output
+#: column names whose product it is, units, long name)
+CUMULATIVE_VARIABLES = {
+    "work": (("hub_torque", "theta_dot"), "J", "cumulative work of the hub torque"),
+    "dissipated_energy": (("dissipation_rate",), "J", "cumulative energy dissipated by damping"),
+}
+#: CFOAM only: the high-order terms FOAM drops, along the CFOAM trajectory (note 5, Fig. 3)
+HIGH_ORDER_VARIABLES = {
+    "dM_thth": (("time",), "kg m2", "CFOAM minus FOAM rotary inertia M_thth (Eq. 35)"),
+    "dQ_theta": (("time",), "N m", "CFOAM minus FOAM generalised force of the theta equation"),
+    "dQ_q1": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM axial generalised force"),
+    "dQ_q2": (("time", "mode"), "N kg-1/2", "CFOAM minus FOAM transverse generalised force"),
+}
+
+#: every value is a float64 (or int64) of 8 bytes
+BYTES_PER_VALUE = 8
+MIB = 2**20
+
+
+def output_count(t_end: float, output_step: float) -> int:
+    """Times of the uniform output grid ``0, dt, 2 dt, ...`` up to the last multiple of ``dt``
+    <= ``t_end`` (to 1e-9 steps)."""
+    return int(math.floor(t_end / output_step + 1e-9)) + 1
+
+
+def dataset_variables(name: str) -> dict:
+    """The variables (besides :data:`CUMULATIVE_VARIABLES`) of a simulation dataset of the model
+    ``name``: :data:`VARIABLES`, and :data:`HIGH_ORDER_VARIABLES` for a model with
+    ``high_order_outputs`` (``hubbeam.model.models``)."""
+    return VARIABLES | (HIGH_ORDER_VARIABLES if model(name).high_order_outputs else {})
+
+
+def values_per_time(name: str, modes: int) -> int:
+    """Values a simulation dataset of the model ``name`` with ``modes`` modes stores per output
+    time: one per scalar variable, ``modes`` per modal one, the cumulative integrals and the
+    time."""
+    variables = dataset_variables(name)
+    return (sum(modes if "mode" in dims else 1 for dims, _, _ in variables.values())
+            + len(CUMULATIVE_VARIABLES) + 1)
+
+
+def simulation_bytes(model: str, modes: int, t_end: float, output_step: float) -> int:
+    """Bytes of the outputs of one simulation: output times x :func:`values_per_time` x 8, plus
+    the mode coordinate. The kernel's output array holds about as much again while the dataset
+    is built from it."""
+    return BYTES_PER_VALUE * (output_count(t_end, output_step) * values_per_time(model, modes) + modes)
+
+
+#: values a sweep keeps per run besides its ``outputs``: the kernel's results (peak, peak time,
+#: residual, stop time), status and six counters (``hubbeam.core.sweep``), and the dataset's
+#: diverged, status, stopped_at, n_steps and n_rhs (``hubbeam.simulation.sweep.build_dataset``)
+SWEEP_VALUES_PER_RUN = 4 + 1 + 6 + 5
+
+
+def sweep_bytes(points: int, stored: int, t_end: float, output_step: float, modes: int,
+                threads: int) -> int:
+    """Bytes of a sweep of ``points`` runs that keeps ``stored`` values per run, the longest
+    running to ``t_end``: the per-run values, plus, on each of ``threads`` threads, the dense
+    output of one run (times, positions and velocities of at most ``1 + 2 modes`` coordinates
+    on the output grid of ``hubbeam.core.sweep.output_grid``, which has at most two more times
+    than :func:`output_count`)."""
+    per_run = (output_count(t_end, output_step) + 2) * (1 + 2 * (1 + 2 * modes))
+    return BYTES_PER_VALUE * (points * stored + threads * per_run)
+
+
+def budget_text(size: int, budget_mb: float) -> str:
+    """``size`` bytes against a budget in MiB, for a message."""
+    exponent = min(max(int(math.log(max(size, 1), 1024)), 2), 5)
+    unit = ("B", "KiB", "MiB", "GiB", "TiB", "PiB")[exponent]
+    return (f"{size / 1024**exponent:.4g} {unit}, above the memory budget numerics.memory_budget_mb = "
+            f"{budget_mb:g} MiB")

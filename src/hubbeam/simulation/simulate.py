@@ -1,0 +1,430 @@
+"""Python API of a simulation: validate a case, run the jitted kernel, label the result.
+
+:func:`simulate` turns a resolved case (``hubbeam.configuration.load.case_settings``), the beam parameters
+(Table 1) and the ``numerics`` section of the config into the simulation dataset of
+``docs/architecture.md``. The hub-beam starts at rest and undeformed (``theta = 0``, ``q = 0``,
+all rates zero), or at the operating point of the case's optional ``initial`` mapping
+(:func:`initial_state`: a steady spin with ``q1`` at its centrifugal stretch, plus given modal
+coordinates and rates). The whole time integration runs in :func:`hubbeam.core.integrate.simulate_kernel`
+(Radau IIA of order 5, :mod:`hubbeam.core.radau`). A run stopped early is a result with NaN
+outputs after ``stopped_at_s``: stopped at a tip deflection beyond ``numerics.divergence_limit * L``
+it has ``left_range = 1``, or ``diverged = 1`` when it went beyond its critical speed (or its state
+blew up); a completed run beyond ``numerics.small_deflection_limit * L`` has
+``large_deflection = 1`` (:mod:`hubbeam.model.validity`, attribute ``validity``).
+
+Guard rails written into the dataset's ``warnings`` attribute: more accepted steps than
+``numerics.step_warning``, an exhausted step budget, a large deflection, a run that left the range
+of the models or diverged, and, when the optional
+convergence check (``numerics.convergence_check``) is given, a tip deflection that changes by more
+than its threshold when the case is rerun at a tighter tolerance or with more modes.
+:func:`hubbeam.results.reader.simulation_inputs` turns the attributes of a dataset back into the
+arguments that reproduce it.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+import time
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+from scipy.integrate import cumulative_simpson
+
+from hubbeam.configuration.settings import simulation_settings
+from hubbeam.core import radau
+from hubbeam.core.inputs import IntegratorSettings, SimulationInputs, State
+from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
+from hubbeam.core.maneuver import prescribed, prescribed_motion
+from hubbeam.model import linearised, validity
+from hubbeam.model.beam import beam_attributes
+from hubbeam.model.damping import damping_matrices
+from hubbeam.model.limits import (
+    MAX_MODES,
+    MAX_QUADRATURE_POINTS,
+    MIN_QUADRATURE_POINTS,
+    MIN_RTOL,
+    SMALL_DEFLECTION_LIMIT,
+)
+from hubbeam.model.maneuvers import TRACKING, maneuver_parameters, maneuver_stops
+from hubbeam.model.matrices import SystemMatrices, assemble
+from hubbeam.model.models import FAMILIES, family_model, model
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.results.provenance import global_attributes
+from hubbeam.results.variables import (
+    CUMULATIVE_VARIABLES,
+    dataset_variables,
+    output_count,
+)
+
+LOG = logging.getLogger(__name__)
+
+#: numerics keys a simulation reads
+NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
+#: optional numerics keys a simulation reads, with their defaults
+OPTIONAL_NUMERICS = {"small_deflection_limit": SMALL_DEFLECTION_LIMIT}
+#: keys of a case's optional ``initial`` mapping, the state a run starts from (:func:`initial_state`)
+INITIAL_KEYS = ("hub_speed", "q1", "q2", "q1_dot", "q2_dot")
+#: the initial modal coordinates and rates among :data:`INITIAL_KEYS` (one value per mode)
+INITIAL_MODAL_KEYS = INITIAL_KEYS[1:]
+
+INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
+
+
+class SimulationError(ValueError):
+    """A case or the numerics cannot be simulated; the message names key, value and allowed."""
+
+
+def check_initial(case: Mapping) -> None:
+    """Raise :class:`SimulationError` unless the optional ``case["initial"]`` (its keys and finite
+    numbers checked with the configuration, ``cases.<name>.initial``) is a state the case can
+    start from (:func:`initial_state`): one value per mode, no axial coordinates for a model that
+    keeps none, and for a prescribed hub the maneuver's own speed at ``t = 0``."""
+    spec = case.get("initial") or {}
+    where = f"cases.{case.get('name', '<unnamed>')}.initial"
+    n = case["modes"]
+    for key, value in spec.items():
+        if key not in INITIAL_MODAL_KEYS:
+            continue
+        if len(value) != n:
+            raise SimulationError(f"{where}.{key} = {value!r}; allowed: a list of {n} numbers, one "
+                                  "per mode (kg1/2 m, or kg1/2 m s-1 for rates)")
+        if key in ("q1", "q1_dot") and np.any(value) and not model(case["model"]).keeps_axial:
+            raise SimulationError(f"{where}.{key} = {value!r}; allowed: zeros or no {key}: "
+                                  f"{case['model']} keeps no axial coordinates (q1 = 0, Eq. 40)")
+    if "hub_speed" not in spec or case["maneuver"]["kind"] in TRACKING:
+        return  # a controller's hub is free
+    kind, mp = maneuver_parameters(case["maneuver"])
+    if prescribed(kind):
+        start_speed = float(prescribed_motion(kind, 0.0, mp)[1])
+        if not math.isclose(spec["hub_speed"], start_speed, rel_tol=1e-12, abs_tol=1e-12):
+            raise SimulationError(
+                f"{where}.hub_speed = {spec['hub_speed']!r}; allowed: {start_speed!r} rad s-1, the "
+                f"speed at t = 0 of the prescribed maneuver (or no hub_speed)")
+
+
+def initial_state(case: Mapping, sm: SystemMatrices) -> State:
+    """The state ``(y, y')`` of ``y = (theta, q1, q2)`` at ``t = 0`` for a checked case
+    (:func:`check_initial`), from its optional ``initial`` mapping (default: rest):
+
+    * ``hub_speed`` (rad s-1, default 0): a steady spin, ``theta = 0``, ``theta' = hub_speed``,
+      with ``q1`` at its centrifugal stretch ``q1s`` for that speed
+      (:func:`hubbeam.model.linearised.axial_stretch`; zero for a model that keeps no ``q1``) and
+      ``q2 = 0``; for a prescribed maneuver it must be the maneuver's speed at ``t = 0``;
+    * ``q1``, ``q2``, ``q1_dot``, ``q2_dot`` (one value per mode, default zeros): added to the
+      modal coordinates and rates of that state.
+    """
+    spec = case.get("initial") or {}
+    n = case["modes"]
+    speed = float(spec.get("hub_speed", 0.0))
+    extra = {key: np.asarray(spec.get(key, np.zeros(n)), dtype=float) for key in INITIAL_MODAL_KEYS}
+    q1s = linearised.axial_stretch(sm, speed) if model(case["model"]).keeps_axial else np.zeros(n)
+    return State(np.concatenate([[0.0], q1s + extra["q1"], extra["q2"]]),
+                 np.concatenate([[speed], extra["q1_dot"], extra["q2_dot"]]))
+
+
+def _with_modes(case: Mapping, modes: int) -> dict:
+    """``case`` with ``modes`` modes; initial modal values of the added modes are zero."""
+    spec = case.get("initial")
+    if not spec:
+        return dict(case, modes=modes)
+    padded = {key: [*value, *[0.0] * (modes - len(value))] if key in INITIAL_MODAL_KEYS else value
+              for key, value in spec.items()}
+    return dict(case, modes=modes, initial=padded)
+
+
+def output_times(t_end: float, output_step: float) -> np.ndarray:
+    """The uniform output grid ``0, dt, 2 dt, ...`` up to the last multiple of ``dt`` <= t_end."""
+    return np.arange(output_count(t_end, output_step)) * output_step
+
+
+def kernel_matrices(sm: SystemMatrices) -> SystemMatrices:
+    """``sm`` with C-contiguous float64 arrays and float scalars (one compiled kernel for all)."""
+    return SystemMatrices(*(np.ascontiguousarray(value, dtype=np.float64) if np.ndim(value)
+                            else float(value) for value in sm))
+
+
+def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
+                  matrices: SystemMatrices | None = None) -> SystemMatrices:
+    """The system matrices of ``case``: ``matrices`` (checked) or assembled from ``params``."""
+    n = case["modes"]
+    if matrices is None:
+        tip = TipMass(**case["tip_mass"]) if case.get("tip_mass") else None
+        quadrature = numerics.get("quadrature_points")
+        if quadrature is None:
+            raise SimulationError(f"numerics.quadrature_points: missing (required when no matrices are "
+                                  f"given); allowed: an integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
+        matrices = assemble(params, tip, n, int(quadrature))
+    if np.shape(matrices.K1) != (n, n):
+        raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.modes = {n}, but the "
+                              f"matrices given have {np.shape(matrices.K1)[0]} modes; allowed: "
+                              "matrices assembled with the case's number of modes")
+    return kernel_matrices(matrices)
+
+
+def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
+             matrices: SystemMatrices | None = None, *,
+             convergence_check: Mapping | None = None, feedback=None) -> xr.Dataset:
+    """Simulate one case from its initial state and return the labelled simulation dataset.
+
+    Parameters
+    ----------
+    case : a resolved case (``hubbeam.configuration.load.case_settings``): ``name``, ``model``, ``maneuver``
+        (:mod:`hubbeam.model.maneuvers`), ``t_end``, ``modes``, ``tip_mass``, optional ``damping``
+        (:mod:`hubbeam.model.damping`) and optional ``initial`` (:func:`initial_state`; default: rest).
+    params : Table 1 parameters.
+    numerics : the ``numerics`` section of the config (``rtol``, ``atol``, ``output_step``,
+        ``max_steps``, ``step_warning``, ``divergence_limit``, and ``quadrature_points`` when
+        ``matrices`` is not given).
+    matrices : the case's :class:`~hubbeam.model.matrices.SystemMatrices` (assembled if None).
+    convergence_check : ``numerics.convergence_check`` of the config (``tolerance_factor``,
+        ``extra_modes``, ``threshold_m``); if given, the case is rerun at a tighter tolerance and
+        with more modes and the differences are recorded (:func:`convergence`).
+    feedback : for a ``state_feedback`` maneuver, the function ``(case, sm) -> (law,
+        attributes)`` that resolves its :class:`~hubbeam.model.maneuvers.FeedbackLaw` for the case's
+        matrices (every rerun its own) and the dataset attributes that record it
+        (``hubbeam.feedback.simulate_case`` passes it).
+
+    The attribute ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so
+    that :func:`hubbeam.results.reader.simulation_inputs` can rebuild them. ``case`` and ``numerics`` may
+    be the objects of :mod:`hubbeam.configuration.settings`; mappings are checked there once
+    (``hubbeam.configuration.load.ConfigError``).
+    """
+    case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
+    convergence_check = numerics.convergence_check and numerics.convergence_check.to_dict()
+    case, numerics = case.to_dict(), numerics.to_dict()  # what the integration below reads
+    check_initial(case)
+    sm = case_matrices(case, params, numerics, matrices)
+    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback))
+    ds.attrs["quadrature_points"] = quadrature_points(sm)
+    if case["maneuver"]["kind"] == "state_feedback":
+        ds.attrs.update(feedback(case, sm)[1])
+    if convergence_check is not None:
+        found = convergence(ds, case, params, numerics, sm, convergence_check, feedback)
+        notes = found.pop("warnings")
+        ds.attrs.update(found)
+        ds.attrs["warnings"] = "; ".join(filter(None, [ds.attrs["warnings"], *notes]))
+    return ds
+
+
+def quadrature_points(sm: SystemMatrices) -> int:
+    """Gauss-Legendre nodes of the beam integrals of ``sm`` (its point cloud less the tip)."""
+    return int(np.size(sm.x) - 1)
+
+
+def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices,
+               feedback=None):
+    """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`
+    (``feedback`` as in :func:`simulate`)."""
+    law = None
+    if case["maneuver"]["kind"] == "state_feedback":
+        if feedback is None:
+            raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.maneuver.kind = "
+                                  "'state_feedback'; allowed here only with its feedback "
+                                  "(run it with hubbeam.feedback.simulate_case)")
+        law = feedback(case, sm)[0]
+    kind, mp = maneuver_parameters(case["maneuver"], law)
+    t = output_times(case["t_end"], numerics["output_step"])
+    out = np.empty((t.size, n_output_columns(case["modes"])))
+    stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
+    C = damping_matrices(case.get("damping"), sm)
+    start = time.perf_counter()
+    inputs = SimulationInputs(model(case["model"]).traits, kind, mp, C, sm)
+    status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
+                                     integrator_settings(numerics, params.L), out, stats)
+    wall = time.perf_counter() - start
+    LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
+             "%d rhs calls, %d Jacobians, %d LU", case.get("name", "<unnamed>"), case["model"],
+             case["modes"], radau.STATUS_NAMES[status], t_stop, wall, stats[radau.ACCEPTED],
+             stats[radau.REJECTED], stats[radau.RHS_CALLS], stats[radau.JACOBIANS],
+             stats[radau.FACTORIZATIONS])
+    integrator = {"integrator": INTEGRATOR, "rtol": float(numerics["rtol"]),
+                  "atol": float(numerics["atol"]),
+                  **{name: int(value) for name, value in zip(radau.STAT_NAMES, stats)}}
+    return t, out, status, t_stop, integrator
+
+
+def integrator_settings(numerics: Mapping, length: float) -> IntegratorSettings:
+    """The kernel's :class:`~hubbeam.core.inputs.IntegratorSettings` from checked ``numerics``
+    for a beam of length ``length`` (the tip limit is ``divergence_limit * length``)."""
+    return IntegratorSettings(float(numerics["rtol"]), float(numerics["atol"]),
+                              float(numerics["divergence_limit"]) * length,
+                              int(numerics["max_steps"]))
+
+
+def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics: Mapping,
+                sm: SystemMatrices, settings: Mapping, feedback=None) -> dict:
+    """Check the run ``ds`` of ``case`` (made with matrices ``sm``) against two reruns.
+
+    The reruns change one setting each: the tolerances ``rtol`` and ``atol`` multiplied by
+    ``settings["tolerance_factor"]`` (``rtol`` not below :data:`MIN_RTOL`), and the number of
+    modes raised by ``settings["extra_modes"]`` (at most :data:`MAX_MODES`; the extra-mode
+    matrices are assembled with at least the Gauss nodes of ``sm``). Each difference is the
+    largest ``|tip_transverse - tip_transverse_rerun|`` in m over the output times where both
+    runs have values, i.e. excluding what follows a divergence or an exhausted step budget.
+
+    Returns the attributes ``convergence_check`` (the settings), ``convergence_rtol``,
+    ``convergence_atol``, ``convergence_modes``, ``convergence_tolerance_diff_m``,
+    ``convergence_modes_diff_m`` (NaN when the case already has :data:`MAX_MODES` modes) and
+    ``warnings``, a list of texts: a difference above ``settings["threshold_m"]``, a mode check
+    that could not be made, a rerun that stopped on its step budget before the run did.
+    """
+    threshold = float(settings["threshold_m"])
+    tip = ds["tip_transverse"].values
+    t_stop = float(ds.attrs["stopped_at_s"])
+    n = int(case["modes"])
+    tight = dict(numerics, rtol=max(float(numerics["rtol"]) * settings["tolerance_factor"], MIN_RTOL),
+                 atol=float(numerics["atol"]) * settings["tolerance_factor"])
+    more = min(n + int(settings["extra_modes"]), MAX_MODES)
+    found = {"convergence_check": json.dumps(dict(settings), sort_keys=True),
+             "convergence_rtol": tight["rtol"], "convergence_atol": tight["atol"],
+             "convergence_modes": more}
+    warnings = []
+    reruns = {"tolerance": (case, tight, sm,
+                            f"a rerun at rtol = {tight['rtol']:.3g}, atol = {tight['atol']:.3g}")}
+    if more > n:
+        more_case = _with_modes(case, more)
+        more_sm = case_matrices(more_case, params, {"quadrature_points": quadrature_points(sm)})
+        reruns["modes"] = (more_case, numerics, more_sm, f"a rerun with {more} modes")
+    else:
+        found["convergence_modes_diff_m"] = math.nan
+        warnings.append(f"convergence in the modes not checked: the case already has the "
+                        f"maximum of {MAX_MODES} modes")
+    for label, (rerun_case, rerun_numerics, rerun_sm, what) in reruns.items():
+        _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm, feedback)
+        rerun_tip = out[:, output_columns(rerun_case["modes"])["tip_transverse"]]
+        both = np.isfinite(tip) & np.isfinite(rerun_tip)
+        difference = float(np.max(np.abs(tip - rerun_tip)[both])) if both.any() else math.nan
+        found[f"convergence_{label}_diff_m"] = difference
+        LOG.info("case %s: max |tip deflection difference| to %s: %.3g m", case.get("name"),
+                 what, difference)
+        if difference > threshold:
+            warnings.append(f"not converged in the {label}: the tip deflection differs by up to "
+                            f"{difference:.3g} m from {what} (convergence_{label}_diff_m > "
+                            f"numerics.convergence_check.threshold_m = {threshold:g} m)")
+        elif math.isnan(difference):
+            warnings.append(f"convergence in the {label} not checked: no output time where both "
+                            f"the run and {what} have values")
+        if status == radau.TOO_MANY_STEPS and rerun_stop < t_stop:
+            warnings.append(f"convergence check against {what} covers t <= {rerun_stop:.6g} s "
+                            "only (its step budget numerics.max_steps ran out)")
+    found["warnings"] = warnings
+    return found
+
+
+def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices,
+                  t: np.ndarray, out: np.ndarray, status: int, t_stop: float,
+                  integrator: Mapping) -> xr.Dataset:
+    """The simulation dataset of ``docs/architecture.md`` from the kernel's output array.
+
+    ``sm`` are the case's matrices (their ``K22`` of Eq. 31 tells a divergence from a run that
+    left the range of the models, :mod:`hubbeam.model.validity`); ``status`` and ``t_stop`` are the
+    kernel's return values; ``integrator`` holds the integrator attributes (name, tolerances and
+    statistics, including ``n_steps``).
+    """
+    n = case["modes"]
+    columns = output_columns(n)
+    variables = dataset_variables(case["model"])
+    data_vars = {name: (dims, np.ascontiguousarray(out[:, columns[name]]),
+                        {"units": units, "long_name": long_name})
+                 for name, (dims, units, long_name) in variables.items()}
+    for name, (factors, units, long_name) in CUMULATIVE_VARIABLES.items():
+        integrand = np.prod([out[:, columns[factor]] for factor in factors], axis=0)
+        data_vars[name] = ("time", cumulative_integral(integrand, t),
+                           {"units": units, "long_name": long_name})
+    coords = {
+        "time": ("time", t, {"units": "s", "long_name": "time since the start of the maneuver",
+                             "standard_name": "time"}),
+        "mode": ("mode", np.arange(1, n + 1), {"units": "1", "long_name": "mode number"}),
+    }
+    small_limit = float(numerics.get("small_deflection_limit", OPTIONAL_NUMERICS["small_deflection_limit"]))
+    found = validity.run_attributes(status, t_stop, case["model"], sm, out[:, columns["theta_dot"]],
+                                    out[:, columns["tip_transverse"]], params.L, small_limit)
+    warnings = []
+    if integrator.get("n_steps", 0) > numerics["step_warning"]:
+        warnings.append(f"{integrator['n_steps']} accepted steps exceed numerics.step_warning = "
+                        f"{numerics['step_warning']}")
+    if status == radau.TOO_MANY_STEPS:
+        warnings.append(f"step budget numerics.max_steps = {numerics['max_steps']} exhausted at "
+                        f"t = {t_stop:.6g} s; outputs after it are NaN")
+    warning = found.pop("warning")
+    if warning:
+        warnings.append(warning)
+    tip = case.get("tip_mass") or {"mass": 0.0, "position": params.L}
+    attributes = {
+        "model": case["model"],
+        "maneuver": dict(case["maneuver"]),
+        "damping": dict(case.get("damping") or {}),
+        "initial": dict(case.get("initial") or {}),
+        "tip_mass_kg": float(tip["mass"]),
+        "tip_position_m": float(tip["position"]),
+        "n_modes": int(n),
+        **beam_attributes(params),
+        **found,
+        "integrator_status": radau.STATUS_NAMES[status],
+        "stopped_at_s": float(t_stop),
+        "output_step": float(numerics["output_step"]),
+        "divergence_limit": float(numerics["divergence_limit"]),
+        "max_steps": int(numerics["max_steps"]),
+        "step_warning": int(numerics["step_warning"]),
+        **integrator,
+        "warnings": "; ".join(warnings),
+    }
+    maneuver = json.dumps(dict(case["maneuver"]), sort_keys=True)  # as in case_config
+    title = f"hubbeam simulation {case.get('name', '')}: {case['model']}, {maneuver}"
+    attrs = global_attributes(title, case_config=dict(case), extra=attributes)
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def compile_kernels(family: str | None = None) -> float:
+    """Compile (or load from numba's cache) the simulation kernel of ``family`` (a key of
+    :data:`hubbeam.core.integrate.FAMILY_KERNELS`; default: every family); return the seconds it
+    took.
+
+    One kernel per family serves every model of it, maneuver and mode count, so a workflow calls
+    this once per family before it starts parallel simulations (they then all load the cached
+    machine code); the families compile independently, in parallel processes if wanted.
+    """
+    if family is not None and family not in FAMILIES:
+        raise ValueError(f"family: got {family!r}; allowed: {', '.join(FAMILIES)}")
+    params = BeamParameters(L=1.0, rho=1.0, A=1.0, E=1.0, I=1.0, Jh=1.0, rA=0.1)
+    numerics = {"rtol": 1e-6, "atol": 1e-8, "output_step": 0.05, "max_steps": 1000,
+                "step_warning": 1000, "divergence_limit": 1.0, "quadrature_points": 8}
+    start = time.perf_counter()
+    for name in [family] if family else FAMILIES:
+        case = {"name": "compile_kernels", "model": family_model(name).name, "modes": 1, "t_end": 0.1,
+                "maneuver": {"kind": "prescribed", "wf": 0.1, "tf": 0.05},
+                "tip_mass": {"mass": 0.0, "position": 1.0}}
+        sm = case_matrices(case, params, numerics)
+        kind, mp = maneuver_parameters(case["maneuver"])
+        t = output_times(case["t_end"], numerics["output_step"])
+        out = np.empty((t.size, n_output_columns(1)))
+        stats = np.zeros(len(radau.STAT_NAMES), np.int64)
+        inputs = SimulationInputs(family_model(name).traits, kind, mp, damping_matrices(None, sm), sm)
+        simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
+                        IntegratorSettings(1e-6, 1e-8, 1.0, 1000), out, stats)
+    return time.perf_counter() - start
+
+
+def step_stops(case: Mapping, t: np.ndarray) -> np.ndarray:
+    """Times no step may cross: where the maneuver is not smooth (the end of Eq. 43/44, where they
+    are only C^1 or C^3; table rows), inside the output span."""
+    stops = maneuver_stops(case["maneuver"])
+    return np.ascontiguousarray(stops[(stops > 0.0) & (stops < t[-1])])
+
+
+def cumulative_integral(rate: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """``int_0^t rate dt`` on the output grid by the composite Simpson rule
+    (``scipy.integrate.cumulative_simpson``; error ``O(output_step^4)`` where ``rate`` is smooth,
+    ``O(output_step^2)`` over an output interval with a kink); NaN after the first NaN."""
+    result = np.full(t.size, np.nan)
+    finite = np.isfinite(rate)
+    count = t.size if finite.all() else int(np.argmin(finite))
+    if count >= 2:
+        result[:count] = cumulative_simpson(rate[:count], x=t[:count], initial=0.0)
+    elif count == 1:
+        result[0] = 0.0
+    return result
+

@@ -50,19 +50,27 @@ def _sections(markdown: str) -> dict[str, set[str]]:
 
 def _node_at(title: str) -> dict:
     """The schema mapping a section title names: a dotted path from the top level or from a $def,
-    or the branch of one kind of such a mapping ("maneuver` when `kind` is `torque")."""
+    or the branch of one kind of such a mapping ("maneuver` when `kind` is `torque"), and a
+    mapping inside such a branch ("maneuver` when `kind` is `state_feedback.design")."""
     defs = SCHEMA["$defs"]
     if "` when `" in title:
         path, condition = title.split("` when `")
         key, value = condition.split("` is `")
+        value, *inside = value.split(".")
         (then,) = [rule["then"] for rule in _node_at(path)["allOf"]
                    if rule["if"]["properties"][key]["const"] == value]
-        return resolve(then, defs)
+        node = resolve(then, defs)
+        return _inside(node, inside)
     first, *rest = title.split(".")
-    node = resolve(SCHEMA["properties"][first] if first in SCHEMA["properties"] else defs[first], defs)
-    for part in rest:
+    return _inside(resolve(SCHEMA["properties"][first] if first in SCHEMA["properties"] else defs[first],
+                           defs), rest)
+
+
+def _inside(node: dict, parts) -> dict:
+    """The mapping at the dotted ``parts`` below ``node`` (``<name>``: any key's mapping)."""
+    for part in parts:
         child = node["additionalProperties"] if part == "<name>" else node["properties"][part]
-        node = resolve(child, defs)
+        node = resolve(child, SCHEMA["$defs"])
     return node
 
 

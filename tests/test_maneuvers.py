@@ -184,6 +184,7 @@ def test_the_kernel_layout_of_every_maneuver_kind_has_the_keys_the_schema_declar
     packed = {kind: set(keys) for kind, (_, keys) in MANEUVERS.items()}
     packed |= {kind: {"time", column} for kind, (_, column, _) in TABLES.items()}
     assert {kind: set(keys) for kind, keys in kind_keys("maneuver").items()} == packed | {
-        "pd": {"kp", "kd", "reference"}}
+        "pd": {"kp", "kd", "reference"},
+        "state_feedback": {"reference", "feedforward", "gains", "output_feedback", "design"}}
     assert {kind: set(keys) for kind, keys in kind_keys("reference").items()} == {
         kind: set(keys) for kind, (_, keys) in REFERENCES.items()}

@@ -13,12 +13,14 @@ import yaml
 from hubbeam.configuration.load import ConfigError, validate_config
 from hubbeam.reporting.products import (
     CAMPBELL,
+    DESIGNS_FIGURE,
     GENERAL_PRODUCTS,
     PAPER_PRODUCTS,
     SIMULATION_FIGURE,
     Product,
     ProductError,
     merged,
+    of_kind,
     product_sets,
     products_for,
 )
@@ -121,7 +123,16 @@ def test_a_study_gets_the_general_products_and_none_of_the_paper():
 
 def test_a_study_may_ask_for_the_paper_products_too():
     products = products_for(study() | {"products": ["paper"]})
-    assert set(products) == set(PAPER_PRODUCTS) | set(GENERAL_PRODUCTS)
+    designs = set(of_kind(GENERAL_PRODUCTS, DESIGNS_FIGURE))  # the study designs no feedback
+    assert set(products) == set(PAPER_PRODUCTS) | set(GENERAL_PRODUCTS) - designs
+
+
+def test_the_figure_of_the_feedback_designs_needs_a_designed_case():
+    cfg = study()
+    assert not set(of_kind(products_for(cfg), DESIGNS_FIGURE))
+    designed = {"model": "FOAM", "maneuver": {"kind": "state_feedback", "design": {"model": "TLAM"}}}
+    cfg["cases"]["designed"] = designed
+    assert set(of_kind(products_for(cfg), DESIGNS_FIGURE)) == {"controller_trust"}
 
 
 def test_an_unknown_product_set_is_named_with_what_is_allowed():

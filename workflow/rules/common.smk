@@ -16,9 +16,9 @@ from snakemake.exceptions import WorkflowError
 from hubbeam.configuration.load import case_names, case_settings
 from hubbeam.model.models import FAMILIES, model, wildcard_pattern
 from hubbeam.results.paths import FIGURE_FORMATS, SHARED, TABLE_FORMATS, study_paths
-from hubbeam.reporting.products import (CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, PAPER, PAPER_PRODUCTS,
-                              SIMULATION_FIGURE, TABLE, of_kind, product_cases, product_sets,
-                              products_for)
+from hubbeam.reporting.products import (CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE, EIGEN_FIGURE, PAPER,
+                                        PAPER_PRODUCTS, SIMULATION_FIGURE, TABLE, designed_cases, of_kind,
+                                        product_cases, product_sets, products_for)
 from hubbeam.reporting.sourcedeps import script_dependencies
 
 PACKAGE_DIR = Path(workflow.basedir, "src", "hubbeam")
@@ -109,6 +109,11 @@ def product_files(product):
 def study_comparisons():
     """{comparison name: [case, ...]} of `study.comparisons` (none without it)."""
     return dict(config.get("study", {}).get("comparisons", {}))
+
+
+def designed_results(wildcards=None):
+    """Input function: the simulations whose state feedback is designed, by case name."""
+    return {case: PATHS.simulation(case) for case in designed_cases(config)}
 
 
 def figure_names(key, product):

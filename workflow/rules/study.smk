@@ -1,6 +1,6 @@
-"""The study report and its figures per case and per comparison (products of kinds "figure per
-case" and "figure per comparison" of the registry, `PRODUCTS` in common.smk): built for a
-configuration with a `study` section (docs/studies.md), under its results folder results/<name>/.
+"""The study report and its figures per case, per comparison and of the feedback designs
+(products of kinds "figure per case", "figure per comparison" and "figure of the feedback
+designs" of the registry, `PRODUCTS` in common.smk): built for a configuration with a `study` section (docs/studies.md), under its results folder results/<name>/.
 
 The study report (Markdown, HTML, summary.csv) shows a figure per case, the comparison figures of
 `study.comparisons` and every eigen-analysis figure of the configuration's products (the Campbell
@@ -74,6 +74,33 @@ for _key, _product in of_kind(PRODUCTS, COMPARISON_FIGURE).items():
             name=lambda wildcards: wildcards.comparison,
         log:
             PATHS.log("figures", f"{_key}_{{comparison}}.log"),
+        script:
+            "../scripts/study_figure.py"
+
+
+for _key, _product in of_kind(PRODUCTS, DESIGNS_FIGURE).items():
+
+    rule:
+        name:
+            f"figure_{_key}"
+        localrule: True
+        input:
+            unpack(designed_results),
+            code=script_code("study_figure.py", _product.module),
+        output:
+            pdf=ensure(PATHS.figure(_key, "pdf"), non_empty=True),
+            png=report(
+                ensure(PATHS.figure(_key, "png"), non_empty=True),
+                caption=PRODUCT_CAPTION,
+                category=_product.category,
+            ),
+        params:
+            function=_product.function,
+            caption=_product.caption(),
+            per_case=False,
+            name=config.get("study", {}).get("name", _key),
+        log:
+            PATHS.log("figures", f"{_key}.log"),
         script:
             "../scripts/study_figure.py"
 

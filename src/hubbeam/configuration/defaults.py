@@ -100,13 +100,13 @@ def highest_hub_speed(maneuver: Mapping, t_end: float, inertia: float) -> float:
     of ``inertia`` (kg m2) about the axis (the hub and the bare beam).
 
     prescribed: ``wf`` (Eq. 43 rises monotonically to it); speed_table: the largest tabulated
-    speed; pd: that of its reference (``wf``, or the steepest mean slope between the rows of an
+    speed; pd and state_feedback: that of its reference (``wf``, or the steepest mean slope between the rows of an
     angle table); torque: the rigid hub under the pulse of Eq. (44), ``tau_max tf / (pi J)`` at
     ``tf / 2``; torque_table: the rigid hub under the table (first value held before it, last
     after it) up to ``t_end``.
     """
     kind = maneuver["kind"]
-    if kind == "pd":
+    if kind in ("pd", "state_feedback"):
         reference = maneuver["reference"]
         if reference["kind"] == "prescribed":
             return float(reference["wf"])

@@ -159,13 +159,13 @@ def case_settings(cfg: Mapping, name: str) -> dict:
 
 def _floats(entry: Mapping) -> dict:
     """A plain copy of a maneuver or damping entry with every number (also in lists and nested
-    entries such as a pd reference) as float; the ``kind`` texts stay."""
+    entries such as a pd reference) as float; the ``kind`` texts and the switches stay."""
     def plain(value):
         if isinstance(value, Mapping):
             return {key: plain(item) for key, item in value.items()}
         if isinstance(value, (list, tuple)):
             return [plain(item) for item in value]
-        return value if isinstance(value, str) else float(value)
+        return value if isinstance(value, (str, bool)) else float(value)
     return plain(entry)
 
 

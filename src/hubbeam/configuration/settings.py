@@ -27,12 +27,13 @@ from hubbeam.model.parameters import TipMass, UniformBeam
 
 
 def _frozen(value: Any) -> Any:
-    """A number as float, a list as a tuple of such, a mapping (a pd reference) as a :class:`Maneuver`."""
+    """A number as float, a list as a tuple of such, a mapping (a pd reference, the gains of a
+    state feedback) as a :class:`Maneuver` (kind None without a ``kind``)."""
     if isinstance(value, Mapping):
         return Maneuver.from_mapping(value)
     if isinstance(value, (list, tuple)):
         return tuple(_frozen(item) for item in value)
-    return value if isinstance(value, str) else float(value)
+    return value if isinstance(value, (str, bool)) else float(value)
 
 
 def _plain(value: Any) -> Any:
@@ -47,19 +48,20 @@ class Maneuver:
     ``(key, value)`` in the order given, numbers as floats, tables as tuples (schema ``maneuver``,
     ``reference``, ``damping``: the keys of each kind)."""
 
-    kind: str
+    kind: str | None
     parameters: tuple[tuple[str, Any], ...]
 
     @classmethod
     def from_mapping(cls, entry: Mapping) -> Maneuver:
-        return cls(entry["kind"], tuple((key, _frozen(value)) for key, value in entry.items() if key != "kind"))
+        return cls(entry.get("kind"), tuple((key, _frozen(value)) for key, value in entry.items() if key != "kind"))
 
     def __getitem__(self, key: str) -> Any:
         return self.kind if key == "kind" else dict(self.parameters)[key]
 
     def to_dict(self) -> dict:
         """``{"kind": ..., key: value, ...}`` with lists for tables, as written in a configuration."""
-        return {"kind": self.kind, **{key: _plain(value) for key, value in self.parameters}}
+        kind = {} if self.kind is None else {"kind": self.kind}
+        return kind | {key: _plain(value) for key, value in self.parameters}
 
 
 #: a damping has the same shape: a kind and its parameters

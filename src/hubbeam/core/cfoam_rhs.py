@@ -6,7 +6,7 @@ with :func:`hubbeam.core.cfoam_tensors.cfoam_system`, which contracts the state 
 summed over the point cloud once per simulation instead of summing over the cloud at every
 call -- and solves Eq. (24) for the free accelerations by a Cholesky factorisation: the elastic
 block with the prescribed ``theta_ddot`` moved to the right-hand side (Eq. 43, a speed table),
-or the whole system for a free hub (Eq. 44, a torque table, PD feedback); the damping forces of
+or the whole system for a free hub (Eq. 44, a torque table, PD or state feedback); the damping forces of
 the elastic coordinates (``C``, :func:`hubbeam.core.eom.add_damping`) join the force. These are
 the equations :func:`hubbeam.core.eom.accelerations` solves with the point-cloud kernel; the tests
 hold the two to rounding error.
@@ -50,7 +50,7 @@ def cfoam_rhs(t, yf, vf, af, problem):
         y[0], thd, thdd = prescribed_motion(problem.kind, t, problem.mp)
         v[0] = thd
     else:
-        tau = hub_torque(problem.kind, t, yf[0], vf[0], problem.mp)
+        tau = hub_torque(problem.kind, t, yf, vf, problem.mp)
     for i in range(nf):
         y[o + i] = yf[i]
         v[o + i] = vf[i]

@@ -268,8 +268,9 @@ def impose_constraints(inputs, t, y, v, a):
 
     A prescribed maneuver (Eq. 43, a speed table) sets theta and its rates and applies no torque
     of its own (the torque it needs is an output); a free hub gets the torque of its maneuver
-    (Eq. 44, a torque table, PD feedback on the state's theta, theta'). A model that does not
-    keep q1 (SFOAM) holds it at zero. ``inputs``: :class:`~hubbeam.core.inputs.SimulationInputs`.
+    (Eq. 44, a torque table, PD feedback on theta and theta', state feedback on the whole
+    state, evaluated after a model that does not keep q1 (SFOAM) has it held at zero).
+    ``inputs``: :class:`~hubbeam.core.inputs.SimulationInputs`.
     """
     n = (y.shape[0] - 1) // 2
     tau = 0.0
@@ -279,13 +280,13 @@ def impose_constraints(inputs, t, y, v, a):
         y[0] = th
         v[0] = thd
         a[0] = thdd
-    else:
-        tau = hub_torque(kind, t, y[0], v[0], inputs.mp)
     if not inputs.traits.keeps_axial:
         for i in range(n):
             y[1 + i] = 0.0
             v[1 + i] = 0.0
             a[1 + i] = 0.0
+    if not prescribed(kind):
+        tau = hub_torque(kind, t, y, v, inputs.mp)
     return tau
 
 

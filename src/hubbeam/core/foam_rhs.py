@@ -16,7 +16,7 @@ all restricted to the free elastic coordinates, so that an evaluation costs a fe
 products instead of assembling and factoring ``M(y)``; ``C1, C2`` are the damping matrices of
 the elastic coordinates (``hubbeam.model.damping``; zero by default, when ``P3 = 0`` adds exact zeros).
 For a prescribed hub (Eq. 43, a speed table) theta_ddot is known. For a free hub (Eq. 44, a
-torque table, PD feedback) the hub row ``m00 theta_ddot + c . e'' = tau + Q_theta``
+torque table, PD or state feedback) the hub row ``m00 theta_ddot + c . e'' = tau + Q_theta``
 (Eqs. 25-27, 32) with ``c = C0 + C1 e = (-R q2, V2 + R^T q1)`` is solved by eliminating ``e''``
 (a Schur complement of the constant block):
 
@@ -175,7 +175,7 @@ def foam_rhs(t, y, v, a, problem):
     if o == 1:
         # hub row (Eqs. 25-27, 32) with e'' eliminated
         m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, r, 0, problem)
-        tau = hub_torque(problem.kind, t, y[0], thd, problem.mp)
+        tau = hub_torque(problem.kind, t, y, v, problem.mp)
         thdd = (tau + q_theta - c_u) / (m00 + c_r)
         a[0] = thdd
     for i in range(ne):
@@ -199,7 +199,7 @@ def foam_outputs(t, y, v, a, problem):
     else:
         thd = v[0]
         thdd = a[0]
-        tau = hub_torque(problem.kind, t, y[0], thd, problem.mp)
+        tau = hub_torque(problem.kind, t, y, v, problem.mp)
     m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, a, o, problem)
     eMe = 0.0  # e'^T Me e'
     for i in range(ne):

@@ -3,7 +3,8 @@
 A maneuver is an integer ``kind`` and a float array ``mp`` of its parameters (tables packed into
 it by ``hubbeam.model.maneuvers``). The hub is *prescribed* (``PRESCRIBED``, ``SPEED_TABLE``: theta and
 its rates are known functions of time, the torque that drives them is an output) or *free*
-(``TORQUE``, ``TORQUE_TABLE``, ``PD``: the applied torque enters the hub row of Eq. 24).
+(``TORQUE``, ``TORQUE_TABLE``, ``PD``, ``STATE_FEEDBACK``: the applied torque enters the hub row
+of Eq. 24).
 
 ``PRESCRIBED``: the spin-up of Eq. (43) with the factor ``t`` the transcription lost (reproduction
 note 1); ``mp = [wf, tf]``. The hub angle, rate and acceleration are
@@ -30,6 +31,16 @@ theta')``; ``mp = [kp, kd, reference kind, reference parameters...]`` with the r
 ``PRESCRIBED`` (Eq. 43, ``[wf, tf]``; theta_r, theta_r' from :func:`hub_motion`) or ``ANGLE_TABLE``
 (a packed clamped cubic spline of the angle, zero slope at both ends, held outside the table).
 
+``STATE_FEEDBACK``: a free hub under ``tau = J theta_r'' - K (x - x_r)`` with ``x = (y, y')`` the
+whole state in the coordinates ``y = (theta, q1, q2)`` (size ``N = 1 + 2 n``) and the reference
+``x_r = (theta_r, theta_r'^2 s, 0, theta_r', 0, 0)``: the rigid reference motion for the hub, the
+centrifugal stretch ``q1s = theta_r'^2 s`` for ``q1`` and zero for ``q2``. ``mp = [N, J, K (2 N
+gains: positions then rates), s (n), reference kind, reference parameters...]`` with the reference as
+for ``PD`` (``J = 0``: no feedforward; the feedforward needs the reference's acceleration, which
+only ``PRESCRIBED`` gives). The torque may be evaluated on the free coordinates of a model that
+integrates no ``q1`` (SFOAM, Eq. 40): the ``q1`` entries of ``K`` are then skipped (they are zero
+for such a model). ``PD`` is the case ``K = (kp, 0.., kd, 0..)``, ``J = 0``.
+
 Packed table at offset ``o`` of ``mp`` (``m >= 2`` rows, times ``t_k`` increasing): ``mp[o] = m``,
 then ``t_0..t_{m-1}``, the integrals ``I_k`` of the interpolant from 0 to ``t_k``, the cubic
 coefficients ``c0..c3`` of every interval (value ``c0 + c1 s + c2 s^2 + c3 s^3``, ``s = t - t_k``),
@@ -49,6 +60,9 @@ PD = 4
 ANGLE_TABLE = 5
 #: offset of the reference's parameters in a ``PD`` maneuver's ``mp``
 PD_REFERENCE = 3
+STATE_FEEDBACK = 6
+#: offset of the gains in a ``STATE_FEEDBACK`` maneuver's ``mp``
+FEEDBACK_GAINS = 2
 
 
 @borrowing_kernel
@@ -129,20 +143,45 @@ def prescribed_motion(kind, t, mp):
 
 
 @borrowing_kernel
-def _reference(t, mp):
-    """Reference angle and rate of a ``PD`` maneuver."""
-    o = PD_REFERENCE
-    if int(mp[2]) == ANGLE_TABLE:
+def _reference(t, mp, o):
+    """Reference angle and rate of a ``PD`` or ``STATE_FEEDBACK`` maneuver whose reference
+    parameters start at ``mp[o]`` (its kind at ``mp[o - 1]``)."""
+    if int(mp[o - 1]) == ANGLE_TABLE:
         return table(t, mp, o)[1:]
     return _spin_up(t, mp[o], mp[o + 1])[:2]
 
 
 @borrowing_kernel
-def hub_torque(kind, t, theta, theta_dot, mp):
-    """Torque applied to a free hub at ``t`` in the state ``(theta, theta_dot)``."""
+def feedback_torque(t, y, v, mp):
+    """``tau = J theta_r'' - K (x - x_r)`` of a ``STATE_FEEDBACK`` maneuver at ``(y, y')``: the
+    full coordinates, or those of a model without ``q1`` (module docstring)."""
+    N = int(mp[0])
+    n = (N - 1) // 2
+    k = FEEDBACK_GAINS
+    s = k + 2 * N
+    o = s + n + 1  # after the reference's kind
+    theta_r, theta_r_dot = _reference(t, mp, o)
+    tau = 0.0
+    if mp[1] != 0.0:
+        tau = mp[1] * _spin_up(t, mp[o], mp[o + 1])[2]
+    tau -= mp[k] * (y[0] - theta_r) + mp[k + N] * (v[0] - theta_r_dot)
+    skip = N - y.shape[0]
+    stretch = theta_r_dot * theta_r_dot
+    for i in range(1, y.shape[0]):
+        j = i + skip
+        reference = stretch * mp[s + j - 1] if j <= n else 0.0
+        tau -= mp[k + j] * (y[i] - reference) + mp[k + N + j] * v[i]
+    return tau
+
+
+@borrowing_kernel
+def hub_torque(kind, t, y, v, mp):
+    """Torque applied to a free hub at ``t`` in the state ``(y, y')`` (theta first)."""
     if kind == TORQUE_TABLE:
         return table(t, mp, 0)[1]
     if kind == PD:
-        theta_r, theta_r_dot = _reference(t, mp)
-        return mp[0] * (theta_r - theta) + mp[1] * (theta_r_dot - theta_dot)
+        theta_r, theta_r_dot = _reference(t, mp, PD_REFERENCE)
+        return mp[0] * (theta_r - y[0]) + mp[1] * (theta_r_dot - v[0])
+    if kind == STATE_FEEDBACK:
+        return feedback_torque(t, y, v, mp)
     return applied_torque(t, mp)

@@ -12,7 +12,11 @@ kind) has a ``kind``:
   the first value held before the table and the last after it;
 * ``pd`` ``{kp, kd, reference}`` (N m rad-1, N m s rad-1): a free hub under ``tau = kp (theta_r -
   theta) + kd (theta_r' - theta')`` tracking ``reference`` = ``{kind: prescribed, wf, tf}``
-  (Eq. 43) or ``{kind: angle_table, time, angle}`` (s, rad; clamped cubic spline as above).
+  (Eq. 43) or ``{kind: angle_table, time, angle}`` (s, rad; clamped cubic spline as above);
+* ``state_feedback`` ``{reference, feedforward, gains | output_feedback | design}``: a free hub
+  under feedback of its whole state towards ``reference`` (as for ``pd``); its gains, the
+  stretch of the reference and the feedforward inertia are a :class:`FeedbackLaw`, which
+  ``hubbeam.feedback`` resolves from the case (a design needs the linear models).
 
 The kernels (:mod:`hubbeam.core.maneuver`) take an integer kind and a float array; the splines'
 coefficients are computed here once per run (scipy's ``CubicSpline``, ``bc_type="clamped"``).
@@ -21,6 +25,7 @@ coefficients are computed here once per run (scipy's ``CubicSpline``, ``bc_type=
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import NamedTuple
 
 import numpy as np
 from scipy.interpolate import CubicSpline
@@ -36,6 +41,21 @@ TABLES = {"speed_table": (kernels.SPEED_TABLE, "speed", "spline"),
 #: reference kinds of ``pd`` -> (kernel id, parameters in the order of the kernel's reference)
 REFERENCES = {"prescribed": (kernels.PRESCRIBED, ("wf", "tf")),
               "angle_table": (kernels.ANGLE_TABLE, ("time", "angle"))}
+
+
+#: the kinds whose controller tracks a ``reference`` motion
+TRACKING = ("pd", "state_feedback")
+
+
+class FeedbackLaw(NamedTuple):
+    """The resolved gains of a ``state_feedback`` maneuver in the coordinates ``x = (y, y')``,
+    ``y = (theta, q1, q2)`` of the simulated model (``2 N`` gains, positions then rates; zero on
+    the ``q1`` of a model that keeps none), the ``q1`` reference per squared reference speed
+    ``stretch`` (``n`` values) and the feedforward inertia (0: no feedforward)."""
+
+    gains: np.ndarray
+    stretch: np.ndarray
+    inertia: float
 
 
 def packed_table(time, values, interpolation: str) -> np.ndarray:
@@ -59,8 +79,9 @@ def packed_table(time, values, interpolation: str) -> np.ndarray:
     return np.concatenate([[t.size], t, integrals, coefficients.ravel(), [y[-1]]])
 
 
-def maneuver_parameters(maneuver: Mapping) -> tuple[int, np.ndarray]:
-    """Kernel id and parameter array ``mp`` of a checked maneuver (:mod:`hubbeam.core.maneuver`)."""
+def maneuver_parameters(maneuver: Mapping, law: FeedbackLaw | None = None) -> tuple[int, np.ndarray]:
+    """Kernel id and parameter array ``mp`` of a checked maneuver (:mod:`hubbeam.core.maneuver`);
+    a ``state_feedback`` maneuver needs its resolved ``law``."""
     kind = maneuver["kind"]
     if kind in MANEUVERS:
         code, keys = MANEUVERS[kind]
@@ -74,15 +95,22 @@ def maneuver_parameters(maneuver: Mapping) -> tuple[int, np.ndarray]:
         ref = packed_table(reference["time"], reference["angle"], "spline")
     else:
         ref = np.array([float(reference[key]) for key in keys])
-    head = [float(maneuver["kp"]), float(maneuver["kd"]), float(ref_code)]
-    assert len(head) == kernels.PD_REFERENCE
-    return kernels.PD, np.concatenate([head, ref])
+    if kind == "pd":
+        head = [float(maneuver["kp"]), float(maneuver["kd"]), float(ref_code)]
+        assert len(head) == kernels.PD_REFERENCE
+        return kernels.PD, np.concatenate([head, ref])
+    if law is None:
+        raise ValueError("maneuver.kind = 'state_feedback' without its feedback law; allowed: "
+                         "hubbeam.feedback.simulate_case, which resolves the gains")
+    head = [float(law.gains.size // 2), float(law.inertia)]
+    assert len(head) == kernels.FEEDBACK_GAINS
+    return kernels.STATE_FEEDBACK, np.concatenate([head, law.gains, law.stretch, [ref_code], ref])
 
 
 def maneuver_stops(maneuver: Mapping) -> np.ndarray:
     """Sorted times where the maneuver's forcing is not smooth: the end ``tf`` of Eq. (43)/(44),
     or the rows of a table (spline knots, kinks of a linear table)."""
-    if maneuver["kind"] == "pd":
+    if maneuver["kind"] in TRACKING:
         maneuver = maneuver["reference"]
     if "tf" in maneuver:
         return np.array([float(maneuver["tf"])])

@@ -34,8 +34,10 @@ CASE_FIGURE = "figure per case"
 #: one figure per comparison of ``study.comparisons`` (``<key>_<comparison>``), its runs overlaid
 COMPARISON_FIGURE = "figure per comparison"
 EIGEN_FIGURE = "eigen figure"
+#: one figure (``<key>``) of every case whose state feedback was designed (``maneuver.design``)
+DESIGNS_FIGURE = "figure of the feedback designs"
 TABLE = "table"
-KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, TABLE)
+KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, DESIGNS_FIGURE, TABLE)
 
 CRITICAL_SPEEDS_NC = IN_RESULTS.eigen("critical_speeds")
 #: the linear-model datasets the figures read (hubbeam.linear.datasets)
@@ -99,8 +101,10 @@ class Product:
         return "Figures of the paper" if self.in_paper else "Beyond the paper"
 
     def is_built_for(self, cfg: Mapping) -> bool:
-        """Whether the configuration ``cfg`` has every key the product needs."""
-        return all(_has(cfg, key.split(".")) for key in self.needs)
+        """Whether the configuration ``cfg`` has every key the product needs (and, for a figure of
+        the feedback designs, a designed case)."""
+        return (all(_has(cfg, key.split(".")) for key in self.needs)
+                and (self.kind != DESIGNS_FIGURE or bool(designed_cases(cfg))))
 
     @property
     def module(self) -> str:
@@ -118,6 +122,12 @@ class Product:
             parts.append(f"*Paper:* {_rst(self.paper)}")
         parts.append(f"*This study:* {_rst(self.ours)}" if self.paper else _rst(self.ours))
         return " ".join(parts)
+
+
+def designed_cases(cfg: Mapping) -> list[str]:
+    """The cases of ``cfg`` whose state feedback is designed by LQR (``maneuver.design``), sorted."""
+    return sorted(name for name, case in cfg.get("cases", {}).items()
+                  if isinstance(case, Mapping) and "design" in case.get("maneuver", {}))
 
 
 def _has(cfg, keys: list[str]) -> bool:
@@ -263,6 +273,13 @@ GENERAL_PRODUCTS: Mapping[str, Product] = registry(
                 ours=what, in_paper=False, files=files, options={"tip_mass": "largest"},
                 needs=("linear.tip_masses.1",)),
     )),
+    Product(
+        "controller_trust", DESIGNS_FIGURE, "hubbeam.plotting.controller_trust:plot",
+        "Controllers designed on one model, run on another", in_paper=False,
+        ours="Peak and residual tip deflection, settling time of v(L) and peak torque of every LQR "
+             "design of the study against its design speed, on CFOAM and on its own design model; "
+             "the paper's conclusion (iii) that SFOAM can be used for controller design, tested.",
+        needs=("study",)),
 )
 
 # --- the paper's products ------------------------------------------------------------------------

@@ -48,7 +48,7 @@ from hubbeam.model.limits import (
     MIN_RTOL,
     SMALL_DEFLECTION_LIMIT,
 )
-from hubbeam.model.maneuvers import maneuver_parameters, maneuver_stops
+from hubbeam.model.maneuvers import TRACKING, maneuver_parameters, maneuver_stops
 from hubbeam.model.matrices import SystemMatrices, assemble
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
@@ -94,8 +94,10 @@ def check_initial(case: Mapping) -> None:
         if key in ("q1", "q1_dot") and np.any(value) and not model(case["model"]).keeps_axial:
             raise SimulationError(f"{where}.{key} = {value!r}; allowed: zeros or no {key}: "
                                   f"{case['model']} keeps no axial coordinates (q1 = 0, Eq. 40)")
+    if "hub_speed" not in spec or case["maneuver"]["kind"] in TRACKING:
+        return  # a controller's hub is free
     kind, mp = maneuver_parameters(case["maneuver"])
-    if "hub_speed" in spec and prescribed(kind):
+    if prescribed(kind):
         start_speed = float(prescribed_motion(kind, 0.0, mp)[1])
         if not math.isclose(spec["hub_speed"], start_speed, rel_tol=1e-12, abs_tol=1e-12):
             raise SimulationError(
@@ -164,7 +166,7 @@ def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
 
 def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
              matrices: SystemMatrices | None = None, *,
-             convergence_check: Mapping | None = None) -> xr.Dataset:
+             convergence_check: Mapping | None = None, feedback=None) -> xr.Dataset:
     """Simulate one case from its initial state and return the labelled simulation dataset.
 
     Parameters
@@ -180,6 +182,10 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     convergence_check : ``numerics.convergence_check`` of the config (``tolerance_factor``,
         ``extra_modes``, ``threshold_m``); if given, the case is rerun at a tighter tolerance and
         with more modes and the differences are recorded (:func:`convergence`).
+    feedback : for a ``state_feedback`` maneuver, the function ``(case, sm) -> (law,
+        attributes)`` that resolves its :class:`~hubbeam.model.maneuvers.FeedbackLaw` for the case's
+        matrices (every rerun its own) and the dataset attributes that record it
+        (``hubbeam.feedback.simulate_case`` passes it).
 
     The attribute ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so
     that :func:`hubbeam.results.reader.simulation_inputs` can rebuild them. ``case`` and ``numerics`` may
@@ -191,10 +197,12 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     case, numerics = case.to_dict(), numerics.to_dict()  # what the integration below reads
     check_initial(case)
     sm = case_matrices(case, params, numerics, matrices)
-    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm))
+    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback))
     ds.attrs["quadrature_points"] = quadrature_points(sm)
+    if case["maneuver"]["kind"] == "state_feedback":
+        ds.attrs.update(feedback(case, sm)[1])
     if convergence_check is not None:
-        found = convergence(ds, case, params, numerics, sm, convergence_check)
+        found = convergence(ds, case, params, numerics, sm, convergence_check, feedback)
         notes = found.pop("warnings")
         ds.attrs.update(found)
         ds.attrs["warnings"] = "; ".join(filter(None, [ds.attrs["warnings"], *notes]))
@@ -206,9 +214,18 @@ def quadrature_points(sm: SystemMatrices) -> int:
     return int(np.size(sm.x) - 1)
 
 
-def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices):
-    """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`."""
-    kind, mp = maneuver_parameters(case["maneuver"])
+def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices,
+               feedback=None):
+    """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`
+    (``feedback`` as in :func:`simulate`)."""
+    law = None
+    if case["maneuver"]["kind"] == "state_feedback":
+        if feedback is None:
+            raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.maneuver.kind = "
+                                  "'state_feedback'; allowed here only with its feedback "
+                                  "(run it with hubbeam.feedback.simulate_case)")
+        law = feedback(case, sm)[0]
+    kind, mp = maneuver_parameters(case["maneuver"], law)
     t = output_times(case["t_end"], numerics["output_step"])
     out = np.empty((t.size, n_output_columns(case["modes"])))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
@@ -238,7 +255,7 @@ def integrator_settings(numerics: Mapping, length: float) -> IntegratorSettings:
 
 
 def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics: Mapping,
-                sm: SystemMatrices, settings: Mapping) -> dict:
+                sm: SystemMatrices, settings: Mapping, feedback=None) -> dict:
     """Check the run ``ds`` of ``case`` (made with matrices ``sm``) against two reruns.
 
     The reruns change one setting each: the tolerances ``rtol`` and ``atol`` multiplied by
@@ -276,7 +293,7 @@ def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics:
         warnings.append(f"convergence in the modes not checked: the case already has the "
                         f"maximum of {MAX_MODES} modes")
     for label, (rerun_case, rerun_numerics, rerun_sm, what) in reruns.items():
-        _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm)
+        _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm, feedback)
         rerun_tip = out[:, output_columns(rerun_case["modes"])["tip_transverse"]]
         both = np.isfinite(tip) & np.isfinite(rerun_tip)
         difference = float(np.max(np.abs(tip - rerun_tip)[both])) if both.any() else math.nan

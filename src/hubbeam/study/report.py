@@ -3,8 +3,9 @@ Markdown (``hubbeam.reporting.document``).
 
 :func:`study_markdown` summarises the study's beam in a few rows (:func:`beam_summary`; the full
 table of stations stays in the archived configuration) beside the figure of its properties, lists
-a row per case (:mod:`hubbeam.study.summary`) with links to its figure, the comparison figures and
-the eigen-analysis figures (the beam's mode shapes among them); paths of
+a row per case (:mod:`hubbeam.study.summary`) with links to its figure, the comparison figures,
+the LQR designs tried on another model (:mod:`hubbeam.study.trust`: a table, the verdict per
+design model and their figure) and the eigen-analysis figures (the beam's mode shapes among them); paths of
 figures are given relative to the report's folder, so the Markdown reads the same in the results
 archive. :func:`study_html` renders it into one self-contained page (figures embedded).
 """
@@ -16,24 +17,33 @@ from collections.abc import Mapping, Sequence
 from hubbeam.model.beam import SECTION_PROPERTIES, SECTION_UNITS, beam_from_config
 from hubbeam.reporting.document import markdown_table, markdown_to_html, render
 from hubbeam.reporting.formatting import number
+from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, verdicts
 
 #: the eigen figure shown in the report's beam section rather than with the eigen-analysis
 BEAM_FIGURE = "beam_properties"
+#: the figure of the feedback designs, shown in their section
+DESIGNS_FIGURE = "controller_trust"
 #: the registry's linear-model figures (``hubbeam.reporting.products``), shown in a section of their own
 LINEAR_PREFIX = "linear_"
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                    case_figures: Mapping[str, str], comparison_figures: Mapping[str, str],
-                   eigen_figures: Mapping[str, str]) -> str:
-    """The report in Markdown. ``rows`` are summary rows; the figure maps give, per case,
-    comparison or eigen figure, the PNG path relative to the report."""
+                   eigen_figures: Mapping[str, str], designs: Sequence[Mapping] = ()) -> str:
+    """The report in Markdown. ``rows`` are summary rows, ``designs`` the rows of
+    :func:`hubbeam.study.trust.design_table`; the figure maps give, per case, comparison or
+    eigen figure (the figure of the designs among them), the PNG path relative to the report."""
+    own = (BEAM_FIGURE, DESIGNS_FIGURE)
     return render("study_report.md.j2", study=study, beam=beam, rows=rows,
                   beam_table=beam_markdown(beam), cases_table=cases_markdown(rows),
                   case_figures=case_figures, comparison_figures=comparison_figures,
                   beam_figure=eigen_figures.get(BEAM_FIGURE),
+                  designs_table=designs_markdown(designs) if designs else "",
+                  verdicts=verdicts(list(designs)), design_figure=eigen_figures.get(DESIGNS_FIGURE),
+                  reference_model=REFERENCE_MODEL, settling_band=SETTLING_BAND,
+                  trust_tolerance=TRUST_TOLERANCE,
                   eigen_figures={name: path for name, path in eigen_figures.items()
-                                 if name != BEAM_FIGURE and not name.startswith(LINEAR_PREFIX)},
+                                 if name not in own and not name.startswith(LINEAR_PREFIX)},
                   linear_figures={name: path for name, path in eigen_figures.items()
                                   if name.startswith(LINEAR_PREFIX)})
 
@@ -72,6 +82,28 @@ def cases_markdown(rows: Sequence[Mapping]) -> str:
         ([row["case"], row["model"], row["maneuver"], row["modes"], number(row["tip_mass_kg"]),
           number(row["peak_tip_deflection_m"]), number(row["peak_time_s"]), number(row["maneuver_end_s"]),
           number(row["residual_amplitude_m"]), row["validity"], convergence(row)] for row in rows))
+
+
+def designs_markdown(designs: Sequence[Mapping]) -> str:
+    """A line per LQR design and the model it ran on: its measures, stability and the gap."""
+    def cells(run):
+        if run is None:
+            return ["not run"] + [""] * 4
+        if not run["stable"]:
+            return ["unstable"] + [""] * 4
+        return ["stable", number(run["peak_tip_deflection_m"], 3), number(run["residual_vibration_m"], 3),
+                number(run["settling_time_s"], 3), number(run["peak_torque_Nm"], 3)]
+
+    lines = []
+    for row in designs:
+        for which in ("own", "reference"):
+            run = row[which]
+            ran_on = run["model"] if run else (row["design_model"] if which == "own" else REFERENCE_MODEL)
+            gap = number(100 * row["gap"], 2) if which == "reference" and row["gap"] == row["gap"] else ""
+            verdict = ("good enough" if row["good"] else "not good enough") if which == "reference" else ""
+            lines.append([row["design_model"], number(row["design_speed"]), ran_on, *cells(run), gap, verdict])
+    return markdown_table(("designed on", "at (rad/s)", "run on", "loop", "peak v(L) (m)", "residual (m)",
+                           "settling (s)", "peak torque (N m)", "gap (%)", "verdict"), lines)
 
 
 def study_html(markdown: str, title: str, report_dir) -> str:

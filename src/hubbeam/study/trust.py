@@ -1,0 +1,120 @@
+"""How far a controller designed on one model may be trusted on another: the measures of every
+``state_feedback`` run whose gains were designed by LQR (``maneuver.design``), and the verdict.
+
+Per run (:func:`closed_loop_measures`), from the tip deflection v(L) and the hub torque after
+the reference's spin-up ends at ``tf``: the peak ``max |v(L)|`` over the run, the residual
+vibration ``max |v(L)|`` after ``tf``, the settling time of v(L) (from ``tf`` until ``|v(L)|``
+stays inside :data:`SETTLING_BAND` of its peak; NaN if it never does before the run ends), the
+peak torque, and whether the loop stayed stable (the run ended normally with a bounded response).
+
+The runs pair up by design model and design speed (:func:`design_table`): the design's own
+closed loop (the controller on the model it was designed on) is its prediction, and the run on
+the reference model (:data:`REFERENCE_MODEL`, the most complete) is the truth. A design is *good
+enough* at a speed when the reference loop is stable and its peak and residual tip deflections
+differ from the prediction by at most :data:`TRUST_TOLERANCE` (relative); :func:`verdicts`
+states, per design model, the first speed where it stops being good enough and by how much, and
+the first speed where its loop on the reference model is unstable.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+
+from hubbeam.results import measures
+from hubbeam.results.reader import attr, maneuver, model, times, variable
+
+#: the model the designs are tried on (the most complete of the four)
+REFERENCE_MODEL = "CFOAM"
+#: the settling band of v(L), a fraction of its peak
+SETTLING_BAND = 0.05
+#: the largest relative gap between prediction and reference that is still good enough
+TRUST_TOLERANCE = 0.10
+#: the measures of a run, in the order of the report's table
+MEASURES = ("peak_tip_deflection_m", "residual_vibration_m", "settling_time_s", "peak_torque_Nm")
+
+
+def is_designed(case: str, ds: xr.Dataset) -> bool:
+    """Whether ``case`` ran a state feedback designed by LQR."""
+    found = maneuver(case, ds)
+    return found["kind"] == "state_feedback" and "design" in found
+
+
+def closed_loop_measures(case: str, ds: xr.Dataset) -> dict:
+    """The measures of a designed state-feedback run (module docstring) with its design model,
+    design speed, the model it ran on and ``stable``."""
+    found = maneuver(case, ds)
+    tf = float(found["reference"]["tf"]) if "tf" in found["reference"] else float(
+        found["reference"]["time"][-1])
+    t = times(ds)
+    tip = variable(case, ds, "tip_transverse").values
+    torque = variable(case, ds, "hub_torque").values
+    stable = attr(case, ds, "integrator_status") == "success" and bool(np.all(np.isfinite(tip)))
+    peak = float(np.nanmax(np.abs(tip))) if np.isfinite(tip).any() else math.nan
+    outside = np.flatnonzero(np.abs(tip) > SETTLING_BAND * peak)
+    last = t[outside[-1]] if outside.size else tf
+    settled = stable and last < t[-1]
+    return {
+        "case": case, "design_model": found["design"]["model"],
+        "design_speed": float(found["design"]["speed"]), "model": model(case, ds), "stable": stable,
+        "peak_tip_deflection_m": peak if stable else math.nan,
+        "residual_vibration_m": measures.residual_amplitude(t, tip, tf) if stable else math.nan,
+        "settling_time_s": max(last - tf, 0.0) if settled else math.nan,
+        "peak_torque_Nm": float(np.nanmax(np.abs(torque))) if stable else math.nan,
+    }
+
+
+def design_table(datasets: Mapping[str, xr.Dataset]) -> list[dict]:
+    """One row per design (model, speed): the measures on its own model (``own``) and on
+    :data:`REFERENCE_MODEL` (``reference``; None when not run), the relative ``gap`` of the peak
+    and residual deflections and ``good`` (module docstring); sorted by model and speed."""
+    runs = [closed_loop_measures(case, ds) for case, ds in datasets.items() if is_designed(case, ds)]
+    rows = {}
+    for run in runs:
+        row = rows.setdefault((run["design_model"], run["design_speed"]),
+                              {"design_model": run["design_model"], "design_speed": run["design_speed"],
+                               "own": None, "reference": None})
+        if run["model"] == run["design_model"]:
+            row["own"] = run
+        if run["model"] == REFERENCE_MODEL:
+            row["reference"] = run
+    for row in rows.values():
+        own, truth = row["own"], row["reference"]
+        row["gap"] = math.nan
+        if own and truth and own["stable"] and truth["stable"]:
+            row["gap"] = max(abs(truth[key] - own[key]) / own[key]
+                             for key in ("peak_tip_deflection_m", "residual_vibration_m"))
+        row["good"] = bool(truth and truth["stable"] and row["gap"] <= TRUST_TOLERANCE)
+    return [rows[key] for key in sorted(rows)]
+
+
+def verdicts(table: list[dict]) -> dict[str, str]:
+    """Per design model, a sentence: the speeds where its controller is good enough on
+    :data:`REFERENCE_MODEL`, the first speed where it is not and why, with the numbers."""
+    out = {}
+    for name in dict.fromkeys(row["design_model"] for row in table):
+        rows = [row for row in table if row["design_model"] == name and row["reference"]]
+        if not rows:
+            continue
+        failed = next((row for row in rows if not row["good"]), None)
+        worst = max((row["gap"] for row in rows if row["good"]), default=math.nan)
+        if failed is None:
+            out[name] = (f"good enough on {REFERENCE_MODEL} at every design speed up to "
+                         f"{rows[-1]['design_speed']:g} rad/s (largest gap {100 * worst:.2g} %)")
+            continue
+        good = [row["design_speed"] for row in rows if row["good"] and row["design_speed"] < failed["design_speed"]]
+        upto = f"good enough up to {max(good):g} rad/s (largest gap {100 * worst:.2g} %); " if good else ""
+        own = failed["own"]
+        if not failed["reference"]["stable"]:
+            why = (f"unstable on {REFERENCE_MODEL}"
+                   + ("" if own is None or own["stable"] else f", and on {name} itself"))
+        else:
+            why = f"its {REFERENCE_MODEL} tip deflections differ by {100 * failed['gap']:.2g} % from its prediction"
+        unstable = [row["design_speed"] for row in rows if not row["reference"]["stable"]]
+        later = (f"; unstable on {REFERENCE_MODEL} from {min(unstable):g} rad/s"
+                 if unstable and min(unstable) > failed["design_speed"] else "")
+        out[name] = f"{upto}at {failed['design_speed']:g} rad/s {why}{later}"
+    return out

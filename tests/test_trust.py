@@ -1,0 +1,47 @@
+"""The measures and the verdict of the controller-trust study (``hubbeam.study.trust``), on
+synthetic runs whose numbers are known in closed form."""
+
+import json
+import math
+
+import numpy as np
+import xarray as xr
+
+from hubbeam.study.trust import SETTLING_BAND, closed_loop_measures, design_table, verdicts
+
+TF = 2.0
+
+
+def _run(design, model, speed, amplitude, status="success"):
+    """v(L) = amplitude sin(pi t / TF) during the spin-up, then amplitude/2 exp(-(t - TF)) cos(10 (t - TF))."""
+    t = np.linspace(0.0, 10.0, 10001)
+    s = t - TF
+    tip = np.where(t <= TF, amplitude * np.sin(np.pi * t / TF), 0.5 * amplitude * np.exp(-s) * np.cos(10 * s))
+    maneuver = {"kind": "state_feedback", "reference": {"kind": "prescribed", "wf": speed, "tf": TF},
+                "design": {"model": design, "speed": speed}}
+    return xr.Dataset({"tip_transverse": ("time", tip), "hub_torque": ("time", 3.0 * tip)},
+                      coords={"time": t},
+                      attrs={"maneuver": json.dumps(maneuver), "model": model, "integrator_status": status})
+
+
+def test_the_measures_of_a_run_are_those_of_its_signal():
+    m = closed_loop_measures("a", _run("FOAM", "CFOAM", 1.0, 0.4))
+    np.testing.assert_allclose([m["peak_tip_deflection_m"], m["peak_torque_Nm"], m["residual_vibration_m"]],
+                               [0.4, 1.2, 0.2 * math.exp(-1e-3) * math.cos(1e-2)], rtol=1e-12)  # first sample after TF
+    # |v| leaves the band 0.05 * 0.4 for the last time near exp(-s) / 2 = SETTLING_BAND, a crest
+    # of the cosine (every pi / 10 s)
+    bound = math.log(0.5 / SETTLING_BAND)
+    assert bound - math.pi / 10 <= m["settling_time_s"] <= bound
+    assert m["stable"]
+
+
+def test_a_design_is_good_enough_while_the_truth_stays_within_the_tolerance():
+    runs = {"own1": _run("TLAM", "TLAM", 1.0, 0.4), "ref1": _run("TLAM", "CFOAM", 1.0, 0.42),
+            "own2": _run("TLAM", "TLAM", 2.0, 0.4), "ref2": _run("TLAM", "CFOAM", 2.0, 0.6),
+            "own3": _run("TLAM", "TLAM", 3.0, 0.4), "ref3": _run("TLAM", "CFOAM", 3.0, 0.4, "left_range")}
+    table = design_table(runs)
+    assert [row["good"] for row in table] == [True, False, False]
+    np.testing.assert_allclose([row["gap"] for row in table[:2]], [0.05, 0.5])
+    assert verdicts(table) == {"TLAM": "good enough up to 1 rad/s (largest gap 5 %); at 2 rad/s its "
+                                       "CFOAM tip deflections differ by 50 % from its prediction; "
+                                       "unstable on CFOAM from 3 rad/s"}

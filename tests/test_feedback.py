@@ -1,4 +1,4 @@
-"""State feedback on the free hub (``maneuver.kind: state_feedback``, ``hubbeam.feedback``).
+"""State feedback on the free hub (``maneuver.kind: state_feedback``, ``hubbeam.control.feedback``).
 
 * PD is state feedback on the hub angle and speed only: the same run to rounding;
 * about a steady spin, a controller designed by LQR on model X and run on X is stable, and the
@@ -21,7 +21,7 @@ import pytest
 import scipy.linalg
 from scipy.integrate import simpson
 
-from hubbeam.feedback import simulate_case
+from hubbeam.control.feedback import simulate_case
 from hubbeam.linear.statespace import linear_model
 from hubbeam.model.modes import transverse_modes
 from hubbeam.model.parameters import BeamParameters

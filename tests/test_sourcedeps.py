@@ -87,10 +87,10 @@ def test_relative_import_resolution(toy):
 
 def test_real_script_gets_the_integrator_and_not_the_plots(repo_root):
     script = repo_root / "workflow" / "scripts" / "simulate_case.py"
-    assert "from hubbeam.feedback import simulate_case" in script.read_text()
+    assert "from hubbeam.control.feedback import simulate_case" in script.read_text()
     root = repo_root / "src" / "hubbeam"
     files = relative(script_dependencies(script, root), root)
-    for needed in ("__init__.py", "feedback.py", "simulation/simulate.py", "core/__init__.py", "core/radau.py",
+    for needed in ("__init__.py", "control/__init__.py", "control/feedback.py", "simulation/simulate.py", "core/__init__.py", "core/radau.py",
                    "core/integrate.py", "core/eom.py", "model/matrices.py"):
         assert needed in files
     assert not any(name.startswith(("plotting/", "validation/")) for name in files)

@@ -2,7 +2,7 @@
 
 import logging
 
-from hubbeam.feedback import simulate_case
+from hubbeam.control.feedback import simulate_case
 from hubbeam.model.beam import beam_from_config
 from hubbeam.model.matrices import from_dataset
 from hubbeam.results.io import open_result, write_netcdf

@@ -16,7 +16,7 @@ kind) has a ``kind``:
 * ``state_feedback`` ``{reference, feedforward, gains | output_feedback | design}``: a free hub
   under feedback of its whole state towards ``reference`` (as for ``pd``); its gains, the
   stretch of the reference and the feedforward inertia are a :class:`FeedbackLaw`, which
-  ``hubbeam.feedback`` resolves from the case (a design needs the linear models).
+  ``hubbeam.control.feedback`` resolves from the case (a design needs the linear models).
 
 The kernels (:mod:`hubbeam.core.maneuver`) take an integer kind and a float array; the splines'
 coefficients are computed here once per run (scipy's ``CubicSpline``, ``bc_type="clamped"``).
@@ -101,7 +101,7 @@ def maneuver_parameters(maneuver: Mapping, law: FeedbackLaw | None = None) -> tu
         return kernels.PD, np.concatenate([head, ref])
     if law is None:
         raise ValueError("maneuver.kind = 'state_feedback' without its feedback law; allowed: "
-                         "hubbeam.feedback.simulate_case, which resolves the gains")
+                         "hubbeam.control.feedback.simulate_case, which resolves the gains")
     head = [float(law.gains.size // 2), float(law.inertia)]
     assert len(head) == kernels.FEEDBACK_GAINS
     return kernels.STATE_FEEDBACK, np.concatenate([head, law.gains, law.stretch, [ref_code], ref])

@@ -185,7 +185,7 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     feedback : for a ``state_feedback`` maneuver, the function ``(case, sm) -> (law,
         attributes)`` that resolves its :class:`~hubbeam.model.maneuvers.FeedbackLaw` for the case's
         matrices (every rerun its own) and the dataset attributes that record it
-        (``hubbeam.feedback.simulate_case`` passes it).
+        (``hubbeam.control.feedback.simulate_case`` passes it).
 
     The attribute ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so
     that :func:`hubbeam.results.reader.simulation_inputs` can rebuild them. ``case`` and ``numerics`` may
@@ -223,7 +223,7 @@ def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: Sys
         if feedback is None:
             raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.maneuver.kind = "
                                   "'state_feedback'; allowed here only with its feedback "
-                                  "(run it with hubbeam.feedback.simulate_case)")
+                                  "(run it with hubbeam.control.feedback.simulate_case)")
         law = feedback(case, sm)[0]
     kind, mp = maneuver_parameters(case["maneuver"], law)
     t = output_times(case["t_end"], numerics["output_step"])

@@ -25,6 +25,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from hubbeam.configuration.schema import SCHEMA
+from hubbeam.reporting.document import markdown_table
 
 #: the source tree (the reference is written there, by a developer)
 ROOT = Path(__file__).resolve().parents[3]
@@ -87,10 +88,6 @@ def _text(text: str) -> str:
     ``<name>``) is escaped outside code spans."""
     parts = " ".join(text.split()).split("`")
     return "`".join(part if index % 2 else _TAG_START.sub("&lt;", part) for index, part in enumerate(parts))
-
-
-def _cell(text: str) -> str:
-    return _text(text).replace("|", "\\|")
 
 
 def _bounds(node: Mapping) -> list[str]:
@@ -241,8 +238,7 @@ class _Writer:
             return
         required = set(node.get("required", []))
         when_required, when_forbidden = _conditional(node)
-        self.lines += ["| key | type | required | default | allowed | description |",
-                       "|---|---|---|---|---|---|"]
+        rows = []
         for name, raw in properties.items():
             sub = resolve(raw, self.defs)
             allowed = _allowed(sub, self.defs)
@@ -261,10 +257,10 @@ class _Writer:
             else:
                 needed = "no"
             default = _value(sub["default"]) if "default" in sub else "-"
-            row = [f"`{name}`", _type(sub, self.defs), needed, default,
-                   "; ".join(allowed) or "any", sub.get("description", "")]
-            self.lines.append("| " + " | ".join(_cell(text) for text in row) + " |")
-        self.lines.append("")
+            rows.append([_text(text) for text in (f"`{name}`", _type(sub, self.defs), needed, default,
+                                                  "; ".join(allowed) or "any", sub.get("description", ""))])
+        self.lines += markdown_table(("key", "type", "required", "default", "allowed", "description"),
+                                     rows).splitlines() + [""]
 
     def definitions(self, level: int) -> None:
         """The linked ``$defs`` sections, including the ones they link in turn."""

@@ -63,8 +63,9 @@ def test_phase_lead_of_two_fitted_sinusoids():
 
 
 def test_decaying_sinusoid_fit_recovers_the_pole_amplitude_and_phase():
-    """Exact for one mode (to rounding); a second, faster-decaying mode 1 % as large off the start
-    of the window moves the fitted pole by a small fraction of that share."""
+    """Exact for one mode (to rounding); a second, faster-decaying mode 1 % as large, at three times
+    the frequency (nearly orthogonal to the fitted mode's derivatives), moves the fitted pole by
+    less than a tenth of that share (measured relative shifts 1.6e-4 of the decay rate and 6e-5 of the frequency)."""
     t = np.arange(1.0, 9.0, 0.005)
     mode = 0.03 * np.exp(-0.41 * (t - 1.0)) * np.cos(7.3 * (t - 1.0) + 1.2)
     fit = fit_decaying_sinusoid(t, mode, 1.0)
@@ -73,8 +74,7 @@ def test_decaying_sinusoid_fit_recovers_the_pole_amplitude_and_phase():
     assert wrap_phase(fit.phase - 1.2) == pytest.approx(0.0, abs=1e-9)
     other = 3e-4 * np.exp(-2.0 * (t - 1.0)) * np.cos(23.0 * t)
     fit = fit_decaying_sinusoid(t, mode + other, 1.0)
-    assert fit.decay_rate == pytest.approx(0.41, rel=1e-2)
-    assert fit.omega == pytest.approx(7.3, rel=1e-3)
+    assert (fit.decay_rate, fit.omega) == (pytest.approx(0.41, rel=1e-3), pytest.approx(7.3, rel=1e-3))
 
 
 def test_decaying_sinusoid_fit_refuses_a_signal_without_oscillation():

@@ -9,6 +9,7 @@ import pytest
 
 from hubbeam.results.measures import (
     after,
+    fit_decaying_sinusoid,
     fit_sinusoid,
     late_share,
     peak,
@@ -61,9 +62,31 @@ def test_phase_lead_of_two_fitted_sinusoids():
     assert phase_lead(a, b) == pytest.approx(6.0 - 2 * math.pi, abs=1e-6)  # wrapped, so b leads
 
 
-def test_sinusoid_fit_needs_a_uniform_grid():
+def test_decaying_sinusoid_fit_recovers_the_pole_amplitude_and_phase():
+    """Exact for one mode (to rounding); a second, faster-decaying mode 1 % as large, at three times
+    the frequency (nearly orthogonal to the fitted mode's derivatives), moves the fitted pole by
+    less than a tenth of that share (measured relative shifts 1.6e-4 of the decay rate and 6e-5 of the frequency)."""
+    t = np.arange(1.0, 9.0, 0.005)
+    mode = 0.03 * np.exp(-0.41 * (t - 1.0)) * np.cos(7.3 * (t - 1.0) + 1.2)
+    fit = fit_decaying_sinusoid(t, mode, 1.0)
+    assert (fit.decay_rate, fit.omega) == (pytest.approx(0.41, rel=1e-9), pytest.approx(7.3, rel=1e-10))
+    assert fit.amplitude == pytest.approx(0.03, rel=1e-9)
+    assert wrap_phase(fit.phase - 1.2) == pytest.approx(0.0, abs=1e-9)
+    other = 3e-4 * np.exp(-2.0 * (t - 1.0)) * np.cos(23.0 * t)
+    fit = fit_decaying_sinusoid(t, mode + other, 1.0)
+    assert (fit.decay_rate, fit.omega) == (pytest.approx(0.41, rel=1e-3), pytest.approx(7.3, rel=1e-3))
+
+
+def test_decaying_sinusoid_fit_refuses_a_signal_without_oscillation():
+    t = np.arange(0.0, 4.0, 0.01)
+    with pytest.raises(ValueError, match="no oscillation"):
+        fit_decaying_sinusoid(t, np.exp(-t) + np.exp(-3.0 * t), 0.0)
+
+
+@pytest.mark.parametrize("fit", [fit_sinusoid, fit_decaying_sinusoid])
+def test_sinusoid_fits_need_a_uniform_grid(fit):
     with pytest.raises(ValueError, match="uniform"):
-        fit_sinusoid([0, 1, 3, 4, 5, 6, 7, 8, 9], np.zeros(9), 0.0)
+        fit([0, 1, 3, 4, 5, 6, 7, 8, 9], np.zeros(9), 0.0)
 
 
 @pytest.mark.parametrize("angle, wrapped", [(0.5, 0.5), (2 * math.pi + 0.5, 0.5), (-math.pi, math.pi),

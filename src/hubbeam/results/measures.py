@@ -9,6 +9,11 @@ definitions; they are documented in the report:
 - fitted sinusoid: least-squares fit of ``c + A cos(omega (t - t_0) + phi)``; ``omega`` starts at
   the peak of the Hann-windowed, zero-padded spectrum and is refined by minimising the fit
   residual within one spectral bin; ``phi`` is the phase at ``t = t_0``;
+- fitted decaying sinusoid: least-squares fit of ``A exp(-sigma (t - t_0)) cos(omega (t - t_0) + phi)``
+  (a single mode decaying to zero); ``sigma`` and ``omega`` start at the root of the two-term
+  linear prediction ``y_{k+2} = a_1 y_{k+1} + a_2 y_k`` (Prony's method, exact for one such mode)
+  and are refined by minimising the residual with ``A`` and ``phi`` eliminated (variable
+  projection);
 - phase lead of ``a`` over ``b``: ``phi_a - phi_b`` wrapped to (-pi, pi] (positive: ``a`` leads);
 - relative difference of two curves: ``max |x_a - x_b| / max |x_b|`` on a common time grid.
 """
@@ -72,6 +77,16 @@ class SinusoidFit:
     t0: float
 
 
+def _uniform(t, y, name: str):
+    """``t`` and ``y`` as float arrays and the step of ``t``, which must be uniform."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    dt = np.diff(t)
+    if len(t) < 8 or not np.allclose(dt, dt[0], rtol=1e-6, atol=0):
+        raise ValueError(f"{name} needs at least 8 samples on a uniform time grid")
+    return t, y, float(dt[0])
+
+
 def _linear_fit(s, y, omega):
     basis = np.column_stack([np.ones_like(s), np.cos(omega * s), np.sin(omega * s)])
     coef, *_ = np.linalg.lstsq(basis, y, rcond=None)
@@ -80,23 +95,64 @@ def _linear_fit(s, y, omega):
 
 def fit_sinusoid(t, y, t0: float) -> SinusoidFit:
     """Least-squares sinusoid at the dominant frequency of ``y(t)`` (uniform ``t``), phase at ``t0``."""
-    t = np.asarray(t, dtype=float)
-    y = np.asarray(y, dtype=float)
-    dt = np.diff(t)
-    if len(t) < 8 or not np.allclose(dt, dt[0], rtol=1e-6, atol=0):
-        raise ValueError("fit_sinusoid needs at least 8 samples on a uniform time grid")
+    t, y, step = _uniform(t, y, "fit_sinusoid")
     s = t - t0
     pad = 8 * len(y)
     spectrum = np.abs(np.fft.rfft((y - y.mean()) * np.hanning(len(y)), pad))
-    frequencies = np.fft.rfftfreq(pad, dt[0])
+    frequencies = np.fft.rfftfreq(pad, step)
     omega0 = 2 * np.pi * frequencies[1 + np.argmax(spectrum[1:])]
-    half_width = 2 * np.pi / (len(y) * dt[0])  # one bin of the unpadded spectrum
+    half_width = 2 * np.pi / (len(y) * step)  # one bin of the unpadded spectrum
     best = scipy.optimize.minimize_scalar(
         lambda w: _linear_fit(s, y, w)[1], method="bounded",
         bounds=(max(omega0 - half_width, 1e-12), omega0 + half_width), options={"xatol": 1e-12})
     (c, a, b), _ = _linear_fit(s, y, best.x)
     # a cos + b sin = R cos(w s + phi) with R = hypot(a, b), phi = atan2(-b, a)
     return SinusoidFit(float(np.hypot(a, b)), float(best.x), float(np.arctan2(-b, a)), float(c), t0)
+
+
+@dataclass(frozen=True)
+class DecayingSinusoidFit:
+    """``amplitude * exp(-decay_rate * (t - t0)) * cos(omega * (t - t0) + phase)``; the mode's
+    pole is ``-decay_rate + 1j * omega``."""
+
+    amplitude: float
+    decay_rate: float
+    omega: float
+    phase: float
+    t0: float
+
+
+def _decaying_basis(s, sigma, omega):
+    envelope = np.exp(-sigma * s)
+    return np.column_stack([envelope * np.cos(omega * s), envelope * np.sin(omega * s)])
+
+
+def _prony_pole(y, dt) -> complex:
+    """The pole of the two-term linear prediction of ``y`` (upper half plane)."""
+    (a1, a2), *_ = np.linalg.lstsq(np.column_stack([y[1:-1], y[:-2]]), y[2:], rcond=None)
+    z = np.roots([1.0, -a1, -a2]).astype(complex)
+    pole = np.log(z[np.argmax(z.imag)]) / dt
+    if pole.imag <= 0.0:
+        raise ValueError("fit_decaying_sinusoid found no oscillation in the signal (real poles)")
+    return pole
+
+
+def fit_decaying_sinusoid(t, y, t0: float) -> DecayingSinusoidFit:
+    """Least-squares decaying sinusoid through ``y(t)`` (uniform ``t``), phase at ``t0``."""
+    t, y, step = _uniform(t, y, "fit_decaying_sinusoid")
+    s = t - t0
+    pole = _prony_pole(y, step)
+
+    def residual(p):
+        basis = _decaying_basis(s, *p)
+        return basis @ np.linalg.lstsq(basis, y, rcond=None)[0] - y
+
+    best = scipy.optimize.least_squares(residual, [-pole.real, pole.imag], x_scale=abs(pole),
+                                        xtol=1e-14, ftol=1e-14, gtol=1e-14)
+    sigma, omega = best.x
+    (a, b), *_ = np.linalg.lstsq(_decaying_basis(s, sigma, omega), y, rcond=None)
+    return DecayingSinusoidFit(float(np.hypot(a, b)), float(sigma), float(omega),
+                               float(np.arctan2(-b, a)), t0)
 
 
 def wrap_phase(angle: float) -> float:

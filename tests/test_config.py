@@ -241,6 +241,15 @@ def test_a_case_initial_state_is_checked_at_startup(study_config, initial, path,
     assert_reported(problems_of(study_config), path, *fragments)
 
 
+def test_a_start_speed_against_a_broken_speed_table_reports_the_table_only(study_config):
+    """The maneuver's speed at t = 0 is only evaluated on a table in order."""
+    study_config["cases"]["fig04_foam"]["maneuver"] = {"kind": "speed_table", "time": [5.0, 0.0], "speed": [1.0, 1.0]}
+    study_config["cases"]["fig04_foam"]["initial"] = {"hub_speed": 2.0}
+    problems = problems_of(study_config)
+    assert_reported(problems, "cases.fig04_foam.maneuver.time", "got [5.0, 0.0]", "strictly increasing")
+    assert not [problem for problem in problems if ".initial" in problem]
+
+
 def test_bad_list_item_is_named_by_index(study_config):
     study_config["eigen"]["tip_masses"] = [0.0, -0.1]
     assert_reported(problems_of(study_config), "eigen.tip_masses[1]", "got -0.1", ">= 0")

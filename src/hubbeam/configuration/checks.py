@@ -3,7 +3,9 @@
 The tip mass lies on the beam (``0 <= l <= L``), every case spans at least one output step, grids
 increase, numbers are finite, case names stay distinct on case-insensitive file systems, keys are
 text; a beam has the keys of one form only (the forms and their keys are the schema's), stations
-run from x = 0 to x = L, tables of stations and times increase, a study (``study`` section) neither
+run from x = 0 to x = L, tables of stations and times increase, a case can start from its
+``initial`` state (one value per mode, no axial coordinates for SFOAM, a prescribed hub at its
+maneuver's speed at t = 0), a study (``study`` section) neither
 takes a folder of the paper's products nor compares unknown cases, and no case, validation run or
 sweep would need more memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.results.variables`). Each
 check runs only on values the schema accepted, and each problem names the key, the value and what
@@ -77,8 +79,9 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
         if position is not None and length is not None and position > length:
             problems.append(Problem(f"cases.{name}.tip_mass.position",
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
-        problems += _case_entry_problems(f"cases.{name}", case)
-        problems += _initial_problems(f"cases.{name}", case, _integer(numerics.get("modes")))
+        entry_problems = _case_entry_problems(f"cases.{name}", case)
+        problems += entry_problems + _initial_problems(f"cases.{name}", case, _integer(numerics.get("modes")),
+                                                       check_speed=not entry_problems)
     problems += _beam_problems(beam, length)
     if whole:
         problems += _study_problems(cfg, eigen, cases)
@@ -209,10 +212,11 @@ INITIAL_MODAL_KEYS = tuple(key for key in SCHEMA["$defs"]["case"]["properties"][
 MANEUVER_VALIDATOR = Validator({"$ref": "#/$defs/maneuver", "$defs": SCHEMA["$defs"]})
 
 
-def _initial_problems(where: str, case: Mapping, default_modes: int | None) -> list[Problem]:
+def _initial_problems(where: str, case: Mapping, default_modes: int | None, check_speed: bool) -> list[Problem]:
     """The case can start from its ``initial`` state: one value per mode (the case's ``modes``,
-    else ``numerics.modes``), no axial coordinates for a model that keeps none (Eq. 40), and for a
-    prescribed hub the maneuver's own speed at ``t = 0``."""
+    else ``numerics.modes``), no axial coordinates for a model that keeps none (Eq. 40), and, if
+    ``check_speed`` (its maneuver's tables are in order), for a prescribed hub the maneuver's own
+    speed at ``t = 0``."""
     spec = _section(case, "initial")
     modes = _integer(case.get("modes", default_modes))
     model = MODELS.get(case.get("model"))
@@ -229,7 +233,7 @@ def _initial_problems(where: str, case: Mapping, default_modes: int | None) -> l
                                     f"{model.name} keeps no axial coordinates (q1 = 0, Eq. 40)"))
     speed = _number(spec.get("hub_speed"))
     maneuver = _section(case, "maneuver")
-    if speed is None or not MANEUVER_VALIDATOR.is_valid(maneuver) or _case_entry_problems(where, case) \
+    if speed is None or not check_speed or not MANEUVER_VALIDATOR.is_valid(maneuver) \
             or _non_finite_numbers_and_non_text_keys(maneuver, []):
         return problems  # the other checks report the maneuver
     start = start_speed(maneuver)

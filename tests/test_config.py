@@ -225,6 +225,31 @@ def test_convergence_meshes_must_hold_the_tip_mass_of_their_case(study_config):
     validate_config(study_config)
 
 
+INITIAL_PROBLEMS = [
+    ({"q2": [0.0]}, "cases.fig04_foam.initial.q2", ["got [0.0]", "a list of 2 numbers, one per mode"]),
+    ({"hub_speed": 1.0}, "cases.fig04_foam.initial.hub_speed",
+     ["got 1.0", "0.0 rad s-1, the speed at t = 0 of the prescribed maneuver"]),
+]
+
+
+@pytest.mark.parametrize("initial, path, fragments", INITIAL_PROBLEMS, ids=[p for _, p, _ in INITIAL_PROBLEMS])
+def test_a_case_initial_state_is_checked_at_startup(study_config, initial, path, fragments):
+    """A case's initial state that it cannot start from stops the workflow before any rule runs;
+    a case without ``modes`` has ``numerics.modes`` of them."""
+    study_config["numerics"]["modes"] = 2
+    study_config["cases"]["fig04_foam"]["initial"] = initial
+    assert_reported(problems_of(study_config), path, *fragments)
+
+
+def test_a_start_speed_against_a_broken_speed_table_reports_the_table_only(study_config):
+    """The maneuver's speed at t = 0 is only evaluated on a table in order."""
+    study_config["cases"]["fig04_foam"]["maneuver"] = {"kind": "speed_table", "time": [5.0, 0.0], "speed": [1.0, 1.0]}
+    study_config["cases"]["fig04_foam"]["initial"] = {"hub_speed": 2.0}
+    problems = problems_of(study_config)
+    assert_reported(problems, "cases.fig04_foam.maneuver.time", "got [5.0, 0.0]", "strictly increasing")
+    assert not [problem for problem in problems if ".initial" in problem]
+
+
 def test_bad_list_item_is_named_by_index(study_config):
     study_config["eigen"]["tip_masses"] = [0.0, -0.1]
     assert_reported(problems_of(study_config), "eigen.tip_masses[1]", "got -0.1", ">= 0")

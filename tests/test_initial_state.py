@@ -20,7 +20,7 @@ from hubbeam.model import linearised
 from hubbeam.model.models import MODELS
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.results.reader import simulation_inputs
-from hubbeam.simulation.simulate import SimulationError, case_matrices, simulate
+from hubbeam.simulation.simulate import case_matrices, simulate
 
 SPEED = 2.0  # rad s-1, below TLAM's critical speed (2.91 rad/s without tip mass)
 
@@ -122,8 +122,8 @@ def test_a_prescribed_hub_starts_at_its_maneuver_speed(setup):
     np.testing.assert_allclose(ds["q1"], np.broadcast_to(linearised.axial_stretch(sm, SPEED), (ds.time.size, 2)),
                                rtol=numerics["rtol"], atol=numerics["atol"])
     spin_up = {"kind": "prescribed", "wf": 3.0, "tf": 30.0}
-    with pytest.raises(SimulationError, match=r"cases.spin_FOAM.initial.hub_speed = 2.0; allowed: "
-                                              r"0.0 rad s-1, the speed at t = 0 of the prescribed"):
+    with pytest.raises(ConfigError, match=r"cases.spin_FOAM.initial.hub_speed: got 2.0; allowed: "
+                                          r"0.0 rad s-1, the speed at t = 0 of the prescribed"):
         simulate(spin_case("FOAM", {"hub_speed": SPEED}, maneuver=spin_up), params, numerics)
 
 
@@ -151,10 +151,22 @@ def test_initial_states_of_the_wrong_form_are_rejected_by_the_configuration_chec
 
 
 @pytest.mark.parametrize("model, initial, message", [
-    ("FOAM", {"q2": [0.0]}, r"initial.q2 = \[0.0\]; allowed: a list of 2 numbers, one per mode"),
-    ("SFOAM", {"q1": [0.0, 1e-3]}, r"initial.q1 = \[0.0, 0.001\]; allowed: zeros or no q1: SFOAM keeps no axial"),
+    ("FOAM", {"q2": [0.0]}, r"initial.q2: got \[0.0\]; allowed: a list of 2 numbers, one per mode"),
+    ("SFOAM", {"q1": [0.0, 1e-3]}, r"initial.q1: got \[0.0, 0.001\]; allowed: zeros or no q1: SFOAM keeps no axial"),
 ])
 def test_impossible_initial_states_are_rejected_naming_the_key(setup, model, initial, message):
     params, numerics = setup
-    with pytest.raises(SimulationError, match=message):
+    with pytest.raises(ConfigError, match=message) as error:
         simulate(spin_case(model, initial), params, numerics)
+    (problem,) = error.value.problems
+    assert problem.path == f"cases.spin_{model}.initial.{next(iter(initial))}", problem
+
+
+def test_the_convergence_rerun_with_more_modes_starts_from_the_padded_initial_state(setup):
+    """The rerun with one more mode takes the case's initial modal values with the added mode at
+    rest (a list of the wrong length would be rejected) and runs to the end."""
+    params, numerics = setup
+    check = {"tolerance_factor": 0.1, "extra_modes": 1, "threshold_m": 1e-6}
+    ds = simulate(spin_case("FOAM", {"hub_speed": SPEED, "q2": [1e-3, 0.0]}, t_end=1.0), params,
+                  numerics, convergence_check=check)
+    assert np.isfinite(ds.attrs["convergence_modes_diff_m"])

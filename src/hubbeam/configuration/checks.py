@@ -3,7 +3,9 @@
 The tip mass lies on the beam (``0 <= l <= L``), every case spans at least one output step, grids
 increase, numbers are finite, case names stay distinct on case-insensitive file systems, keys are
 text; a beam has the keys of one form only (the forms and their keys are the schema's), stations
-run from x = 0 to x = L, tables of stations and times increase, a study (``study`` section) neither
+run from x = 0 to x = L, tables of stations and times increase, a case can start from its
+``initial`` state (one value per mode, no axial coordinates for SFOAM, a prescribed hub at its
+maneuver's speed at t = 0), a study (``study`` section) neither
 takes a folder of the paper's products nor compares unknown cases, and no case, validation run or
 sweep would need more memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.results.variables`). Each
 check runs only on values the schema accepted, and each problem names the key, the value and what
@@ -20,6 +22,7 @@ from typing import Any
 
 from hubbeam.configuration.schema import SCHEMA, Problem, Validator, allowed, key_path, kind_keys, show, type_name
 from hubbeam.model import limits
+from hubbeam.model.maneuvers import start_speed
 from hubbeam.model.models import MODELS
 from hubbeam.reporting.products import PAPER
 from hubbeam.results import variables
@@ -76,7 +79,9 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
         if position is not None and length is not None and position > length:
             problems.append(Problem(f"cases.{name}.tip_mass.position",
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
-        problems += _case_entry_problems(f"cases.{name}", case)
+        entry_problems = _case_entry_problems(f"cases.{name}", case)
+        problems += entry_problems + _initial_problems(f"cases.{name}", case, _integer(numerics.get("modes")),
+                                                       check_speed=not entry_problems)
     problems += _beam_problems(beam, length)
     if whole:
         problems += _study_problems(cfg, eigen, cases)
@@ -197,6 +202,44 @@ def _case_entry_problems(where: str, case: Mapping) -> list[Problem]:
         start = _number((entry.get("time") or [None])[0]) if isinstance(entry.get("time"), list) else None
         if start is not None and start < 0:
             problems.append(Problem(f"{path}.time", f"starts at {start}; allowed: times >= 0 s"))
+    return problems
+
+
+#: the modal coordinates and rates of a case's ``initial`` state (schema ``case.initial``), one value per mode
+INITIAL_MODAL_KEYS = tuple(key for key in SCHEMA["$defs"]["case"]["properties"]["initial"]["properties"]
+                           if key != "hub_speed")
+#: a validator of one maneuver (schema ``maneuver``)
+MANEUVER_VALIDATOR = Validator({"$ref": "#/$defs/maneuver", "$defs": SCHEMA["$defs"]})
+
+
+def _initial_problems(where: str, case: Mapping, default_modes: int | None, check_speed: bool) -> list[Problem]:
+    """The case can start from its ``initial`` state: one value per mode (the case's ``modes``,
+    else ``numerics.modes``), no axial coordinates for a model that keeps none (Eq. 40), and, if
+    ``check_speed`` (its maneuver's tables are in order), for a prescribed hub the maneuver's own
+    speed at ``t = 0``."""
+    spec = _section(case, "initial")
+    modes = _integer(case.get("modes", default_modes))
+    model = MODELS.get(case.get("model"))
+    problems = []
+    for key in INITIAL_MODAL_KEYS:
+        value = spec.get(key)
+        if not isinstance(value, list) or any(_number(v) is None for v in value):
+            continue  # the schema reports it
+        if modes is not None and len(value) != modes:
+            problems.append(Problem(f"{where}.initial.{key}", f"got {show(value)}; allowed: a list of {modes} "
+                                    "numbers, one per mode (kg1/2 m, or kg1/2 m s-1 for rates)"))
+        elif key in ("q1", "q1_dot") and any(value) and model is not None and not model.keeps_axial:
+            problems.append(Problem(f"{where}.initial.{key}", f"got {show(value)}; allowed: zeros or no {key}: "
+                                    f"{model.name} keeps no axial coordinates (q1 = 0, Eq. 40)"))
+    speed = _number(spec.get("hub_speed"))
+    maneuver = _section(case, "maneuver")
+    if speed is None or not check_speed or not MANEUVER_VALIDATOR.is_valid(maneuver) \
+            or _non_finite_numbers_and_non_text_keys(maneuver, []):
+        return problems  # the other checks report the maneuver
+    start = start_speed(maneuver)
+    if start is not None and not math.isclose(speed, start, rel_tol=1e-12, abs_tol=1e-12):
+        problems.append(Problem(f"{where}.initial.hub_speed", f"got {speed!r}; allowed: {start!r} rad s-1, the "
+                                "speed at t = 0 of the prescribed maneuver (or no hub_speed)"))
     return problems
 
 

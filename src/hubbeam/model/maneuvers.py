@@ -107,6 +107,15 @@ def maneuver_parameters(maneuver: Mapping, law: FeedbackLaw | None = None) -> tu
     return kernels.STATE_FEEDBACK, np.concatenate([head, law.gains, law.stretch, [ref_code], ref])
 
 
+def start_speed(maneuver: Mapping) -> float | None:
+    """The hub speed at ``t = 0`` (rad s-1) of a checked maneuver that prescribes the hub (Eq. 43
+    or a speed table); None for a free hub (a torque, a table of torques, a controller)."""
+    if maneuver["kind"] in TRACKING:
+        return None
+    kind, mp = maneuver_parameters(maneuver)
+    return float(kernels.prescribed_motion(kind, 0.0, mp)[1]) if kernels.prescribed(kind) else None
+
+
 def maneuver_stops(maneuver: Mapping) -> np.ndarray:
     """Sorted times where the maneuver's forcing is not smooth: the end ``tf`` of Eq. (43)/(44),
     or the rows of a table (spline knots, kinks of a linear table)."""

@@ -37,7 +37,6 @@ from hubbeam.model.parameters import BeamParameters
 from hubbeam.simulation.simulate import (
     build_dataset,
     case_matrices,
-    check_initial,
     initial_state,
     maneuver_parameters,
     output_times,
@@ -84,7 +83,6 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     The run starts from the case's initial state (:func:`hubbeam.simulation.simulate.initial_state`).
     """
     case, numerics = (item.to_dict() for item in simulation_settings(case, numerics, params.L))
-    check_initial(case)
     if method not in METHODS:
         raise ValueError(f"method = {method!r}; allowed: one of {', '.join(METHODS)}")
     sm = case_matrices(case, params, numerics, matrices)

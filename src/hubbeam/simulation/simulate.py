@@ -33,11 +33,11 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import cumulative_simpson
 
+from hubbeam.configuration.checks import INITIAL_MODAL_KEYS
 from hubbeam.configuration.settings import simulation_settings
 from hubbeam.core import radau
 from hubbeam.core.inputs import IntegratorSettings, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
-from hubbeam.core.maneuver import prescribed, prescribed_motion
 from hubbeam.model import linearised, validity
 from hubbeam.model.beam import beam_attributes
 from hubbeam.model.damping import damping_matrices
@@ -48,7 +48,7 @@ from hubbeam.model.limits import (
     MIN_RTOL,
     SMALL_DEFLECTION_LIMIT,
 )
-from hubbeam.model.maneuvers import TRACKING, maneuver_parameters, maneuver_stops
+from hubbeam.model.maneuvers import maneuver_parameters, maneuver_stops
 from hubbeam.model.matrices import SystemMatrices, assemble
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
@@ -65,10 +65,6 @@ LOG = logging.getLogger(__name__)
 NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
 #: optional numerics keys a simulation reads, with their defaults
 OPTIONAL_NUMERICS = {"small_deflection_limit": SMALL_DEFLECTION_LIMIT}
-#: keys of a case's optional ``initial`` mapping, the state a run starts from (:func:`initial_state`)
-INITIAL_KEYS = ("hub_speed", "q1", "q2", "q1_dot", "q2_dot")
-#: the initial modal coordinates and rates among :data:`INITIAL_KEYS` (one value per mode)
-INITIAL_MODAL_KEYS = INITIAL_KEYS[1:]
 
 INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
 
@@ -77,37 +73,10 @@ class SimulationError(ValueError):
     """A case or the numerics cannot be simulated; the message names key, value and allowed."""
 
 
-def check_initial(case: Mapping) -> None:
-    """Raise :class:`SimulationError` unless the optional ``case["initial"]`` (its keys and finite
-    numbers checked with the configuration, ``cases.<name>.initial``) is a state the case can
-    start from (:func:`initial_state`): one value per mode, no axial coordinates for a model that
-    keeps none, and for a prescribed hub the maneuver's own speed at ``t = 0``."""
-    spec = case.get("initial") or {}
-    where = f"cases.{case.get('name', '<unnamed>')}.initial"
-    n = case["modes"]
-    for key, value in spec.items():
-        if key not in INITIAL_MODAL_KEYS:
-            continue
-        if len(value) != n:
-            raise SimulationError(f"{where}.{key} = {value!r}; allowed: a list of {n} numbers, one "
-                                  "per mode (kg1/2 m, or kg1/2 m s-1 for rates)")
-        if key in ("q1", "q1_dot") and np.any(value) and not model(case["model"]).keeps_axial:
-            raise SimulationError(f"{where}.{key} = {value!r}; allowed: zeros or no {key}: "
-                                  f"{case['model']} keeps no axial coordinates (q1 = 0, Eq. 40)")
-    if "hub_speed" not in spec or case["maneuver"]["kind"] in TRACKING:
-        return  # a controller's hub is free
-    kind, mp = maneuver_parameters(case["maneuver"])
-    if prescribed(kind):
-        start_speed = float(prescribed_motion(kind, 0.0, mp)[1])
-        if not math.isclose(spec["hub_speed"], start_speed, rel_tol=1e-12, abs_tol=1e-12):
-            raise SimulationError(
-                f"{where}.hub_speed = {spec['hub_speed']!r}; allowed: {start_speed!r} rad s-1, the "
-                f"speed at t = 0 of the prescribed maneuver (or no hub_speed)")
-
-
 def initial_state(case: Mapping, sm: SystemMatrices) -> State:
-    """The state ``(y, y')`` of ``y = (theta, q1, q2)`` at ``t = 0`` for a checked case
-    (:func:`check_initial`), from its optional ``initial`` mapping (default: rest):
+    """The state ``(y, y')`` of ``y = (theta, q1, q2)`` at ``t = 0`` for a checked case (the
+    configuration's checks, ``hubbeam.configuration.checks``), from its optional ``initial``
+    mapping (default: rest):
 
     * ``hub_speed`` (rad s-1, default 0): a steady spin, ``theta = 0``, ``theta' = hub_speed``,
       with ``q1`` at its centrifugal stretch ``q1s`` for that speed
@@ -195,7 +164,6 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
     convergence_check = numerics.convergence_check and numerics.convergence_check.to_dict()
     case, numerics = case.to_dict(), numerics.to_dict()  # what the integration below reads
-    check_initial(case)
     sm = case_matrices(case, params, numerics, matrices)
     ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback))
     ds.attrs["quadrature_points"] = quadrature_points(sm)

@@ -164,7 +164,7 @@ def test_two_products_under_one_key_are_an_error():
 
 # --- one set of rules ----------------------------------------------------------------------------
 
-def listed_rules(workdir: Path, *args: str) -> set[str]:
+def snakemake_rules(workdir: Path, *args: str) -> set[str]:
     command = [sys.executable, "-m", "snakemake", "--snakefile", str(REPO / "Snakefile"), "--directory",
                str(workdir), "--list-rules", *args]
     run = subprocess.run(command, cwd=workdir, capture_output=True, text=True, timeout=300, check=False)
@@ -181,4 +181,4 @@ def test_every_rule_file_is_included_for_the_paper_and_for_a_study(tmp_path):
     static = {name for path in rule_files for name in re.findall(r"^rule (\w+):", path.read_text(), re.M)}
     assert {"simulate", "eigen_campbell", "claims", "study_report", "archive", "sweep"} <= static
     for args in ((), ("--configfile", "study.yaml")):
-        assert static <= listed_rules(tmp_path, *args), args
+        assert static <= snakemake_rules(tmp_path, *args), args

@@ -40,6 +40,6 @@ def plot(shapes: xr.Dataset, tip_mass: float | str | None = None):
     for m, model in enumerate(ds["model"].values):  # legend entries of the line styles
         axes[0, 0].plot([], [], color="0.2", linestyle=VARIANT_LINESTYLES[m % len(VARIANT_LINESTYLES)],
                         label=str(model))
-    fig.legend(*axes[0, 0].get_legend_handles_labels(), loc="outside upper center", ncols=4)
     fig.suptitle(f"transverse mode shapes, {where}", fontsize=9)
+    fig.legend(*axes[0, 0].get_legend_handles_labels(), loc="outside lower center", ncols=4)
     return fig

@@ -17,6 +17,7 @@ from hubbeam.results.measures import (
     phase_lead,
     relative_difference,
     residual_amplitude,
+    settling_time,
     wrap_phase,
 )
 
@@ -93,3 +94,15 @@ def test_sinusoid_fits_need_a_uniform_grid(fit):
                                             (3 * math.pi / 2, -math.pi / 2)])
 def test_wrap_phase(angle, wrapped):
     assert wrap_phase(angle) == pytest.approx(wrapped)
+
+
+def test_settling_time_is_the_last_exit_from_the_band_after_t0():
+    t = np.linspace(0.0, 10.0, 10001)
+    decay = np.exp(-t) * np.cos(20.0 * t)
+    # |x| <= exp(-t) leaves the 5 % band of its peak (1, at t = 0) for good before ln 20
+    settled = settling_time(t, decay, 1.0, 0.05)
+    assert 0.0 < settled < math.log(20.0) - 1.0
+    assert abs(decay[t > 1.0 + settled]).max() <= 0.05
+    assert abs(decay[(t > 1.0) & (t <= 1.0 + settled)]).max() > 0.05
+    assert settling_time(t, decay, 5.0, 0.05) == 0.0  # inside the band at t0 already
+    assert math.isnan(settling_time(t, np.cos(t), 1.0, 0.05))  # never settles

@@ -14,6 +14,8 @@ definitions; they are documented in the report:
   linear prediction ``y_{k+2} = a_1 y_{k+1} + a_2 y_k`` (Prony's method, exact for one such mode)
   and are refined by minimising the residual with ``A`` and ``phi`` eliminated (variable
   projection);
+- settling time: from ``t_0`` until ``|x|`` stays within a band (a fraction of its peak) to the
+  end of the record; 0 when it already does at ``t_0``, NaN when it never does before the end;
 - phase lead of ``a`` over ``b``: ``phi_a - phi_b`` wrapped to (-pi, pi] (positive: ``a`` leads);
 - relative difference of two curves: ``max |x_a - x_b| / max |x_b|`` on a common time grid.
 """
@@ -51,6 +53,17 @@ def residual_amplitude(time, values, t0: float) -> float:
     """Residual vibration amplitude ``max |x(t)|`` over ``t > t0``; NaN without a finite sample."""
     window = after(time, values, t0)[1]
     return peak(window) if window.size else math.nan
+
+
+def settling_time(time, values, t0: float, band: float) -> float:
+    """Time after ``t0`` from which ``|x|`` stays within ``band`` times its peak to the end of the
+    record (module docstring): 0 when it is inside at ``t0`` already, NaN when its last sample is
+    outside."""
+    time = np.asarray(time)
+    magnitude = np.abs(np.asarray(values, dtype=float))
+    outside = np.flatnonzero(magnitude > band * peak(values))
+    last = time[outside[-1]] if outside.size else t0
+    return max(float(last) - t0, 0.0) if last < time[-1] else math.nan
 
 
 def late_share(time, values, t0: float) -> float:

@@ -53,17 +53,13 @@ def closed_loop_measures(case: str, ds: xr.Dataset) -> dict:
     tip = variable(case, ds, "tip_transverse").values
     torque = variable(case, ds, "hub_torque").values
     stable = attr(case, ds, "integrator_status") == "success" and bool(np.all(np.isfinite(tip)))
-    peak = float(np.nanmax(np.abs(tip))) if np.isfinite(tip).any() else math.nan
-    outside = np.flatnonzero(np.abs(tip) > SETTLING_BAND * peak)
-    last = t[outside[-1]] if outside.size else tf
-    settled = stable and last < t[-1]
     return {
         "case": case, "design_model": found["design"]["model"],
         "design_speed": float(found["design"]["speed"]), "model": model(case, ds), "stable": stable,
-        "peak_tip_deflection_m": peak if stable else math.nan,
+        "peak_tip_deflection_m": measures.peak(tip) if stable else math.nan,
         "residual_vibration_m": measures.residual_amplitude(t, tip, tf) if stable else math.nan,
-        "settling_time_s": max(last - tf, 0.0) if settled else math.nan,
-        "peak_torque_Nm": float(np.nanmax(np.abs(torque))) if stable else math.nan,
+        "settling_time_s": measures.settling_time(t, tip, tf, SETTLING_BAND) if stable else math.nan,
+        "peak_torque_Nm": measures.peak(torque) if stable else math.nan,
     }
 
 

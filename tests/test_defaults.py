@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from hubbeam.configuration import defaults
-from hubbeam.configuration.load import load_config, read_config_file, validate_config
+from hubbeam.configuration.load import ConfigError, load_config, read_config_file, validate_config
 from hubbeam.configuration.schema import SCHEMA
 from hubbeam.configuration.tabular import resolve_files
 from hubbeam.model.beam import beam_from_config
@@ -101,6 +101,30 @@ def test_eigen_grids_cover_the_cases_and_the_critical_speed():
     assert needed <= top < needed + 10.0 ** (math.floor(math.log10(needed)) - 1)
     assert eigen["speeds"] == {"start": 0.0, "stop": top, "num": defaults.SPEED_POINTS}
     assert eigen["critical_speed_search_max"] == top
+
+
+def test_the_linear_section_follows_the_eigen_grid_and_the_largest_tip_mass():
+    cfg = validate_config(bare_study(slow=spin_up(2.0, tip_mass={"mass": 0.5, "position": 6.0}),
+                                     fast=spin_up(9.0, tip_mass={"mass": 0.2})))
+    linear, top = cfg["linear"], cfg["eigen"]["speeds"]["stop"]
+    assert linear["speeds"] == cfg["eigen"]["speeds"]
+    assert linear["tip_masses"] == [0.0, 0.5]
+    assert linear["bode_speeds"] == [0.0, 0.5 * top, 0.875 * top]
+    assert linear["frequencies"] == defaults.LINEAR_FREQUENCIES
+    assert linear["shapes"] == defaults.LINEAR_SHAPES
+    assert "damping" not in linear
+    assert validate_config(bare_study(one=spin_up(2.0)))["linear"]["tip_masses"] == [0.0]
+
+
+@pytest.mark.parametrize("linear, key", [
+    ({"bode_speeds": [1.0, 1.0]}, "linear.bode_speeds"),
+    ({"speeds": {"start": 2.0, "stop": 1.0, "num": 3}}, "linear.speeds.stop"),
+    ({"frequencies": {"start": 10.0, "stop": 1.0, "num": 3}}, "linear.frequencies.stop"),
+])
+def test_a_linear_grid_that_does_not_increase_is_reported(linear, key):
+    with pytest.raises(ConfigError) as caught:
+        validate_config(bare_study(one=spin_up(2.0)) | {"linear": linear})
+    assert [str(problem) for problem in caught.value.problems if str(problem).startswith(f"{key}: got")]
 
 
 def test_the_critical_speed_sets_the_grid_above_slow_cases():

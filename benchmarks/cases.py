@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from hubbeam.configuration.settings import Numerics
 from hubbeam.core import radau
 from hubbeam.core.eom import free_dofs
 from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
@@ -29,7 +30,6 @@ from hubbeam.model.parameters import BeamParameters
 from hubbeam.simulation.simulate import (
     case_matrices,
     initial_state,
-    maneuver_parameters,
     output_times,
     step_stops,
 )
@@ -110,16 +110,16 @@ class Run:
 
 def prepare_case(name: str, case: Mapping, params: BeamParameters, numerics: Mapping,
                  output_step: float) -> BenchmarkCase:
-    """A :class:`BenchmarkCase` from a resolved case (``hubbeam.configuration.load.case_settings``)."""
+    """A :class:`BenchmarkCase` from a resolved :class:`~hubbeam.configuration.settings.Case`."""
+    numerics = Numerics.from_mapping(numerics)
     sm = case_matrices(case, params, numerics)
-    kind, mp = maneuver_parameters(case["maneuver"])
-    inputs = SimulationInputs(model(case["model"]).traits, kind, mp,
-                              damping_matrices(case.get("damping"), sm), sm)
-    free = free_dofs(inputs.traits, kind, case["modes"])
-    t = output_times(case["t_end"], output_step)
-    return BenchmarkCase(name, dict(case), inputs, initial_state(case, sm), free, t,
+    kind, mp = case.maneuver.kernel_parameters()
+    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm)
+    free = free_dofs(inputs.traits, kind, case.modes)
+    t = output_times(case.t_end, output_step)
+    return BenchmarkCase(name, case, inputs, initial_state(case, sm), free, t,
                          step_stops(case, t), tip_watch(free, sm),
-                         float(numerics["divergence_limit"]) * params.L)
+                         float(numerics.divergence_limit) * params.L)
 
 
 # --------------------------------------------------------------------------- single runs
@@ -127,12 +127,12 @@ def run_hubbeam(bench: BenchmarkCase, rtol: float, atol: float, full: bool = Fal
     """hubbeam's Radau IIA: states only (:func:`integrate_free`) or every output (``full``)."""
     stats = np.zeros(len(radau.STAT_NAMES), np.int64)
     if full:
-        out = np.empty((bench.t.size, n_output_columns(bench.case["modes"])))
+        out = np.empty((bench.t.size, n_output_columns(bench.case.modes)))
         start = time.perf_counter()
         status, _ = simulate_kernel(bench.inputs, bench.start, bench.t, bench.stops,
                                     bench.settings(rtol, atol), out, stats)
         wall = time.perf_counter() - start
-        tip = out[:, output_columns(bench.case["modes"])["tip_transverse"]]
+        tip = out[:, output_columns(bench.case.modes)["tip_transverse"]]
     else:
         y_out = np.empty((bench.t.size, bench.free.size))
         v_out = np.empty_like(y_out)

@@ -4,6 +4,7 @@ simulated time), ``eigen.csv`` (``K22`` eigen-analyses per second) and ``sweeps.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Mapping
 from functools import partial
@@ -11,7 +12,7 @@ from functools import partial
 import numpy as np
 
 from benchmarks.timing import median_time
-from hubbeam.configuration.load import case_settings
+from hubbeam.configuration.settings import case_from_config
 from hubbeam.core import radau
 from hubbeam.model import eigen
 from hubbeam.model.parameters import BeamParameters
@@ -27,17 +28,17 @@ def scaling_rows(cfg: Mapping, params: BeamParameters, settings: Mapping, repeat
                  budget: float) -> list[dict]:
     """``simulate`` (config numerics, every output) against modes and against simulated time."""
     scaling = settings["scaling"]
-    base = case_settings({**cfg, "cases": settings["cases"]}, scaling["case"])
-    grid = [(n, base["t_end"]) for n in scaling["modes"]]
-    grid += [(base["modes"], t_end) for t_end in scaling["t_end"] if t_end != base["t_end"]]
+    base = case_from_config({**cfg, "cases": settings["cases"]}, scaling["case"])
+    grid = [(n, base.t_end) for n in scaling["modes"]]
+    grid += [(base.modes, t_end) for t_end in scaling["t_end"] if t_end != base.t_end]
     rows = []
     for modes, t_end in grid:
-        case = {**base, "modes": int(modes), "t_end": float(t_end)}
+        case = dataclasses.replace(base, modes=int(modes), t_end=float(t_end))
         results = []
         wall, count = median_time(partial(_append_simulation, results, case, params, cfg["numerics"]),
                                   repeats, budget)
         attrs = results[-1].attrs
-        rows.append({"case": scaling["case"], "model": case["model"], "modes": modes,
+        rows.append({"case": scaling["case"], "model": case.model, "modes": modes,
                      "t_end_s": t_end, "wall_s": wall, "repeats": count,
                      "n_steps": attrs["n_steps"], "rhs_calls": attrs["n_rhs"],
                      "rtol": attrs["rtol"], "atol": attrs["atol"]})

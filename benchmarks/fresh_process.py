@@ -23,18 +23,19 @@ def first_call(config_files: list[str], case: dict) -> dict:
     """Seconds to import hubbeam, of the first ``simulate`` call and of the second; numba's
     cache misses and hits of the simulation kernels (``FAMILY_KERNELS``)."""
     start = time.perf_counter()
-    from hubbeam.configuration.load import case_settings, load_config
+    from hubbeam.configuration.load import load_config
+    from hubbeam.configuration.settings import Numerics, case_from_config
     from hubbeam.core.integrate import FAMILY_KERNELS
     from hubbeam.model.parameters import BeamParameters
     from hubbeam.simulation.simulate import simulate
 
     cfg = load_config(config_files)
-    resolved = case_settings({**cfg, "cases": {"c": case}}, "c")
+    resolved = case_from_config({**cfg, "cases": {"c": case}}, "c")
     params = BeamParameters.from_config(cfg)
     imported = time.perf_counter()
-    simulate(resolved, params, cfg["numerics"])
+    simulate(resolved, params, Numerics.from_mapping(cfg["numerics"]))
     first = time.perf_counter()
-    simulate(resolved, params, cfg["numerics"])
+    simulate(resolved, params, Numerics.from_mapping(cfg["numerics"]))
     second = time.perf_counter()
     return {"import_s": imported - start, "first_call_s": first - imported,
             "second_call_s": second - first,
@@ -49,12 +50,13 @@ def compile_kernel(kernel: str, config_files: list[str], case: dict) -> dict:
     import numpy as np
 
     from benchmarks.cases import prepare_case, run_hubbeam
-    from hubbeam.configuration.load import case_settings, load_config
+    from hubbeam.configuration.load import load_config
+    from hubbeam.configuration.settings import case_from_config
     from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
     from hubbeam.model.parameters import BeamParameters
 
     cfg = load_config(config_files)
-    resolved = case_settings({**cfg, "cases": {"c": case}}, "c")
+    resolved = case_from_config({**cfg, "cases": {"c": case}}, "c")
     bench = prepare_case("c", resolved, BeamParameters.from_config(cfg), cfg["numerics"], 0.01)
     z = np.zeros(2 * bench.free.size)
     start = time.perf_counter()

@@ -67,9 +67,10 @@ from benchmarks.linear_modes import campbell_rows
 from benchmarks.machine import load_average, machine_info
 from benchmarks.search import benchmark_case, case_methods, python_rhs_row
 from benchmarks.settings import BENCHMARK_CONFIG, STUDY_CONFIG, load_settings
-from hubbeam.configuration.load import case_settings
+from hubbeam.configuration.settings import case_from_config
 from hubbeam.core.first_order import first_order_jacobian
 from hubbeam.model.parameters import BeamParameters
+from hubbeam.results.paths import SHARED
 
 
 def run(config_files: Sequence[str], benchmark_file: os.PathLike | str, output: Path,
@@ -84,7 +85,7 @@ def run(config_files: Sequence[str], benchmark_file: os.PathLike | str, output: 
     output.mkdir(parents=True, exist_ok=True)
     machine = machine_info()
     log(json.dumps(machine))
-    resolved = {name: case_settings({**cfg, "cases": settings["cases"]}, name)
+    resolved = {name: case_from_config({**cfg, "cases": settings["cases"]}, name)
                 for name in sorted(settings["cases"])}
     benches = {name: prepare_case(name, case, params, cfg["numerics"], settings["output_step"])
                for name, case in resolved.items()}
@@ -166,7 +167,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help="study config file(s), merged left to right (default: %(default)s)")
     parser.add_argument("--benchmark-config", default=str(BENCHMARK_CONFIG),
                         help="the benchmark's settings (default: %(default)s)")
-    parser.add_argument("--output", type=Path, default=Path("results/benchmarks"),
+    parser.add_argument("--output", type=Path, default=Path(SHARED.benchmarks()),
                         help="directory of the CSV files and machine.json (default: %(default)s)")
     parser.add_argument("--repeats", type=int, default=5,
                         help="warm runs per timing, median reported (default: %(default)s)")

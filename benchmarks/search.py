@@ -69,7 +69,7 @@ def reference_solution(bench: BenchmarkCase, rtol: float, atol_ratio: float,
     if not reference.completed:
         raise RuntimeError(f"benchmark case {bench.name}: the reference run did not complete")
     looser = run_hubbeam(bench, 10 * rtol, 10 * atol_ratio * rtol)
-    info = {"case": bench.name, "model": bench.case["model"], "rtol": rtol,
+    info = {"case": bench.name, "model": bench.case.model, "rtol": rtol,
             "atol": atol_ratio * rtol, "wall_s": reference.wall, "rhs_calls": reference.rhs_calls,
             "max_abs_tip_m": float(np.max(np.abs(reference.tip))),
             "change_to_10x_looser_m": max_error(looser.tip, reference.tip),
@@ -118,8 +118,8 @@ def benchmark_case(bench: BenchmarkCase, methods: Sequence[Method], settings: Ma
             wall, count = warm_timing(partial(_wall, bench, method, rtol, ratio * rtol),
                                       search.run.wall, repeats, budget)
         rows.append({
-            "case": bench.name, "model": bench.case["model"], "method": method.label,
-            "modes": bench.case["modes"], "t_end_s": float(bench.t[-1]),
+            "case": bench.name, "model": bench.case.model, "method": method.label,
+            "modes": bench.case.modes, "t_end_s": float(bench.t[-1]),
             "settings": method.settings(rtol, ratio * rtol), "rtol": rtol, "wall_s": wall,
             "repeats": count, "rhs_calls": search.run.rhs_calls if search.run else -1,
             "max_err_m": error, "passed": search.rtol is not None and error <= settings[
@@ -160,8 +160,8 @@ def python_rhs_row(bench: BenchmarkCase, rows: Sequence[Mapping], reference: np.
     best = min(candidates, key=lambda row: row["wall_s"])
     method = Method(best["method"].removeprefix("scipy "), python_rhs=True)
     rtol, ratio = best["rtol"], settings["atol_ratio"]
-    row = {"case": bench.name, "model": bench.case["model"], "method": method.label,
-           "modes": bench.case["modes"], "t_end_s": float(bench.t[-1]),
+    row = {"case": bench.name, "model": bench.case.model, "method": method.label,
+           "modes": bench.case.modes, "t_end_s": float(bench.t[-1]),
            "settings": method.settings(rtol, ratio * rtol), "rtol": rtol, "repeats": 1,
            "ladder": ""}
     try:

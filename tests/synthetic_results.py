@@ -194,6 +194,26 @@ class Section(dict):
         return list(self.values())[key] if isinstance(key, int) else super().__getitem__(key)
 
 
+def case_of(cfg: dict, name: str, **changes):
+    """The case ``name`` of the checked configuration ``cfg`` as the workflow hands it to a job
+    (:class:`hubbeam.configuration.settings.Case`), with ``changes`` to its fields."""
+    import dataclasses
+
+    from hubbeam.configuration.settings import case_from_config
+
+    return dataclasses.replace(case_from_config(cfg, name), **changes)
+
+
+def simulation_params(cfg: dict, case, convergence_check: bool = False) -> dict:
+    """The ``params`` the simulation rule hands ``simulate_case.py`` for ``case`` of the checked
+    configuration ``cfg``: the objects of its one check."""
+    from hubbeam.configuration.settings import from_config
+
+    settings = from_config(cfg)
+    return {"beam": settings.beam, "case": case, "numerics": settings.numerics.simulation(),
+            "convergence_check": settings.numerics.convergence_check if convergence_check else None}
+
+
 def run_script(name: str, *, input=None, output=None, params=None, log=None) -> None:
     """Execute ``workflow/scripts/<name>`` with a ``snakemake`` object as Snakemake would
     (the log goes to ``log`` or, by default, beside the first output)."""

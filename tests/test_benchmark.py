@@ -20,7 +20,8 @@ from benchmarks.run import main
 from benchmarks.search import reference_solution, search_tolerance
 from benchmarks.settings import BENCHMARK_CONFIG, load_settings
 from benchmarks.timing import warm_timing
-from hubbeam.configuration.load import ConfigError, case_settings
+from hubbeam.configuration.load import ConfigError
+from hubbeam.configuration.settings import case_from_config
 from hubbeam.core.first_order import first_order_jacobian, first_order_rhs
 from hubbeam.model.parameters import BeamParameters
 
@@ -31,7 +32,7 @@ LADDER = [1e-2, 1e-4, 1e-6, 1e-8]
 
 @pytest.fixture(scope="module")
 def tiny(_study_config):
-    case = case_settings({**_study_config, "cases": {"tiny": TINY}}, "tiny")
+    case = case_from_config({**_study_config, "cases": {"tiny": TINY}}, "tiny")
     params = BeamParameters.from_config(_study_config)
     return bm.prepare_case("tiny", case, params, _study_config["numerics"], 0.01)
 
@@ -55,7 +56,7 @@ def test_first_order_rhs_is_velocity_and_acceleration(tiny):
     rng = np.random.default_rng(3)
     z = rng.normal(scale=1e-2, size=2 * tiny.free.size)
     dz = first_order_rhs(0.4, z, tiny.problem)
-    n = tiny.case["modes"]
+    n = tiny.case.modes
     y, v, a = np.zeros(1 + 2 * n), np.zeros(1 + 2 * n), np.zeros(1 + 2 * n)
     y[tiny.free], v[tiny.free] = z[:tiny.free.size], z[tiny.free.size:]
     accelerations(tiny.inputs, 0.4, y, v, tiny.free, a)

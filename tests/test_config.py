@@ -14,13 +14,13 @@ import yaml
 
 from hubbeam.configuration.load import (
     ConfigError,
-    case_names,
-    case_settings,
     load_config,
     read_config_file,
     validate_config,
 )
 from hubbeam.configuration.schema import CASE_NAME_PATTERN, SCHEMA
+from hubbeam.configuration.settings import Case, case_from_config, from_config
+from hubbeam.model.maneuvers import SpinUp
 from hubbeam.model.parameters import BeamParameters, TipMass
 from hubbeam.model.printed import TABLE1
 
@@ -66,29 +66,27 @@ def test_study_config_is_valid_and_transcribes_table1(study_config):
     assert params.EI == TABLE1["E"] * TABLE1["I"]
 
 
-def test_case_settings_fill_in_numerics_defaults(study_config):
+def test_a_case_gets_the_defaults_of_numerics_and_of_its_tip_mass(study_config):
     length = study_config["beam"]["length"]
-    plain = case_settings(study_config, "fig04_foam")
-    assert plain == {"name": "fig04_foam", "model": "FOAM",
-                     "maneuver": {"kind": "prescribed", "wf": 3.0, "tf": 30.0}, "t_end": 50.0,
-                     "modes": study_config["numerics"]["modes"],
-                     "tip_mass": {"mass": 0.0, "position": length}}
-    assert case_settings(study_config, "fig06_foam_n1")["modes"] == 1
-    assert TipMass.from_case(case_settings(study_config, "fig10_tlam_mt0p5")) == TipMass(0.5, 8.0)
+    assert case_from_config(study_config, "fig04_foam") == Case(
+        name="fig04_foam", model="FOAM", maneuver=SpinUp(wf=3.0, tf=30.0), t_end=50.0,
+        modes=study_config["numerics"]["modes"], tip_mass=TipMass(0.0, length))
+    assert case_from_config(study_config, "fig06_foam_n1").modes == 1
+    assert case_from_config(study_config, "fig10_tlam_mt0p5").tip_mass == TipMass(0.5, 8.0)
 
     study_config["cases"]["mid_mass"] = {"model": "TLAM", "maneuver": {"kind": "torque", "tau_max": 5.0, "tf": 2.0},
                                          "t_end": 3.0, "tip_mass": {"mass": 0.2}}
     validate_config(study_config)
-    assert case_settings(study_config, "mid_mass")["tip_mass"] == {"mass": 0.2, "position": length}
+    assert case_from_config(study_config, "mid_mass").tip_mass == TipMass(0.2, length)
 
 
 def test_unknown_case_names_the_defined_ones(study_config):
     with pytest.raises(ConfigError, match=r"cases\.nope: unknown case; defined: .*fig04_foam"):
-        case_settings(study_config, "nope")
+        from_config(study_config).case("nope")
 
 
 def test_case_names_are_sorted_and_usable_as_wildcards(study_config):
-    names = case_names(study_config)
+    names = list(from_config(study_config).cases)
     assert names == sorted(study_config["cases"])
     assert all(re.fullmatch(CASE_NAME_PATTERN, name) for name in names)
 
@@ -184,7 +182,7 @@ def test_yaml_exponent_forms_read_as_text_load_as_numbers(tmp_path, study_config
     path.write_text(text, encoding="utf-8")
     assert yaml.safe_load(text)["numerics"]["rtol"] == "1e-9"
     cfg = load_config(path)
-    assert cfg["numerics"]["rtol"] == 1e-9 and case_settings(cfg, "fig04_foam")["t_end"] > 0
+    assert cfg["numerics"]["rtol"] == 1e-9 and from_config(cfg).cases["fig04_foam"].t_end > 0
 
 
 VALIDATION_PROBLEMS = [
@@ -394,12 +392,12 @@ def test_extra_file_adds_a_case_and_overrides_like_snakemake(tmp_path, repo_root
                   "    t_end: 8.0\n    tip_mass: {mass: 0.2, position: 4.0}\n"
                   "  fig04_foam: {t_end: 40.0}\n")
     cfg = load_config([repo_root / "config" / "config.yaml", extra])
-    assert case_settings(cfg, "my_spinup") == {
-        "name": "my_spinup", "model": "FOAM", "maneuver": {"kind": "prescribed", "wf": 1.5, "tf": 5.0},
-        "t_end": 8.0, "modes": 3, "tip_mass": {"mass": 0.2, "position": 4.0}}
-    assert case_settings(cfg, "fig04_foam")["t_end"] == 40.0  # merged into the existing case
-    assert case_settings(cfg, "fig04_foam")["maneuver"] == {"kind": "prescribed", "wf": 3.0, "tf": 30.0}
-    assert case_settings(cfg, "fig06_foam_n1")["modes"] == 1  # a case's own modes win
+    cases = from_config(cfg).cases
+    assert cases["my_spinup"] == Case(name="my_spinup", model="FOAM", maneuver=SpinUp(wf=1.5, tf=5.0), t_end=8.0,
+                                      modes=3, tip_mass=TipMass(0.2, 4.0))
+    assert cases["fig04_foam"].t_end == 40.0  # merged into the existing case
+    assert cases["fig04_foam"].maneuver == SpinUp(wf=3.0, tf=30.0)
+    assert cases["fig06_foam_n1"].modes == 1  # a case's own modes win
 
 
 # ---------------------------------------------------------------------------------------------
@@ -528,11 +526,11 @@ def test_a_checked_configuration_becomes_frozen_objects_that_give_back_its_cases
     assert (settings.study is None) == ("study" not in cfg)
     assert settings.numerics.rtol == cfg["numerics"]["rtol"]
     assert settings.eigen.speeds.num == cfg["eigen"]["speeds"]["num"]
-    assert sorted(settings.cases) == case_names(cfg)
-    for name, case in settings.cases.items():
-        assert isinstance(case, Case) and case.to_dict() == case_settings(cfg, name)
+    assert list(settings.cases) == sorted(cfg["cases"])
+    for case in settings.cases.values():
+        assert isinstance(case, Case)
         # the API's path from the resolved mapping gives the same object
-        assert simulation_settings(case_settings(cfg, name), cfg["numerics"], settings.beam.L)[0] == case
+        assert simulation_settings(case.to_dict(), cfg["numerics"], settings.beam.L)[0] == case
     with pytest.raises(dataclasses.FrozenInstanceError):
         case.t_end = 1.0
     with pytest.raises(TypeError):

@@ -21,6 +21,7 @@ from hubbeam.configuration.schema import SCHEMA
 from hubbeam.configuration.tabular import resolve_files
 from hubbeam.model.beam import beam_from_config
 from hubbeam.model.eigen import critical_speed
+from hubbeam.model.maneuvers import maneuver_from_dict
 from hubbeam.model.matrices import assemble
 from hubbeam.model.parameters import TipMass
 
@@ -151,23 +152,29 @@ def test_no_tip_mass_raises_a_critical_speed_above_the_bound(mass, position):
     assert math.isnan(critical_speed("FOAM", params, tip, 5, 10 * bound))
 
 
+def highest_speed(maneuver, t_end, inertia):
+    """The highest hub speed the derived speed grid covers for ``maneuver`` (its record's, a free
+    hub taken as rigid of ``inertia``)."""
+    return maneuver_from_dict(maneuver).highest_speed(t_end, inertia)
+
+
 def test_torque_pulse_speed_against_its_table():
     """Eq. (44) on a rigid hub, in closed form, against the same pulse given as a torque table
     (linear between 401 samples: interpolation error (2 pi h / tf)^2 / 8 of the amplitude)."""
     tau_max, tf, inertia = 50.0, 10.0, 300.0
-    closed = defaults.highest_hub_speed({"kind": "torque", "tau_max": tau_max, "tf": tf}, 20.0, inertia)
+    closed = highest_speed({"kind": "torque", "tau_max": tau_max, "tf": tf}, 20.0, inertia)
     assert closed == pytest.approx(tau_max * tf / (math.pi * inertia), rel=1e-15)
     time = np.linspace(0.0, tf, 401)
     torque = tau_max * np.sin(2 * np.pi * time / tf)
     table = {"kind": "torque_table", "time": time.tolist(), "torque": torque.tolist()}
     h = time[1] - time[0]
-    assert defaults.highest_hub_speed(table, 20.0, inertia) == pytest.approx(closed, rel=(2 * np.pi * h / tf) ** 2)
+    assert highest_speed(table, 20.0, inertia) == pytest.approx(closed, rel=(2 * np.pi * h / tf) ** 2)
 
 
 def test_a_torque_table_holds_its_last_value_until_the_end():
     table = {"kind": "torque_table", "time": [0.0, 1.0], "torque": [0.0, 2.0]}
     # ramp to 2 N m over 1 s (1 N m s), then 2 N m held for 9 s: 19 N m s on 4 kg m2
-    assert defaults.highest_hub_speed(table, 10.0, 4.0) == pytest.approx(19.0 / 4.0, rel=1e-12)
+    assert highest_speed(table, 10.0, 4.0) == pytest.approx(19.0 / 4.0, rel=1e-12)
 
 
 @pytest.mark.parametrize("maneuver, expected", [
@@ -178,7 +185,7 @@ def test_a_torque_table_holds_its_last_value_until_the_end():
       "reference": {"kind": "angle_table", "time": [0.0, 2.0, 3.0], "angle": [0.0, 1.0, 1.5]}}, 0.5),
 ])
 def test_highest_hub_speed_of_the_prescribed_and_reference_kinds(maneuver, expected):
-    assert defaults.highest_hub_speed(maneuver, 5.0, 1.0) == expected
+    assert highest_speed(maneuver, 5.0, 1.0) == expected
 
 
 def test_an_eigen_value_given_is_kept():

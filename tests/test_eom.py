@@ -19,7 +19,7 @@ from hubbeam.core.inputs import SimulationInputs, Trajectory
 from hubbeam.core.integrate import N_SCALAR, fill_outputs, integration_problem, n_output_columns
 from hubbeam.core.maneuver import PRESCRIBED, TORQUE
 from hubbeam.core.radau import problem_rhs
-from hubbeam.model.maneuvers import maneuver_parameters
+from hubbeam.model.maneuvers import maneuver_from_dict
 from hubbeam.model.matrices import SystemMatrices
 from hubbeam.model.models import MODELS
 
@@ -352,7 +352,7 @@ def test_integrator_rhs_equals_the_general_solve(sm, state, maneuver, model, amp
     complement) or cfoam_rhs (pre-contracted tensors) -- equals accelerations (full mass matrix
     from the point cloud, Cholesky), also far outside the small-deformation range."""
     n = sm.M1.shape[0]
-    kind, mp = maneuver_parameters(maneuver)
+    kind, mp = maneuver_from_dict(maneuver).kernel_parameters()
     C = _damping(sm) if damped else _undamped(sm)
     y, v = state
     y = np.concatenate([y[:1], amplitude / 0.05 * y[1:]])
@@ -390,7 +390,7 @@ def test_dataset_outputs_equal_the_general_equations(sm, state, maneuver, model)
     eom, output by output, at states far outside the small-deformation range too."""
     n = sm.M1.shape[0]
     N = 1 + 2 * n
-    kind, mp = maneuver_parameters(maneuver)
+    kind, mp = maneuver_from_dict(maneuver).kernel_parameters()
     C = _damping(sm)
     y, v = state
     free = eom.free_dofs(model, kind, n)

@@ -18,6 +18,7 @@
 * bad input is refused before anything runs, naming the key.
 """
 
+import dataclasses
 import json
 
 import numpy as np
@@ -25,6 +26,7 @@ import pytest
 import scipy.linalg
 from scipy.integrate import simpson
 
+from hubbeam.configuration.settings import InitialState, simulation_settings
 from hubbeam.control.feedback import lqr_design, simulate_case
 from hubbeam.linear.statespace import linear_model
 from hubbeam.model.modes import transverse_modes
@@ -49,6 +51,17 @@ def setup(_study_config):
 def _case(maneuver, model="FOAM", t_end=6.0, modes=2, **extra):
     return {"name": "sf", "model": model, "modes": modes, "t_end": t_end, "maneuver": maneuver,
             "tip_mass": {"mass": 0.0, "position": 8.0}, **extra}
+
+
+def _objects(case, params, numerics):
+    """The case and numerics mappings as the objects of the one check (``Case``, ``Numerics``)."""
+    return simulation_settings(case, numerics, params.L)
+
+
+def _matrices(case, params, numerics):
+    """The system matrices of the case mapping ``case``."""
+    case, numerics = _objects(case, params, numerics)
+    return case_matrices(case, params, numerics)
 
 
 @pytest.mark.parametrize("model", ["FOAM", "CFOAM"])
@@ -78,7 +91,7 @@ def _steady_run(params, numerics, model, amplitude, t_end=8.0):
 def _linear_closed_loop(params, numerics, case, ds, amplitude):
     """The deviation ``x(t)`` of the linear closed loop from the run's initial deviation, and
     the LQR matrices, on the run's time grid."""
-    sm = case_matrices(case, params, numerics)
+    sm = _matrices(case, params, numerics)
     lin = linear_model(params, sm, case["model"], SPEED, "free")
     K = np.array([list(json.loads(ds.attrs["feedback_gains"]).values())])
     P = np.array(json.loads(ds.attrs["feedback_design_riccati"]))
@@ -149,8 +162,8 @@ def test_decay_rate_and_frequency_of_the_nonlinear_loop_are_its_linear_pole(setu
     params, numerics = setup
     numerics = dict(numerics, rtol=1e-10, atol=1e-12, output_step=0.005)
     maneuver = {"kind": "state_feedback", "reference": STEADY, "design": dict(DESIGN, model=model)}
-    case = _case(maneuver, model, t_end=8.0)
-    sm = case_matrices(case, params, numerics)
+    case, checked = _objects(_case(maneuver, model, t_end=8.0), params, numerics)
+    sm = case_matrices(case, params, checked)
     lin = linear_model(params, sm, model, SPEED, "free")
     gains, _ = lqr_design(case, params, sm)
     assert list(gains) == list(lin.states)
@@ -162,8 +175,8 @@ def test_decay_rate_and_frequency_of_the_nonlinear_loop_are_its_linear_pole(setu
                                                  pytest.approx(pole.imag, rel=1e-9))
     errors = []
     for amplitude in (0.02, 0.01):
-        ds = simulate_case(dict(case, initial=_initial_from_deviation(lin, amplitude * v.real, 2)),
-                           params, numerics)
+        initial = InitialState.from_dict(_initial_from_deviation(lin, amplitude * v.real, 2))
+        ds = simulate_case(dataclasses.replace(case, initial=initial), params, checked)
         fit = fit_decaying_sinusoid(ds.time.values, ds.tip_transverse.values, 0.0)
         error = max(abs(fit.decay_rate + pole.real), abs(fit.omega - pole.imag)) / abs(pole)
         errors.append(error)
@@ -183,7 +196,7 @@ def test_the_lqr_cost_is_the_cost_along_the_nonlinear_run(setup):
         torque[0] = -(K @ x0)[0]  # at t = 0 the sample holds the reference's vanishing spin-up
         theta_r = SPEED * (t - STEADY["tf"] / 2)
         w = DESIGN["weights"]
-        sm = case_matrices(case, params, numerics)
+        sm = _matrices(case, params, numerics)
         running = (w["hub_angle"] * (ds.theta.values - theta_r) ** 2
                    + w["hub_speed"] * (ds.theta_dot.values - SPEED) ** 2
                    + w["tip_deflection"] * (ds.q2.values @ sm.f2L) ** 2
@@ -221,10 +234,10 @@ def test_work_of_the_hub_torque_is_energy_change_plus_dissipation(setup, model):
     ({"design": dict(DESIGN, model="FOAM", weights={"q2_1": -1.0})}, ["weights.q2_1", "-1.0"]),
     ({"design": dict(DESIGN, model="FOAM", torque_weight=0.0)}, ["torque_weight", "0"]),
     ({"design": dict(DESIGN, model="XFOAM")}, ["design.model", "XFOAM"]),
-    ({"design": dict(DESIGN, model="FOAM", speed=1e4)}, ["design.speed = 10000.0", "steady state"]),
+    ({"design": dict(DESIGN, model="FOAM", speed=1e4)}, ["maneuver.design.speed: got 10000.0", "steady state"]),
     ({"feedforward": True, "gains": {"theta": 1.0},
       "reference": {"kind": "angle_table", "time": [0.0, 1.0], "angle": [0.0, 1.0]}},
-     ["feedforward = true", "angle_table"]),
+     ["maneuver.feedforward: got true", "angle_table"]),
 ])
 def test_bad_feedback_input_is_refused_naming_the_key(setup, maneuver, words):
     params, numerics = setup
@@ -248,7 +261,7 @@ def test_a_plant_the_torque_cannot_stabilise_is_refused_naming_the_mode(setup):
     with pytest.raises(SimulationError) as error:
         simulate_case(_case(maneuver, t_end=0.1), params, numerics)
     assert "not stabilisable from the hub torque" in str(error.value)
-    assert "mostly q1_" in str(error.value) and "design.model = 'FOAM' at speed 0.0" in str(error.value)
+    assert "mostly q1_" in str(error.value) and "design.model: got 'FOAM' at speed 0.0" in str(error.value)
     damped = _case(maneuver, t_end=0.1, damping={"kind": "modal", "axial": 0.01, "transverse": 0.0})
     assert simulate_case(damped, params, numerics).attrs["integrator_status"] == "success"
 

@@ -176,15 +176,27 @@ def test_a_bad_maneuver_gives_one_clear_error(setup, maneuver, key, fragments):
     assert problem.path == "cases.m." + key and all(fragment in problem.text for fragment in fragments), problem
 
 
-def test_the_kernel_layout_of_every_maneuver_kind_has_the_keys_the_schema_declares():
-    """maneuvers.py packs each kind's parameters in the kernel's order; the keys are the schema's."""
-    from hubbeam.configuration.schema import kind_keys
-    from hubbeam.model.maneuvers import MANEUVERS, REFERENCES, TABLES
+def test_every_maneuver_kind_is_one_record_with_the_keys_the_schema_declares():
+    """Each kind of the schema's maneuvers and references has one record in
+    hubbeam.model.maneuvers, whose fields are exactly that kind's keys, and no record lacks a
+    schema branch; the damping kinds likewise in hubbeam.model.damping."""
+    import dataclasses
 
-    packed = {kind: set(keys) for kind, (_, keys) in MANEUVERS.items()}
-    packed |= {kind: {"time", column} for kind, (_, column, _) in TABLES.items()}
-    assert {kind: set(keys) for kind, keys in kind_keys("maneuver").items()} == packed | {
-        "pd": {"kp", "kd", "reference"},
-        "state_feedback": {"reference", "feedforward", "gains", "output_feedback", "design"}}
-    assert {kind: set(keys) for kind, keys in kind_keys("reference").items()} == {
-        kind: set(keys) for kind, (_, keys) in REFERENCES.items()}
+    from hubbeam.configuration.schema import kind_keys
+    from hubbeam.model.damping import DAMPINGS
+    from hubbeam.model.maneuvers import MANEUVERS, REFERENCES
+
+    for definition, records in (("maneuver", MANEUVERS), ("reference", REFERENCES), ("damping", DAMPINGS)):
+        declared = {kind: set(keys) for kind, keys in kind_keys(definition).items()}
+        held = {kind: {item.name for item in dataclasses.fields(record)} for kind, record in records.items()}
+        assert held == declared, definition
+        assert all(record.kind == kind for kind, record in records.items())
+
+
+@pytest.mark.parametrize("maneuver", list(KINDS.values()), ids=list(KINDS))
+def test_a_record_writes_back_the_mapping_it_was_read_from(maneuver):
+    from hubbeam.model.maneuvers import maneuver_from_dict
+
+    record = maneuver_from_dict(maneuver)
+    assert record.to_dict() == maneuver
+    assert maneuver_from_dict(record.to_dict()) == record

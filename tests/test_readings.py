@@ -16,8 +16,9 @@ import sys
 import numpy as np
 import pytest
 
-from hubbeam.configuration.load import case_names, case_settings, load_config
-from hubbeam.model.beam import beam_from_config
+from hubbeam.configuration.load import load_config
+from hubbeam.configuration.settings import from_config
+from hubbeam.model.beam import CONFIG_FIELDS
 from hubbeam.model.eigen import critical_speed_table, table2
 from hubbeam.paper import claims as claim_defs
 from hubbeam.paper import explain
@@ -31,6 +32,7 @@ from hubbeam.paper.readings import (
     reading_beam,
     reading_case,
     reading_cases,
+    reading_runs,
 )
 from hubbeam.results.io import write_netcdf
 from hubbeam.results.reader import maneuver
@@ -42,6 +44,11 @@ def cfg(repo_root):
     return load_config([repo_root / "config" / "config.yaml"])
 
 
+@pytest.fixture(scope="module")
+def settings(cfg):
+    return from_config(cfg)
+
+
 def _differing_keys(a, b):
     return {key for key in set(a) | set(b) if a.get(key) != b.get(key)}
 
@@ -50,17 +57,17 @@ def _differing_keys(a, b):
 ALLOWED = {"maneuver": {"maneuver"}, "tip_mass": {"tip_mass"}, "beam": set()}
 
 
-def test_each_reading_changes_exactly_what_it_names(cfg):
+def test_each_reading_changes_exactly_what_it_names(cfg, settings):
     for name, reading in cfg["readings"].items():
         kind, value = next(iter(reading["change"].items()))
-        for case in case_names(cfg):
-            base = case_settings(cfg, case)
-            new = reading_case(name, reading, base)
+        for case, base_case in settings.cases.items():
+            new_case = reading_case(name, reading, base_case, settings)
             if kind == "measure":
-                assert new is None, (name, case)
+                assert new_case is None, (name, case)
                 continue
-            if new is None:
+            if new_case is None:
                 continue
+            base, new = base_case.to_dict(), new_case.to_dict()
             assert new["name"] == generated_name(name, case) == f"reading-{name}--{case}"
             changed = _differing_keys(new, base) - {"name"}
             allowed = set(value) if kind == "case" else ALLOWED[kind]
@@ -74,27 +81,28 @@ def test_each_reading_changes_exactly_what_it_names(cfg):
                         assert _differing_keys(new[key], base[key]) <= set(part)
 
 
-def test_beam_reading_replaces_only_its_keys(cfg):
+def test_beam_reading_replaces_only_its_keys(cfg, settings):
     reading = cfg["readings"]["table1_3sf"]
-    beam = reading_beam(reading, cfg["beam"])
-    assert _differing_keys(beam, cfg["beam"]) == set(reading["change"]["beam"])
+    beam = reading_beam(reading, settings.beam)
+    changed = {field for field in CONFIG_FIELDS.values() if getattr(beam, field) != getattr(settings.beam, field)}
+    assert changed == {CONFIG_FIELDS[key] for key in reading["change"]["beam"]}
     other = cfg["readings"]["modes_3"]
-    assert reading_beam(other, cfg["beam"]) == cfg["beam"]
+    assert reading_beam(other, settings.beam) == settings.beam
 
 
-def test_case_reading_respects_where(cfg):
+def test_case_reading_respects_where(cfg, settings):
     reading = {"change": {"case": {"modes": 1}}, "where": {"model": "SFOAM"}, "claims": ["table3_tau50"],
                "notes": [20], "why": "test"}
-    assert reading_case("x", reading, case_settings(cfg, "tab3_foam_tau50")) is None
-    new = reading_case("x", reading, case_settings(cfg, "fig08_sfoam_tau200"))
-    assert new["modes"] == 1 and new["model"] == "SFOAM"
+    assert reading_case("x", reading, settings.cases["tab3_foam_tau50"], settings) is None
+    new = reading_case("x", reading, settings.cases["fig08_sfoam_tau200"], settings)
+    assert new.modes == 1 and new.model == "SFOAM"
 
 
-def test_eq43_as_printed_samples_the_printed_formula(cfg):
-    base = case_settings(cfg, "fig05_tlam_wf2p8")
-    wf, tf = base["maneuver"]["wf"], base["maneuver"]["tf"]
-    new = reading_case("eq43_as_printed", cfg["readings"]["eq43_as_printed"], base)
-    table = new["maneuver"]
+def test_eq43_as_printed_samples_the_printed_formula(cfg, settings):
+    base = settings.cases["fig05_tlam_wf2p8"]
+    wf, tf = base.maneuver.wf, base.maneuver.tf
+    new = reading_case("eq43_as_printed", cfg["readings"]["eq43_as_printed"], base, settings)
+    table = new.maneuver.to_dict()
     assert table["kind"] == "speed_table"
     t, speed = np.array(table["time"]), np.array(table["speed"])
     inside = (t > 0) & (t <= tf)
@@ -103,11 +111,11 @@ def test_eq43_as_printed_samples_the_printed_formula(cfg):
     assert speed[0] == 0.0 and speed[-1] == wf and t[-1] > tf
 
 
-def test_half_sine_pulse_has_the_analytic_impulse(cfg):
-    base = case_settings(cfg, "tab3_foam_tau200")
-    tau, tf = base["maneuver"]["tau_max"], base["maneuver"]["tf"]
-    new = reading_case("torque_half_sine", cfg["readings"]["torque_half_sine"], base)
-    t, torque = np.array(new["maneuver"]["time"]), np.array(new["maneuver"]["torque"])
+def test_half_sine_pulse_has_the_analytic_impulse(cfg, settings):
+    base = settings.cases["tab3_foam_tau200"]
+    tau, tf = base.maneuver.tau_max, base.maneuver.tf
+    new = reading_case("torque_half_sine", cfg["readings"]["torque_half_sine"], base, settings)
+    t, torque = np.array(new.maneuver.time), np.array(new.maneuver.torque)
     # Eq. (44) with T = 2 tf: the impulse of tau sin(pi t / tf) over [0, tf] is 2 tau tf / pi;
     # the linear table's trapezoid error is below 1e-3 relative at 20 samples per second
     assert np.trapezoid(torque, t) == pytest.approx(2 * tau * tf / math.pi, rel=1e-3)
@@ -124,14 +132,13 @@ def test_a_bad_reading_names_the_key(cfg):
 
 
 @pytest.fixture(scope="module")
-def default_files(cfg, tmp_path_factory):
+def default_files(cfg, settings, tmp_path_factory):
     """Default runs of Fig. 5 and the eigen tables, computed here, and their claim rows."""
     folder = tmp_path_factory.mktemp("defaults")
-    params = beam_from_config(cfg["beam"])
+    params = settings.beam
     sims = {}
     for case in ("fig05_tlam_wf2p8", "fig05_foam_wf2p8", "fig05_tlam_wf3p5", "fig05_foam_wf3p5"):
-        sims[case] = write_netcdf(simulate(case_settings(cfg, case), params, cfg["numerics"]),
-                                  folder / f"{case}.nc")
+        sims[case] = write_netcdf(simulate(settings.cases[case], params, settings.numerics), folder / f"{case}.nc")
     modes, quad = cfg["numerics"]["modes"], cfg["numerics"]["quadrature_points"]
     table2(params, cfg["eigen"]["table2_speed"], modes, quad).to_csv(folder / "table2.csv", index=False)
     critical_speed_table(params, cfg["eigen"]["tip_masses"], modes, cfg["eigen"]["critical_speed_search_max"],
@@ -155,10 +162,11 @@ def test_a_reading_that_leaves_a_claim_alone_gives_its_default_value(cfg, defaul
         "other_mass": {"change": {"tip_mass": {"replace": 0.5, "mass": 0.05}}, "claims": ids[2:],
                        "notes": [22], "why": "test"},
     }
-    assert all(case is None for case in reading_cases(cfg, "sfoam_only").values())
+    settings = from_config(cfg)
+    assert all(case is None for case in reading_cases(settings, "sfoam_only", cfg["readings"]["sfoam_only"]).values())
     default = _default_rows(default_files, ids)
-    for name in cfg["readings"]:
-        rows, runs = evaluate_reading(cfg, name, *default_files)
+    for name, reading in cfg["readings"].items():
+        rows, runs = evaluate_reading(reading_runs(settings, name, reading), *default_files)
         assert runs == {}
         for row in rows:
             assert row["computed"] == pytest.approx(default[row["id"]]["computed"], rel=1e-12)
@@ -168,7 +176,7 @@ def test_a_reading_that_changes_a_run_moves_its_claim(cfg, default_files):
     cfg = copy.deepcopy(cfg)
     cfg["readings"] = {"short": {"change": {"case": {"maneuver": {"tf": 20.0}}}, "where": {"kind": "prescribed"},
                                  "claims": ["peak_tip_foam_wf2p8"], "notes": [12], "why": "test"}}
-    (row,), runs = evaluate_reading(cfg, "short", *default_files)
+    (row,), runs = evaluate_reading(reading_runs(from_config(cfg), "short", cfg["readings"]["short"]), *default_files)
     assert set(runs) == {f"reading-short--{c}" for c in ("fig05_tlam_wf2p8", "fig05_foam_wf2p8",
                                                             "fig05_tlam_wf3p5", "fig05_foam_wf3p5")}
     assert all(maneuver("run", ds)["tf"] == 20.0 for ds in runs.values())
@@ -231,7 +239,7 @@ def test_dry_run_plans_every_reading_and_no_default_run_twice(tmp_path, repo_roo
     counts = dict(line.split()[:2] for line in run.stdout.splitlines()
                   if line.strip() and line.split()[0] in ("reading", "simulate", "readings_matrix"))
     assert int(counts["reading"]) == len(cfg["readings"])
-    assert int(counts["simulate"]) <= len(case_names(cfg))  # generated runs never go through simulate
+    assert int(counts["simulate"]) <= len(cfg["cases"])  # generated runs never go through simulate
 
 
 def test_matrix_holds_each_reading_s_values_and_nothing_else():

@@ -16,15 +16,16 @@ pure-Python evaluation is checked against them state by state instead.
 import numpy as np
 import pytest
 from numba.core.dispatcher import Dispatcher
+from synthetic_results import case_of
 
-from hubbeam.configuration.load import case_settings
 from hubbeam.core import eom
 from hubbeam.core.inputs import SimulationInputs
+from hubbeam.model.maneuvers import maneuver_from_dict
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import MODELS
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.simulation.reference import pure_python, reference_simulation
-from hubbeam.simulation.simulate import kernel_matrices, maneuver_parameters, simulate
+from hubbeam.simulation.simulate import kernel_matrices, simulate
 
 
 @pytest.fixture(scope="module")
@@ -69,7 +70,7 @@ def test_pure_python_accelerations_call_no_compiled_code_and_agree(setup):
                  {"kind": "pd", "kp": 3.0, "kd": 1.0,
                   "reference": {"kind": "angle_table", "time": [0.0, 20.0], "angle": [0.0, 1.0]}}]
     for model in MODELS.values():
-        for kind, mp in map(maneuver_parameters, maneuvers):
+        for kind, mp in (maneuver_from_dict(m).kernel_parameters() for m in maneuvers):
             inputs = SimulationInputs(model.traits, kind, mp, C, sm)
             free = eom.free_dofs(model.traits, kind, 2)
             for _ in range(3):
@@ -84,7 +85,7 @@ def test_pure_python_accelerations_call_no_compiled_code_and_agree(setup):
 
 def test_fast_path_agrees_with_the_reference_on_fig5_foam(setup):
     params, numerics, config = setup
-    case = case_settings(config, "fig05_foam_wf2p8")
+    case = case_of(config, "fig05_foam_wf2p8")
     reference = reference_simulation(case, params, numerics, rtol=1e-12, atol=1e-14,
                                      pure_python_rhs=False)
     fast = simulate(case, params, numerics)
@@ -117,7 +118,7 @@ def test_fast_right_hand_sides_agree_with_the_reference(setup, name, changes):
     """The integrator's right-hand sides (core.foam_rhs, core.cfoam_rhs) against scipy on the
     general mass-matrix equations (CFOAM's point-cloud sum), over whole runs."""
     params, numerics, config = setup
-    case = case_settings(config, name) | changes
+    case = case_of(config, name).to_dict() | changes
     reference = reference_simulation(case, params, numerics, rtol=1e-10, atol=1e-12,
                                      pure_python_rhs=False)
     fast = simulate(case, params, numerics)
@@ -130,7 +131,7 @@ def test_fast_right_hand_sides_agree_with_the_reference(setup, name, changes):
 
 def test_both_paths_record_the_divergence_of_tlam_at_the_same_time(setup):
     params, numerics, config = setup
-    case = case_settings(config, "fig05_tlam_wf3p5") | {"modes": 1}
+    case = case_of(config, "fig05_tlam_wf3p5", modes=1)
     reference = reference_simulation(case, params, numerics, rtol=1e-10, atol=1e-12,
                                      pure_python_rhs=False)
     fast = simulate(case, params, numerics)

@@ -35,11 +35,11 @@ import numpy as np
 import pytest
 import xarray as xr
 import yaml
-from synthetic_results import CONFIG_FILE, REPO, run_script, write_eigen, write_simulations
+from synthetic_results import CONFIG_FILE, REPO, case_of, run_script, simulation_params, write_eigen, write_simulations
 
-from hubbeam.configuration.load import ConfigError, case_settings
+from hubbeam.configuration.load import ConfigError
 from hubbeam.model.matrices import assemble, to_dataset
-from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.parameters import BeamParameters
 from hubbeam.plotting.style import styled
 from hubbeam.reporting.products import PAPER_PRODUCTS
 from hubbeam.results.io import ResultFileError, open_result, staged, write_netcdf
@@ -166,7 +166,7 @@ def test_every_kind_of_config_error_stops_the_snakefile_with_one_message(tmp_pat
 
 def test_bad_convergence_settings_are_rejected_by_simulate(setup):
     params, numerics, config = setup
-    case = case_settings(config, "fig05_foam_wf2p8")
+    case = case_of(config, "fig05_foam_wf2p8")
     for settings, message in [
         ({"tolerance_factor": 0.0, "extra_modes": 2, "threshold_m": 1e-4},
          "tolerance_factor: got 0.0; allowed: a number > 0 and < 1"),
@@ -277,7 +277,7 @@ def script_runs(synthetic, out: Path, config: dict):
     tab3 = [c for c in cases if c.startswith("tab3_")]
     fig04 = [c for c in cases if c.startswith("fig04_")]
     tip = {"mass": 0.5, "position": 8.0, "modes": 3}
-    case = case_settings(config, "fig10_foam_mt0p5") | {"modes": 2, "t_end": 1.0}
+    case = case_of(config, "fig10_foam_mt0p5", modes=2, t_end=1.0)
     numerics = config["numerics"]
     t = {name: str(out / "tables" / f"{name}") for name in
          ("table1.csv", "table1.md", "table1.tex", "table2.csv", "table2.md", "table2.tex",
@@ -291,8 +291,7 @@ def script_runs(synthetic, out: Path, config: dict):
          {"beam": config["beam"], "configuration": tip, "n_quad": 16}),
         ("simulate_case.py", {"matrices": str(out / "matrices" / "mt0p5_l8.nc")},
          {"nc": str(out / "simulations" / "case.nc")},
-         {"beam": config["beam"], "case": case, "numerics": numerics,
-          "convergence_check": numerics["convergence_check"]}),
+         simulation_params(config, case, convergence_check=True)),
         ("eigen_table2.py", {}, {"csv": t["table2.csv"]},
          {"beam": config["beam"], "speed": 1.0, "n_modes": 5, "n_quad": 24}),
         ("eigen_critical_speeds.py", {}, {"grid": str(out / "eigen" / "critical_speeds.nc")},
@@ -375,8 +374,7 @@ def test_a_truncated_input_is_named_by_the_script_reading_it(script, synthetic, 
                                    {"markdown": str(out / "reproduction.md"), "html": str(out / "reproduction.html")},
                                    {"cases": cases, "numerics": study_config["numerics"]}),
         "simulate_case.py": ({"matrices": str(bad)}, {"nc": str(out / "case.nc")},
-                             {"beam": study_config["beam"], "case": case_settings(study_config, "fig04_foam"),
-                              "numerics": study_config["numerics"]}),
+                             simulation_params(study_config, case_of(study_config, "fig04_foam"))),
     }[script]
     inputs, outputs, params = arguments
     expected = bad if script != "figure_eigen.py" else tmp_path / "critical.nc"
@@ -535,17 +533,16 @@ def test_the_attributes_of_a_dataset_alone_rebuild_and_reproduce_it(setup, tmp_p
     file with more modes, as in the workflow) and from one of the Python API."""
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1237766400")
     params, numerics, config = setup
-    case = case_settings(config, "fig10_tlam_mt0p1") | {"modes": 2, "t_end": 4.0}
-    tip = TipMass(**case["tip_mass"])
+    case = case_of(config, "fig10_tlam_mt0p1", modes=2, t_end=4.0)
+    tip = case.tip_mass
     matrices = write_netcdf(to_dataset(assemble(params, tip, 4, numerics["quadrature_points"]), params, tip),
                             tmp_path / "matrices.nc")
     written = tmp_path / "simulations" / "case.nc"
     run_script("simulate_case.py", input={"matrices": str(matrices)}, output={"nc": str(written)},
-               params={"beam": config["beam"], "case": case, "numerics": numerics,
-                       "convergence_check": numerics["convergence_check"]}, log=str(tmp_path / "case.log"))
+               params=simulation_params(config, case, convergence_check=True), log=str(tmp_path / "case.log"))
     from_rule = open_result(written)
     inputs = simulation_inputs(from_rule.attrs)
-    assert inputs["case"] == case and inputs["params"] == params
+    assert inputs["case"] == case.to_dict() and inputs["params"] == params
     assert inputs["convergence_check"] == numerics["convergence_check"]
     for key in ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit"):
         assert inputs["numerics"][key] == numerics[key]
@@ -566,7 +563,7 @@ def test_the_attributes_of_a_dataset_alone_rebuild_and_reproduce_it(setup, tmp_p
 
 def test_a_dataset_without_the_rerun_attributes_is_named(setup):
     params, numerics, config = setup
-    ds = simulate(case_settings(config, "fig05_foam_wf2p8") | {"t_end": 0.1}, params, numerics)
+    ds = simulate(case_of(config, "fig05_foam_wf2p8", t_end=0.1), params, numerics)
     del ds.attrs["quadrature_points"]
     with pytest.raises(DatasetError, match="dataset attribute 'quadrature_points' is missing"):
         simulation_inputs(ds.attrs)
@@ -587,9 +584,9 @@ def test_under_resolved_runs_are_flagged_and_a_converged_run_is_not(setup):
     check = numerics["convergence_check"]
     threshold = check["threshold_m"]
 
-    one_mode = case_settings(config, "fig06_foam_n1")  # 1 mode, wf = 5 rad/s (Fig. 6)
+    one_mode = case_of(config, "fig06_foam_n1")  # 1 mode, wf = 5 rad/s (Fig. 6)
     ds = simulate(one_mode, params, numerics, convergence_check=check)
-    three = simulate(one_mode | {"modes": 1 + check["extra_modes"]}, params, numerics)
+    three = simulate(one_mode.with_modes(1 + check["extra_modes"]), params, numerics)
     assert ds.attrs["convergence_modes"] == 3
     assert ds.attrs["convergence_modes_diff_m"] == tip_difference(ds, three) > threshold
     assert ds.attrs["convergence_tolerance_diff_m"] < threshold
@@ -597,14 +594,14 @@ def test_under_resolved_runs_are_flagged_and_a_converged_run_is_not(setup):
     assert "not converged in the tolerance" not in ds.attrs["warnings"]
 
     loose = dict(numerics, rtol=1e-2, atol=1e-4)  # 1 % per step
-    ds = simulate(case_settings(config, "fig06_foam_n5"), params, loose, convergence_check=check)
-    tight = simulate(case_settings(config, "fig06_foam_n5"), params,
+    ds = simulate(case_of(config, "fig06_foam_n5"), params, loose, convergence_check=check)
+    tight = simulate(case_of(config, "fig06_foam_n5"), params,
                      dict(loose, rtol=1e-2 * check["tolerance_factor"], atol=1e-4 * check["tolerance_factor"]))
     assert ds.attrs["convergence_rtol"] == pytest.approx(1e-2 * check["tolerance_factor"])
     assert ds.attrs["convergence_tolerance_diff_m"] == tip_difference(ds, tight) > threshold
     assert "not converged in the tolerance" in ds.attrs["warnings"]
 
-    ds = simulate(case_settings(config, "fig06_foam_n5"), params, numerics, convergence_check=check)
+    ds = simulate(case_of(config, "fig06_foam_n5"), params, numerics, convergence_check=check)
     assert ds.attrs["convergence_modes_diff_m"] < threshold and ds.attrs["convergence_tolerance_diff_m"] < threshold
     assert ds.attrs["warnings"] == ""
 
@@ -612,10 +609,10 @@ def test_under_resolved_runs_are_flagged_and_a_converged_run_is_not(setup):
 def test_convergence_of_a_diverged_run_is_measured_before_the_divergence(setup):
     params, numerics, config = setup
     check = numerics["convergence_check"]
-    case = case_settings(config, "fig05_tlam_wf3p5") | {"modes": 2}
+    case = case_of(config, "fig05_tlam_wf3p5", modes=2)
     ds = simulate(case, params, numerics, convergence_check=check)
     assert ds.attrs["diverged"] == 1
-    more = simulate(case | {"modes": 4}, params, numerics)
+    more = simulate(case.with_modes(4), params, numerics)
     assert more.attrs["diverged"] == 1
     assert math.isfinite(ds.attrs["convergence_modes_diff_m"])
     assert ds.attrs["convergence_modes_diff_m"] == tip_difference(ds, more)
@@ -623,7 +620,7 @@ def test_convergence_of_a_diverged_run_is_measured_before_the_divergence(setup):
 
 def test_a_case_with_the_most_modes_records_that_modes_were_not_checked(setup):
     params, numerics, config = setup
-    case = case_settings(config, "fig05_foam_wf2p8") | {"modes": 20, "t_end": 0.5}
+    case = case_of(config, "fig05_foam_wf2p8", modes=20, t_end=0.5)
     ds = simulate(case, params, numerics, convergence_check=numerics["convergence_check"])
     assert ds.attrs["convergence_modes"] == 20 and math.isnan(ds.attrs["convergence_modes_diff_m"])
     assert "convergence in the modes not checked" in ds.attrs["warnings"]

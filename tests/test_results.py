@@ -106,9 +106,10 @@ def test_missing_items_are_named_with_the_case():
     broken = ds.assign_attrs(maneuver="{kind")
     with pytest.raises(results.DatasetError, match="attribute 'maneuver' is not JSON"):
         results.maneuver("c", broken)
-    with pytest.raises(results.DatasetError, match="neither tf, a time table nor a reference"):
+    with pytest.raises(results.DatasetError, match=r"maneuver \{'kind': 'speed'\} is not a maneuver hubbeam knows"):
         results.maneuver_end({"kind": "speed"})
-    assert results.maneuver_end({"kind": "pd", "reference": json.loads('{"tf": 4.0}')}) == 4.0
+    pd = '{"kind": "pd", "kp": 1.0, "kd": 1.0, "reference": {"kind": "prescribed", "wf": 1.0, "tf": 4.0}}'
+    assert results.maneuver_end(json.loads(pd)) == 4.0
 
 
 def test_only_drawing_modules_import_the_plotting_package():

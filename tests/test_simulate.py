@@ -23,9 +23,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from synthetic_results import HIGH_ORDER_VARIABLES, SIMULATION_VARIABLES
+from synthetic_results import HIGH_ORDER_VARIABLES, SIMULATION_VARIABLES, case_of
 
-from hubbeam.configuration.load import ConfigError, case_settings
+from hubbeam.configuration.load import ConfigError
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.simulation.simulate import simulate
 
@@ -58,7 +58,7 @@ def test_energy_and_angular_momentum_are_conserved_after_the_pulse(setup, model,
 
 def test_tip_deflection_converges_as_the_tolerance_tightens(setup):
     params, numerics, config = setup
-    case = case_settings(config, "fig05_foam_wf2p8") | {"modes": 2}
+    case = case_of(config, "fig05_foam_wf2p8", modes=2)
     tight = simulate(case, params, dict(numerics, rtol=1e-11, atol=1e-13)).tip_transverse
     errors = []
     for rtol in (1e-5, 1e-7, 1e-9):
@@ -74,8 +74,8 @@ def test_cfoam_and_foam_agree_within_the_dropped_terms(setup):
     from hubbeam.model.matrices import assemble
 
     params, numerics, config = setup
-    cfoam = simulate(case_settings(config, "fig04_cfoam") | {"modes": 2}, params, numerics)
-    foam = simulate(case_settings(config, "fig04_foam") | {"modes": 2}, params, numerics)
+    cfoam = simulate(case_of(config, "fig04_cfoam", modes=2), params, numerics)
+    foam = simulate(case_of(config, "fig04_foam", modes=2), params, numerics)
     K2 = assemble(params, None, 2, numerics["quadrature_points"]).K2
     size = (np.linalg.norm(cfoam.dQ_q2.values, axis=1).max()
             / np.linalg.norm(cfoam.q2.values @ K2.T, axis=1).max())
@@ -88,7 +88,7 @@ def test_cfoam_and_foam_agree_within_the_dropped_terms(setup):
 
 def test_tlam_above_its_critical_speed_is_recorded_as_diverged(setup):
     params, numerics, config = setup
-    ds = simulate(case_settings(config, "fig05_tlam_wf3p5") | {"modes": 2}, params, numerics)
+    ds = simulate(case_of(config, "fig05_tlam_wf3p5", modes=2), params, numerics)
     assert ds.attrs["diverged"] == 1 and ds.attrs["integrator_status"] == "left_range"
     t_stop = ds.attrs["diverged_at_s"]
     assert 0.0 < t_stop < 50.0 and "diverged" in ds.attrs["warnings"]
@@ -98,13 +98,13 @@ def test_tlam_above_its_critical_speed_is_recorded_as_diverged(setup):
     # it stopped because the tip passed the limit (divergence_limit * L = 8 m) within a step
     limit = numerics["divergence_limit"] * params.L
     assert float(abs(ds.tip_transverse[before]).max()) > 0.5 * limit
-    foam = simulate(case_settings(config, "fig05_foam_wf3p5") | {"modes": 2}, params, numerics)
+    foam = simulate(case_of(config, "fig05_foam_wf3p5", modes=2), params, numerics)
     assert foam.attrs["diverged"] == 0 and math.isnan(foam.attrs["diverged_at_s"])
 
 
 def test_dataset_follows_the_contract(setup):
     params, numerics, config = setup
-    case = case_settings(config, "fig10_foam_mt0p1") | {"modes": 2, "t_end": 1.0}
+    case = case_of(config, "fig10_foam_mt0p1", modes=2, t_end=1.0)
     ds = simulate(case, params, numerics)
     for name, (dims, units, _) in SIMULATION_VARIABLES.items():
         assert ds[name].dims == dims and ds[name].attrs["units"] == units
@@ -129,7 +129,7 @@ def test_dataset_follows_the_contract(setup):
 
 def test_step_budget_and_step_warning_are_recorded(setup):
     params, numerics, config = setup
-    case = case_settings(config, "fig05_foam_wf2p8") | {"modes": 2, "t_end": 5.0}
+    case = case_of(config, "fig05_foam_wf2p8", modes=2, t_end=5.0)
     ds = simulate(case, params, dict(numerics, max_steps=50, step_warning=10))
     assert ds.attrs["integrator_status"] == "too_many_steps" and ds.attrs["diverged"] == 0
     assert "max_steps = 50" in ds.attrs["warnings"] and "step_warning = 10" in ds.attrs["warnings"]
@@ -148,7 +148,7 @@ def test_bad_cases_are_rejected_naming_the_key(setup, change, key, fragments):
     """simulate checks a bare case by the configuration's one pass: one problem, at the key."""
     params, numerics, config = setup
     with pytest.raises(ConfigError) as error:
-        simulate(case_settings(config, "fig05_foam_wf2p8") | change, params, numerics)
+        simulate(case_of(config, "fig05_foam_wf2p8").to_dict() | change, params, numerics)
     (problem,) = error.value.problems
     assert problem.path == "cases.fig05_foam_wf2p8." + key, problem
     assert all(fragment in problem.text for fragment in fragments), problem
@@ -163,7 +163,7 @@ def test_bad_cases_are_rejected_naming_the_key(setup, change, key, fragments):
 def test_bad_numerics_are_rejected_naming_the_key(setup, change, key, fragments):
     params, numerics, config = setup
     with pytest.raises(ConfigError) as error:
-        simulate(case_settings(config, "fig05_foam_wf2p8"), params, dict(numerics, **change))
+        simulate(case_of(config, "fig05_foam_wf2p8"), params, dict(numerics, **change))
     (problem,) = error.value.problems
     assert problem.path == "numerics." + key and all(fragment in problem.text for fragment in fragments), problem
 
@@ -175,7 +175,7 @@ def test_the_objects_of_a_configuration_run_unchecked_and_give_the_mapping_resul
     params, numerics, config = setup
     settings = from_config(config)
     case = dataclasses.replace(settings.cases["fig05_foam_wf2p8"], modes=2, t_end=1.0)
-    assert case.to_dict() == case_settings(config, "fig05_foam_wf2p8") | {"modes": 2, "t_end": 1.0}
+    assert case == case_of(config, "fig05_foam_wf2p8", modes=2, t_end=1.0)
     by_objects = simulate(case, settings.beam, settings.numerics)
     by_mapping = simulate(case.to_dict(), params, numerics)
     xr.testing.assert_identical(by_objects.drop_attrs(), by_mapping.drop_attrs())
@@ -186,20 +186,19 @@ def test_workflow_script_writes_the_case_from_the_leading_matrix_blocks(setup, t
     """simulate_case.py reads the case's matrices file (more modes than the case uses), writes
     the dataset atomically, and gives what simulate() gives with matrices of its own."""
     import xarray as xr
-    from synthetic_results import run_script
+    from synthetic_results import run_script, simulation_params
 
     from hubbeam.model.matrices import assemble, to_dataset
-    from hubbeam.model.parameters import TipMass
     from hubbeam.results.io import open_result, write_netcdf
 
     params, numerics, config = setup
-    case = case_settings(config, "fig10_tlam_mt0p1") | {"modes": 2, "t_end": 2.0}
-    tip = TipMass(**case["tip_mass"])
+    case = case_of(config, "fig10_tlam_mt0p1", modes=2, t_end=2.0)
+    tip = case.tip_mass
     stored = write_netcdf(to_dataset(assemble(params, tip, 3, numerics["quadrature_points"]),
                                      params, tip), tmp_path / "matrices.nc")
     output = tmp_path / "simulations" / "case.nc"
     run_script("simulate_case.py", input={"matrices": str(stored)}, output={"nc": str(output)},
-               params={"beam": config["beam"], "case": case, "numerics": numerics},
+               params=simulation_params(config, case),
                log=str(tmp_path / "case.log"))
     written = open_result(output)
     direct = simulate(case, params, numerics)

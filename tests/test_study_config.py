@@ -13,12 +13,14 @@ from pathlib import Path
 import pytest
 import yaml
 
-from hubbeam.configuration.load import ConfigError, case_settings, validate_config
+from hubbeam.configuration.load import ConfigError, validate_config
+from hubbeam.configuration.settings import case_from_config
 from hubbeam.configuration.tabular import SECTION_COLUMNS, TableError, read_table, resolve_files
-from hubbeam.results.paths import study_paths
+from hubbeam.model.damping import ModalDamping
+from hubbeam.model.maneuvers import AngleTable, PdControl
+from hubbeam.results.paths import IN_RESULTS, PAPER_FOLDERS, StudyPaths, study_paths
 from hubbeam.study import (
     MARKER,
-    PAPER_FOLDERS,
     StudyError,
     claim_results_dir,
 )
@@ -107,6 +109,23 @@ def test_a_study_name_that_is_no_folder_name_is_rejected(study, name):
 def test_a_study_name_of_a_paper_folder_is_rejected(study, name):
     study["study"]["name"] = name
     assert_reported(problems_of(study), "study.name", f"got {name!r}", "folder of the paper")
+
+
+def test_every_folder_the_paper_writes_is_a_name_no_study_may_take():
+    """Each kind of file of a results folder (every path method of StudyPaths, called with
+    placeholder names) lies in one of PAPER_FOLDERS (the linear models' folder among them), or is
+    the archive itself."""
+    import inspect
+
+    tops = set()
+    for name, method in inspect.getmembers(IN_RESULTS, inspect.ismethod):
+        if name.startswith("_") or name in ("result", "log", "figures"):
+            continue
+        parameters = inspect.signature(method).parameters
+        path = method(*(["x"] * sum(p.default is inspect.Parameter.empty for p in parameters.values())))
+        tops.add(path.split("/")[0])
+    assert tops - set(PAPER_FOLDERS) == {StudyPaths().archive().split("/")[-1]}
+    assert "linear" in PAPER_FOLDERS
 
 
 def test_a_comparison_of_an_unknown_case_is_rejected(study):
@@ -263,12 +282,11 @@ def test_a_key_of_another_kind_is_rejected(study, case, entry, key, kind):
                     f"not allowed when kind is '{kind}'")
 
 
-def test_case_settings_pass_tables_references_and_damping_through(study):
-    pd = case_settings(study, "pd")
-    assert pd["maneuver"] == {"kind": "pd", "kp": 10.0, "kd": 5.0,
-                              "reference": {"kind": "angle_table", "time": [0.0, 1.0], "angle": [0.0, 0.5]}}
-    assert pd["damping"] == {"kind": "modal", "axial": 0.01, "transverse": 0.02}
-    assert "damping" not in case_settings(study, "spin")
+def test_a_case_holds_its_tables_references_and_damping_as_records(study):
+    pd = case_from_config(study, "pd")
+    assert pd.maneuver == PdControl(kp=10.0, kd=5.0, reference=AngleTable(time=(0.0, 1.0), angle=(0.0, 0.5)))
+    assert pd.damping == ModalDamping(axial=0.01, transverse=0.02)
+    assert case_from_config(study, "spin").damping is None
 
 
 # --- CSV tables --------------------------------------------------------------------------------

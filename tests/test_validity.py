@@ -8,8 +8,8 @@ import math
 
 import matplotlib
 import pytest
+from synthetic_results import case_of
 
-from hubbeam.configuration.load import case_settings
 from hubbeam.core import radau
 from hubbeam.model import validity
 from hubbeam.model.parameters import BeamParameters
@@ -25,7 +25,7 @@ def paper(_study_config):
 
 def run(paper, name, numerics=None, **changes):
     cfg, params = paper
-    case = case_settings(cfg, name) | changes
+    case = case_of(cfg, name).to_dict() | changes
     return simulate(case, params, dict(cfg["numerics"], **(numerics or {})))
 
 

@@ -13,7 +13,6 @@ from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
 
-from hubbeam.configuration.load import case_names, case_settings
 from hubbeam.model.models import FAMILIES, model, wildcard_pattern
 from hubbeam.results.paths import FIGURE_FORMATS, SHARED, TABLE_FORMATS, study_paths
 from hubbeam.reporting.products import (CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE, EIGEN_FIGURE, PAPER,
@@ -25,6 +24,7 @@ PACKAGE_DIR = Path(workflow.basedir, "src", "hubbeam")
 SCRIPTS_DIR = Path(workflow.basedir, "workflow", "scripts")
 #: where this configuration's results and logs go
 PATHS = study_paths(config)
+#: the checked configuration as objects (the Snakefile's `SETTINGS`): what the jobs take
 #: the figures and tables of this configuration
 PRODUCTS = products_for(config)
 #: the paper's own products (Tables 1-3, Figs. 3-10, claims, reproduction report) are asked for
@@ -35,17 +35,19 @@ FAMILY_PATTERN = wildcard_pattern(FAMILIES)
 
 def cases():
     """Names of all configured cases, sorted."""
-    return case_names(config)
-
-
-def case_config(name):
-    """The validated case `name` with the `numerics` defaults filled in (a plain dict)."""
-    return case_settings(config, name)
+    return list(SETTINGS.cases)
 
 
 def case_params(wildcards):
-    """`params:` function: the resolved case of the job's `{case}` wildcard."""
-    return case_config(wildcards.case)
+    """`params:` function: the resolved case of the job's `{case}` wildcard (a `Case`)."""
+    return SETTINGS.case(wildcards.case)
+
+
+def fingerprint(*values):
+    """A `params:` entry that makes Snakemake rerun a job when the settings objects it takes
+    change: Snakemake compares only built-in values, so the objects' `repr` (complete: every field,
+    floats written exactly) stands for them."""
+    return lambda wildcards: repr(tuple(value(wildcards) if callable(value) else value for value in values))
 
 
 def script_code(script, *modules):
@@ -66,7 +68,7 @@ KERNEL_DONE = SHARED.log("simulations", "kernel_{family}.done")
 
 def simulation_kernel_done(wildcards):
     """Input function of `simulate`: the marker of the compiled kernel of the case's family."""
-    return KERNEL_DONE.format(family=model(case_config(wildcards.case)["model"]).family)
+    return KERNEL_DONE.format(family=model(case_params(wildcards).model).family)
 
 
 def simulation_kernels_done(wildcards):
@@ -196,18 +198,8 @@ def archive_inputs(wildcards):
 def simulation_matrices(wildcards):
     """The matrices file of the job's case: its tip-mass configuration (rule in matrices.smk)."""
     from hubbeam.model.matrices import configuration_name
-    from hubbeam.model.parameters import TipMass
 
-    tip = TipMass(**case_config(wildcards.case)["tip_mass"])
-    return PATHS.matrices(configuration_name(tip))
-
-
-def simulation_numerics():
-    """The `numerics` settings a simulation reads (changing any other one does not rerun it)."""
-    from hubbeam.simulation.simulate import NUMERICS_KEYS, OPTIONAL_NUMERICS
-
-    return {key: config["numerics"].get(key, default) for key, default in
-            {**dict.fromkeys(NUMERICS_KEYS), **OPTIONAL_NUMERICS}.items()}
+    return PATHS.matrices(configuration_name(case_params(wildcards).tip_mass))
 
 
 # --- system matrices (rule in matrices.smk) ------------------------------------------------------
@@ -219,16 +211,15 @@ def matrices_configurations():
     from hubbeam.model.parameters import TipMass
 
     configurations = {}
-    for case in cases():
-        settings = case_config(case)
-        tip = TipMass(**settings["tip_mass"])
+    for case in SETTINGS.cases.values():
+        tip = case.tip_mass
         if tip.mass == 0.0:
             tip = TipMass(mass=0.0, position=config["beam"]["length"])
         entry = configurations.setdefault(
             configuration_name(tip),
-            {"mass": tip.mass, "position": tip.position, "modes": settings["modes"]},
+            {"mass": tip.mass, "position": tip.position, "modes": case.modes},
         )
-        entry["modes"] = max(entry["modes"], settings["modes"])
+        entry["modes"] = max(entry["modes"], case.modes)
     return configurations
 
 
@@ -449,23 +440,29 @@ def reading_inputs():
     return {"readings": PATHS.readings("csv")} if reading_names() else {}
 
 
-def _reading_cases(name):
-    from hubbeam.paper.readings import ReadingError, reading_cases
+def _reading_runs():
+    """{reading: its runs (hubbeam.paper.readings.ReadingRuns)}, each reading checked and its
+    generated cases built once, when the workflow is read."""
+    from hubbeam.paper.readings import ReadingError, reading_runs
 
-    if name not in config.get("readings", {}):
-        raise WorkflowError(f"{PATHS.reading(name)}: unknown reading {name!r}; "
-                            f"allowed: {', '.join(reading_names()) or 'none configured'}")
     try:
-        return reading_cases(config, name)
-    except ReadingError as error:
-        raise WorkflowError(str(error)) from error
+        return {name: reading_runs(SETTINGS, name, config["readings"][name]) for name in reading_names()}
+    except (ReadingError, ConfigError) as error:
+        raise WorkflowError(str(error)) from None
+
+
+#: the runs of every reading
+READING_RUNS = _reading_runs()
+
+
+def reading_params(wildcards):
+    """`params:` function: the runs of the job's reading (`ReadingRuns`)."""
+    if wildcards.reading not in READING_RUNS:
+        raise WorkflowError(f"{PATHS.reading(wildcards.reading)}: unknown reading {wildcards.reading!r}; "
+                            f"allowed: {', '.join(reading_names()) or 'none configured'}")
+    return READING_RUNS[wildcards.reading]
 
 
 def reading_base_cases(wildcards):
     """The default runs the job's reading reads (its claims' products), sorted."""
-    return sorted(_reading_cases(wildcards.reading))
-
-
-def reading_generated_cases(wildcards):
-    """`params:` function: the generated cases of the job's reading (editing one reruns it)."""
-    return {base: case for base, case in _reading_cases(wildcards.reading).items() if case is not None}
+    return sorted(reading_params(wildcards).bases)

@@ -83,7 +83,7 @@ rule eigen_beam:
         beam=ensure(PATHS.eigen("beam"), non_empty=True),
     params:
         beam=config["beam"],
-        tips={case: case_config(case)["tip_mass"] for case in cases()},
+        tips={name: case.tip_mass for name, case in SETTINGS.cases.items()},
         speeds=[0.0, config["eigen"]["speeds"]["stop"]],
         tip_masses=config["eigen"]["tip_masses"],
         n_shapes=BEAM_MODE_SHAPES,

@@ -22,11 +22,8 @@ rule reading:
         ensure(PATHS.reading("{reading}"), non_empty=True),
     params:
         cases=reading_base_cases,
-        generated=reading_generated_cases,
-        reading=lambda wildcards: config["readings"][wildcards.reading],
-        beam=config["beam"],
-        numerics=config["numerics"],
-        eigen=config["eigen"],
+        runs=reading_params,
+        settings=fingerprint(reading_params),
     wildcard_constraints:
         reading="[A-Za-z0-9_]+",
     log:

@@ -47,6 +47,7 @@ rule reproduction_report:
     params:
         cases=cases(),
         numerics=config["numerics"],
+        readings=config.get("readings", {}),
     log:
         PATHS.log("report", "reproduction.log"),
     script:

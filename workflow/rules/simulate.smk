@@ -2,9 +2,10 @@
 (Radau IIA kernel; `PATHS` in common.smk: results/ for the paper, results/<name>/ for a study).
 
 The system matrices come from `matrices/<configuration>.nc` (their leading `modes` blocks);
-the beam parameters, the resolved case, the integrator settings and the optional convergence check
-(`numerics.convergence_check`, None when absent) come through `params:`, so that editing a case
-reruns exactly that case (helpers `simulation_matrices` and `simulation_numerics` in common.smk). The package sources a simulation runs are inputs, so that editing a kernel reruns
+the beam, the resolved case, the integrator settings and the optional convergence check
+(`numerics.convergence_check`, None when absent) come through `params:` as the objects of the one
+check of the configuration (`SETTINGS`), with their fingerprint, so that editing a case reruns
+exactly that case (helpers `simulation_matrices` and `fingerprint` in common.smk). The package sources a simulation runs are inputs, so that editing a kernel reruns
 every simulation. `simulation_kernel` compiles the jitted kernel of one family of models (`foam`:
 TLAM, FOAM, SFOAM; `cfoam`: CFOAM) into numba's on-disk cache; the two families compile in
 parallel jobs, and a simulation waits only for its own family's kernel (`simulation_kernel_done`
@@ -38,10 +39,12 @@ rule simulate:
     output:
         ensure(PATHS.simulation("{case}"), non_empty=True),
     params:
-        beam=config["beam"],
+        beam=SETTINGS.beam,
         case=case_params,
-        numerics=simulation_numerics(),
-        convergence_check=config["numerics"].get("convergence_check"),
+        numerics=SETTINGS.numerics.simulation(),
+        convergence_check=SETTINGS.numerics.convergence_check,
+        settings=fingerprint(SETTINGS.beam, case_params, SETTINGS.numerics.simulation(),
+                             SETTINGS.numerics.convergence_check),
     log:
         PATHS.log("simulations", "{case}.log"),
     script:

@@ -1,13 +1,12 @@
 """Snakemake shim: the study's beam as data, its properties and first mode shapes (``hubbeam.model.shapes``)."""
 
 from hubbeam.model.beam import beam_from_config
-from hubbeam.model.parameters import TipMass
 from hubbeam.model.shapes import beam_dataset
 from hubbeam.results.io import write_netcdf
 from hubbeam.results.provenance import global_attributes
 
 p = snakemake.params
-ds = beam_dataset(beam_from_config(p.beam), {case: TipMass(**tip) for case, tip in p.tips.items()},
+ds = beam_dataset(beam_from_config(p.beam), dict(p.tips),
                   p.speeds, p.tip_masses, p.n_shapes, p.n_modes, p.n_quad)
 ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
 write_netcdf(ds, snakemake.output.beam)

@@ -8,9 +8,9 @@ from hubbeam.results.io import staged
 
 logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
                     format="%(asctime)s %(name)s %(levelname)s %(message)s")
-name = snakemake.wildcards.reading
+name = snakemake.params.runs.name
 simulations = dict(zip(snakemake.params.cases, snakemake.input.datasets))
-rows, runs = evaluate_reading(snakemake.config, name, simulations, snakemake.input.table2,
+rows, runs = evaluate_reading(snakemake.params.runs, simulations, snakemake.input.table2,
                               snakemake.input.critical_speeds)
 default = {row["id"]: row for row in read_claims(snakemake.input.claims)}
 with staged(snakemake.output[0]) as (path,):

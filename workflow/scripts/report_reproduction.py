@@ -28,7 +28,7 @@ if "published" in snakemake.input.keys():
 claims = read_claims(snakemake.input.claims)
 readings = None
 if "readings" in snakemake.input.keys():
-    readings = section(claims, read_rows(snakemake.input.readings), snakemake.config["readings"])
+    readings = section(claims, read_rows(snakemake.input.readings), snakemake.params.readings)
 text = reproduction_markdown(claims, figures, tables, datasets, snakemake.params.numerics, out.parent,
                              validation=validation, readings=readings)
 write_text(out, text)

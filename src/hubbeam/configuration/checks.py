@@ -20,13 +20,23 @@ import os
 from collections.abc import Mapping
 from typing import Any
 
-from hubbeam.configuration.schema import SCHEMA, Problem, Validator, allowed, key_path, kind_keys, show, type_name
+from hubbeam.configuration.schema import (
+    MEASURED_SIGNALS,
+    SCHEMA,
+    Problem,
+    Validator,
+    allowed,
+    key_path,
+    kind_keys,
+    show,
+    type_name,
+)
 from hubbeam.model import limits
-from hubbeam.model.maneuvers import start_speed
+from hubbeam.model.maneuvers import REFERENCES, maneuver_from_dict
 from hubbeam.model.models import MODELS
 from hubbeam.reporting.products import PAPER
 from hubbeam.results import variables
-from hubbeam.study import PAPER_FOLDERS
+from hubbeam.results.paths import PAPER_FOLDERS
 
 
 def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
@@ -80,8 +90,9 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
             problems.append(Problem(f"cases.{name}.tip_mass.position",
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
         entry_problems = _case_entry_problems(f"cases.{name}", case)
-        problems += entry_problems + _initial_problems(f"cases.{name}", case, _integer(numerics.get("modes")),
-                                                       check_speed=not entry_problems)
+        modes = _integer(case.get("modes", numerics.get("modes")))
+        problems += entry_problems + _initial_problems(f"cases.{name}", case, modes, check_speed=not entry_problems)
+        problems += _feedback_problems(f"cases.{name}.maneuver", case, modes)
     problems += _beam_problems(beam, length)
     if whole:
         problems += _study_problems(cfg, eigen, cases)
@@ -212,13 +223,11 @@ INITIAL_MODAL_KEYS = tuple(key for key in SCHEMA["$defs"]["case"]["properties"][
 MANEUVER_VALIDATOR = Validator({"$ref": "#/$defs/maneuver", "$defs": SCHEMA["$defs"]})
 
 
-def _initial_problems(where: str, case: Mapping, default_modes: int | None, check_speed: bool) -> list[Problem]:
-    """The case can start from its ``initial`` state: one value per mode (the case's ``modes``,
-    else ``numerics.modes``), no axial coordinates for a model that keeps none (Eq. 40), and, if
-    ``check_speed`` (its maneuver's tables are in order), for a prescribed hub the maneuver's own
-    speed at ``t = 0``."""
+def _initial_problems(where: str, case: Mapping, modes: int | None, check_speed: bool) -> list[Problem]:
+    """The case can start from its ``initial`` state: one value per mode (the case's ``modes``),
+    no axial coordinates for a model that keeps none (Eq. 40), and, if ``check_speed`` (its
+    maneuver's tables are in order), for a prescribed hub the maneuver's own speed at ``t = 0``."""
     spec = _section(case, "initial")
-    modes = _integer(case.get("modes", default_modes))
     model = MODELS.get(case.get("model"))
     problems = []
     for key in INITIAL_MODAL_KEYS:
@@ -236,10 +245,38 @@ def _initial_problems(where: str, case: Mapping, default_modes: int | None, chec
     if speed is None or not check_speed or not MANEUVER_VALIDATOR.is_valid(maneuver) \
             or _non_finite_numbers_and_non_text_keys(maneuver, []):
         return problems  # the other checks report the maneuver
-    start = start_speed(maneuver)
+    start = maneuver_from_dict(maneuver).start_speed()
     if start is not None and not math.isclose(speed, start, rel_tol=1e-12, abs_tol=1e-12):
         problems.append(Problem(f"{where}.initial.hub_speed", f"got {speed!r}; allowed: {start!r} rad s-1, the "
                                 "speed at t = 0 of the prescribed maneuver (or no hub_speed)"))
+    return problems
+
+
+def _feedback_problems(where: str, case: Mapping, modes: int | None) -> list[Problem]:
+    """A state feedback's names: gains on states of the simulated model, design weights on states
+    of the design model or on measured signals (:data:`hubbeam.configuration.schema.MEASURED_SIGNALS`),
+    and a feedforward only with a reference whose acceleration is known (Eq. 43). What needs the
+    case's matrices (a steady spin at the design speed, stabilisability) is checked before any job
+    by ``hubbeam.control.feedback.feedback_problems``."""
+    maneuver = _section(case, "maneuver")
+    if maneuver.get("kind") != "state_feedback" or modes is None:
+        return []
+    problems = []
+    model, design = MODELS.get(case.get("model")), _section(maneuver, "design")
+    named = [("gains", _section(maneuver, "gains"), model, ())]
+    named.append(("design.weights", _section(design, "weights"), MODELS.get(design.get("model")), MEASURED_SIGNALS))
+    for key, values, owner, signals in named:
+        if owner is None:
+            continue  # the schema reports the model
+        allowed_names = owner.state_names(modes) + signals
+        problems += [Problem(f"{where}.{key}.{name}", f"unknown name for {owner.name} with {modes} modes; allowed: "
+                             f"{', '.join(allowed_names)}") for name in values if name not in allowed_names]
+    reference = _section(maneuver, "reference")
+    if maneuver.get("feedforward") is True and reference.get("kind") in REFERENCES \
+            and not REFERENCES[reference["kind"]].gives_acceleration:
+        problems.append(Problem(f"{where}.feedforward", f"got true with reference.kind = {reference['kind']!r}; "
+                                "allowed: a reference whose acceleration is known (prescribed, Eq. 43), or "
+                                "feedforward false"))
     return problems
 
 

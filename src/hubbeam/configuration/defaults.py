@@ -9,7 +9,8 @@ configuration is valid:
 * ``tip_masses``: no tip mass and the tip mass of every case, ascending;
 * ``positions``: :data:`POSITION_POINTS` tip-mass positions from the root to the tip, ``[0, L]``;
 * ``speeds``: :data:`SPEED_POINTS` hub speeds from 0 to :data:`SPEED_MARGIN` times the larger of
-  the highest hub speed a case reaches (:func:`highest_hub_speed`) and the highest critical
+  the highest hub speed a case reaches (``highest_speed`` of its maneuver, a free hub taken as
+  rigid, :mod:`hubbeam.model.maneuvers`) and the highest critical
   speed of the study's beam with any tip mass (:func:`highest_critical_speed`), rounded up to
   two significant digits (:func:`round_up`), so that the Campbell diagram shows every case's
   speed and where TLAM loses its bending stiffness;
@@ -22,13 +23,13 @@ configuration is what the rules read and what the archive records (``config/conf
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
 
 import numpy as np
 
 from hubbeam.configuration.schema import SCHEMA
 from hubbeam.model import linearised
 from hubbeam.model.beam import beam_from_config
+from hubbeam.model.maneuvers import maneuver_from_dict
 from hubbeam.model.matrices import assemble
 
 #: the top of the derived speed grid over the highest speed it must show
@@ -37,8 +38,6 @@ SPEED_MARGIN = 1.25
 SPEED_POINTS = 121
 #: points of the derived grid of tip-mass positions (m)
 POSITION_POINTS = 41
-#: points per time span on which the rigid hub speed of a torque table is integrated
-_TORQUE_TABLE_POINTS = 4001
 
 
 def numerics_defaults() -> dict:
@@ -73,7 +72,7 @@ def fill_eigen(cfg: dict) -> None:
         params = beam_from_config(beam)
         bare = assemble(params, None, int(numerics["modes"]), int(numerics["quadrature_points"]))
         highest = max(highest_critical_speed(bare.K2, bare.M2),
-                      *(highest_hub_speed(case["maneuver"], float(case["t_end"]), bare.Jh + bare.Jb)
+                      *(maneuver_from_dict(case["maneuver"]).highest_speed(float(case["t_end"]), bare.Jh + bare.Jb)
                         for case in cases.values()))
         top = round_up(SPEED_MARGIN * highest)
         eigen.setdefault("speeds", {"start": 0.0, "stop": top, "num": SPEED_POINTS})
@@ -93,37 +92,6 @@ def highest_critical_speed(K2: np.ndarray, M2: np.ndarray) -> float:
     """
     mu = linearised.symmetric_eigenvalues(M2, K2)[-1]  # B = M2 of TLAM
     return float(1.0 / math.sqrt(mu))
-
-
-def highest_hub_speed(maneuver: Mapping, t_end: float, inertia: float) -> float:
-    """The highest hub speed (rad s-1) a maneuver reaches by ``t_end``; a free hub is taken as rigid,
-    of ``inertia`` (kg m2) about the axis (the hub and the bare beam).
-
-    prescribed: ``wf`` (Eq. 43 rises monotonically to it); speed_table: the largest tabulated
-    speed; pd and state_feedback: that of its reference (``wf``, or the steepest mean slope between the rows of an
-    angle table); torque: the rigid hub under the pulse of Eq. (44), ``tau_max tf / (pi J)`` at
-    ``tf / 2``; torque_table: the rigid hub under the table (first value held before it, last
-    after it) up to ``t_end``.
-    """
-    kind = maneuver["kind"]
-    if kind in ("pd", "state_feedback"):
-        reference = maneuver["reference"]
-        if reference["kind"] == "prescribed":
-            return float(reference["wf"])
-        return float(np.max(np.abs(np.diff(reference["angle"]) / np.diff(reference["time"]))))
-    if kind == "prescribed":
-        return float(maneuver["wf"])
-    if kind == "speed_table":
-        return float(np.max(np.abs(maneuver["speed"])))
-    if kind == "torque":
-        return float(maneuver["tau_max"]) * float(maneuver["tf"]) / (math.pi * inertia)
-    # torque_table: linear between the rows, which are nodes of the grid: the trapezoidal rule is
-    # exact at every node
-    t = np.union1d(np.linspace(0.0, t_end, _TORQUE_TABLE_POINTS),
-                   [time for time in maneuver["time"] if time < t_end])
-    torque = np.interp(t, maneuver["time"], maneuver["torque"])
-    momentum = np.concatenate([[0.0], np.cumsum(np.diff(t) * (torque[1:] + torque[:-1]) / 2.0)])
-    return float(np.max(np.abs(momentum))) / inertia
 
 
 def round_up(value: float) -> float:

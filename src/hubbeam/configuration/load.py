@@ -19,8 +19,8 @@ keys left out take their defaults; after it, the ``eigen`` grids left out are de
 study (:mod:`hubbeam.configuration.defaults`). The configuration is completed in place.
 
 Every problem names the key path (``cases.fig05_tlam.maneuver.wf``), the offending value and
-what is allowed. :func:`case_settings` resolves one case with the defaults of ``numerics``;
-:mod:`hubbeam.configuration.settings` turns a checked configuration into frozen objects.
+what is allowed. :mod:`hubbeam.configuration.settings` turns a checked configuration into the
+frozen objects everything downstream takes.
 """
 
 from __future__ import annotations
@@ -121,52 +121,6 @@ def validate_parts(cfg: dict, schema: dict) -> dict:
     study schema's sections) and the physical constraints; raise :class:`ConfigError` listing every
     problem. :mod:`hubbeam.configuration.settings` checks the Python API's bare case and numerics so."""
     return _validate(cfg, [], [], schema=schema)
-
-
-def case_names(cfg: Mapping) -> list[str]:
-    """Names of the configured cases, sorted."""
-    return sorted(cfg["cases"])
-
-
-def case_settings(cfg: Mapping, name: str) -> dict:
-    """The fully resolved case ``name`` of a validated config (JSON-serialisable).
-
-    Defaults: ``modes`` is ``numerics.modes``; without ``tip_mass`` the case has mass 0 at the tip;
-    a tip mass given without ``position`` sits at the tip, ``position = beam.length``.
-    """
-    cases = cfg["cases"]
-    if name not in cases:
-        raise ConfigError([Problem(f"cases.{name}", f"unknown case; defined: {', '.join(sorted(cases))}")])
-    case = cases[name]
-    tip_mass = case.get("tip_mass", {})
-    settings = {
-        "name": name,
-        "model": case["model"],
-        "maneuver": _floats(case["maneuver"]),
-        "t_end": float(case["t_end"]),
-        "modes": int(case["modes"] if "modes" in case else cfg["numerics"]["modes"]),
-        "tip_mass": {
-            "mass": float(tip_mass.get("mass", 0.0)),
-            "position": float(tip_mass.get("position", cfg["beam"]["length"])),
-        },
-    }
-    if "damping" in case:
-        settings["damping"] = _floats(case["damping"])
-    if "initial" in case:
-        settings["initial"] = _floats(case["initial"])
-    return settings
-
-
-def _floats(entry: Mapping) -> dict:
-    """A plain copy of a maneuver or damping entry with every number (also in lists and nested
-    entries such as a pd reference) as float; the ``kind`` texts and the switches stay."""
-    def plain(value):
-        if isinstance(value, Mapping):
-            return {key: plain(item) for key, item in value.items()}
-        if isinstance(value, (list, tuple)):
-            return [plain(item) for item in value]
-        return value if isinstance(value, (str, bool)) else float(value)
-    return plain(entry)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -24,6 +24,7 @@ import jsonschema
 import yaml
 
 from hubbeam.model import limits
+from hubbeam.model.models import MODELS
 
 #: the schema, package data of hubbeam
 SCHEMA_RESOURCE = resources.files("hubbeam.configuration") / "schemas" / "config.schema.yaml"
@@ -49,9 +50,10 @@ _RTOL_BOUND = {"minimum": limits.MIN_RTOL}
 _STEPS_BOUND = {"minimum": limits.MIN_STEPS}
 
 
-#: schema node (keys from the root) -> the bounds of :mod:`hubbeam.model.limits` filled in at load time;
-#: the schema file states none of these numbers itself
+#: schema node (keys from the root) -> the bounds of :mod:`hubbeam.model.limits` and the model names of
+#: :data:`hubbeam.model.models.MODELS`, filled in at load time; the schema file states none of them itself
 SCHEMA_LIMITS = {
+    ("$defs", "model"): {"enum": list(MODELS)},
     ("$defs", "modes"): {"minimum": limits.MIN_MODES, "maximum": limits.MAX_MODES},
     ("properties", "numerics", "properties", "quadrature_points"):
         {"minimum": limits.MIN_QUADRATURE_POINTS, "maximum": limits.MAX_QUADRATURE_POINTS},
@@ -91,6 +93,11 @@ def kind_keys(definition: str) -> dict[str, tuple[str, ...]]:
         branch = _resolve(rule["then"], SCHEMA)
         keys[kind] = tuple(key for key in branch["properties"] if key != "kind")
     return keys
+
+
+#: the measured signals a controller may feed back (``output_feedback``) or weight (an LQR design):
+#: the linear models' outputs without feedthrough, as the schema's ``output_feedback`` lists them
+MEASURED_SIGNALS = tuple(SCHEMA["$defs"]["maneuver_state_feedback"]["properties"]["output_feedback"]["properties"])
 
 
 #: Case names double as wildcards and file names (``results/simulations/<case>.nc``).

@@ -1,13 +1,17 @@
 """The configuration as frozen, typed objects, checked once.
 
-:func:`from_config` turns a validated configuration (:func:`hubbeam.configuration.load.validate_config`) into
-:class:`Settings`: the study, the beam (:func:`hubbeam.model.beam.beam_from_config`), the numerics, the
-eigen grids and the resolved cases. The Python API (:func:`hubbeam.simulation.simulate.simulate`) takes a
-:class:`Case` and :class:`Numerics`, or the bare mappings of a case and of the integrator settings,
-which :func:`simulation_settings` checks by the same path as a configuration file (the schema's
+:func:`from_config` turns a validated configuration (:func:`hubbeam.configuration.load.validate_config`)
+into :class:`Settings`: the study, the beam (:func:`hubbeam.model.beam.beam_from_config`), the
+numerics, the eigen grids and the cases, each :class:`Case` with its defaults filled in and its
+maneuver and damping as the records of their kinds (:mod:`hubbeam.model.maneuvers`,
+:mod:`hubbeam.model.damping`). The workflow builds them once, before any job, and hands them to its
+jobs; nothing downstream checks them again or turns them back into mappings (``to_dict()`` gives
+only the plain mapping a dataset records, ``case_config``).
+
+The Python API also takes the bare mapping of a case and of the integrator settings:
+:func:`simulation_settings` checks those by the same path as a configuration file (the schema's
 ``cases`` and ``numerics`` sections and :mod:`hubbeam.configuration.checks`, every problem in one
-:class:`~hubbeam.configuration.load.ConfigError`) and converts with the same builders. Nothing downstream
-checks them again. ``to_dict()`` gives the plain mapping a dataset records (``case_config``).
+:class:`~hubbeam.configuration.load.ConfigError`) and builds the same objects.
 """
 
 from __future__ import annotations
@@ -16,56 +20,46 @@ import copy
 import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
-from types import MappingProxyType
-from typing import Any
 
-from hubbeam.configuration.load import case_settings, validate_parts
-from hubbeam.configuration.schema import SCHEMA
+import numpy as np
+
+from hubbeam.configuration.load import ConfigError, validate_parts
+from hubbeam.configuration.schema import SCHEMA, Problem
 from hubbeam.model.beam import BeamSections, beam_from_config
+from hubbeam.model.damping import ModalDamping, RayleighDamping, damping_from_dict, damping_to_dict
+from hubbeam.model.frozen import FrozenMap, freeze
 from hubbeam.model.limits import MEMORY_BUDGET_MB, SMALL_DEFLECTION_LIMIT
+from hubbeam.model.maneuvers import Maneuver, maneuver_from_dict
 from hubbeam.model.parameters import TipMass, UniformBeam
 
 
-def _frozen(value: Any) -> Any:
-    """A number as float, a list as a tuple of such, a mapping (a pd reference, the gains of a
-    state feedback) as a :class:`Maneuver` (kind None without a ``kind``)."""
-    if isinstance(value, Mapping):
-        return Maneuver.from_mapping(value)
-    if isinstance(value, (list, tuple)):
-        return tuple(_frozen(item) for item in value)
-    return value if isinstance(value, (str, bool)) else float(value)
-
-
-def _plain(value: Any) -> Any:
-    if isinstance(value, Maneuver):
-        return value.to_dict()
-    return [_plain(item) for item in value] if isinstance(value, tuple) else value
-
-
 @dataclass(frozen=True)
-class Maneuver:
-    """A hub maneuver (or a pd reference motion, or a damping): its ``kind`` and its parameters
-    ``(key, value)`` in the order given, numbers as floats, tables as tuples (schema ``maneuver``,
-    ``reference``, ``damping``: the keys of each kind)."""
+class InitialState:
+    """The operating point a case starts from (schema ``case.initial``): a steady spin at
+    ``hub_speed`` with ``q1`` at its centrifugal stretch, plus the modal coordinates and rates
+    given (None: not given, zeros). ``hubbeam.simulation.simulate.initial_state`` builds the state."""
 
-    kind: str | None
-    parameters: tuple[tuple[str, Any], ...]
+    hub_speed: float | None = None
+    q1: tuple[float, ...] | None = None
+    q2: tuple[float, ...] | None = None
+    q1_dot: tuple[float, ...] | None = None
+    q2_dot: tuple[float, ...] | None = None
 
     @classmethod
-    def from_mapping(cls, entry: Mapping) -> Maneuver:
-        return cls(entry.get("kind"), tuple((key, _frozen(value)) for key, value in entry.items() if key != "kind"))
+    def from_dict(cls, entry: Mapping) -> InitialState:
+        return cls(**{key: float(value) if key == "hub_speed" else tuple(map(float, value))
+                      for key, value in entry.items()})
 
-    def __getitem__(self, key: str) -> Any:
-        return self.kind if key == "kind" else dict(self.parameters)[key]
+    def modal(self, key: str, modes: int) -> np.ndarray:
+        """The modal values ``key`` (``q1``, ``q2``, ``q1_dot``, ``q2_dot``) for ``modes`` modes:
+        zeros where not given, the given values padded with zeros for a case rerun with more modes."""
+        given = getattr(self, key) or ()
+        return np.concatenate([np.asarray(given, dtype=float), np.zeros(modes - len(given))])
 
     def to_dict(self) -> dict:
-        """``{"kind": ..., key: value, ...}`` with lists for tables, as written in a configuration."""
-        kind = {} if self.kind is None else {"kind": self.kind}
-        return kind | {key: _plain(value) for key, value in self.parameters}
-
-
-#: a damping has the same shape: a kind and its parameters
-Damping = Maneuver
+        """The keys given, as written in a configuration."""
+        return {item.name: list(value) if isinstance(value, tuple) else value
+                for item in fields(self) if (value := getattr(self, item.name)) is not None}
 
 
 @dataclass(frozen=True)
@@ -80,21 +74,29 @@ class Case:
     t_end: float
     modes: int
     tip_mass: TipMass
-    damping: Damping | None = None
-    #: ``(key, value)`` of the optional ``initial`` state (``hubbeam.simulation.simulate.initial_state``);
-    #: empty: the run starts at rest
-    initial: tuple[tuple[str, Any], ...] = ()
+    damping: ModalDamping | RayleighDamping | None = None
+    #: the operating point at t = 0 (None: rest)
+    initial: InitialState | None = None
+
+    @property
+    def label(self) -> str:
+        """The case's name in messages."""
+        return UNNAMED if self.name is None else self.name
+
+    def with_modes(self, modes: int) -> Case:
+        """The case with ``modes`` modes (a convergence rerun; added initial values are zero)."""
+        return dataclasses.replace(self, modes=modes)
 
     def to_dict(self) -> dict:
-        """The resolved case as a plain mapping (``hubbeam.configuration.load.case_settings``)."""
+        """The resolved case as a plain mapping, as a dataset records it (``case_config``)."""
         settings = {} if self.name is None else {"name": self.name}
         settings |= {"model": self.model, "maneuver": self.maneuver.to_dict(),
-                    "t_end": self.t_end, "modes": self.modes,
-                    "tip_mass": {"mass": self.tip_mass.mass, "position": self.tip_mass.position}}
+                     "t_end": self.t_end, "modes": self.modes,
+                     "tip_mass": {"mass": self.tip_mass.mass, "position": self.tip_mass.position}}
         if self.damping is not None:
-            settings["damping"] = self.damping.to_dict()
-        if self.initial:
-            settings["initial"] = {key: _plain(value) for key, value in self.initial}
+            settings["damping"] = damping_to_dict(self.damping)
+        if self.initial is not None:
+            settings["initial"] = self.initial.to_dict()
         return settings
 
 
@@ -141,6 +143,13 @@ class Numerics:
             plain["convergence_check"] = self.convergence_check.to_dict()
         return {key: value for key, value in plain.items() if value is not None}
 
+    def simulation(self) -> Numerics:
+        """The settings a simulation reads: without the discretisation (the matrices carry it),
+        the memory budget and the convergence check (given to each job on its own), so that
+        changing any of those reruns no simulation."""
+        return dataclasses.replace(self, modes=None, quadrature_points=None, convergence_check=None,
+                                   memory_budget_mb=MEMORY_BUDGET_MB)
+
 
 @dataclass(frozen=True)
 class Grid:
@@ -149,6 +158,10 @@ class Grid:
     start: float
     stop: float
     num: int
+
+    @property
+    def values(self) -> np.ndarray:
+        return np.linspace(self.start, self.stop, self.num)
 
 
 @dataclass(frozen=True)
@@ -169,7 +182,7 @@ class Study:
     name: str
     title: str = ""
     description: str = ""
-    comparisons: Mapping[str, tuple[str, ...]] = field(default_factory=lambda: MappingProxyType({}))
+    comparisons: FrozenMap = field(default_factory=FrozenMap)
 
 
 @dataclass(frozen=True)
@@ -179,34 +192,40 @@ class Settings:
     beam: UniformBeam | BeamSections
     numerics: Numerics
     eigen: Eigen
-    cases: Mapping[str, Case]
+    cases: FrozenMap
     study: Study | None = None
+
+    def case(self, name: str) -> Case:
+        """The case ``name``; a :class:`ConfigError` names the defined ones."""
+        if name not in self.cases:
+            raise ConfigError([Problem(f"cases.{name}", f"unknown case; defined: {', '.join(self.cases)}")])
+        return self.cases[name]
 
 
 def from_config(cfg: Mapping) -> Settings:
     """The objects of a validated configuration (:func:`hubbeam.configuration.load.validate_config`)."""
-    beam = beam_from_config(cfg["beam"])
-    numerics = Numerics.from_mapping(cfg["numerics"])
     eigen = dict(cfg["eigen"])
     study = cfg.get("study")
     return Settings(
-        beam=beam, numerics=numerics,
+        beam=beam_from_config(cfg["beam"]), numerics=Numerics.from_mapping(cfg["numerics"]),
         eigen=Eigen(**{**eigen, "speeds": Grid(**eigen["speeds"]), "positions": Grid(**eigen["positions"]),
                        "tip_masses": tuple(eigen["tip_masses"])}),
-        cases=MappingProxyType({name: _case(case_settings(cfg, name)) for name in sorted(cfg["cases"])}),
-        study=None if study is None else Study(**{**study, "comparisons": MappingProxyType(
-            {name: tuple(members) for name, members in study.get("comparisons", {}).items()})}),
+        cases=FrozenMap({name: case_from_config(cfg, name) for name in sorted(cfg["cases"])}),
+        study=None if study is None else Study(**{**study, "comparisons": freeze(study.get("comparisons", {}))}),
     )
 
 
-def _case(resolved: Mapping) -> Case:
-    """The :class:`Case` of a resolved case (:func:`hubbeam.configuration.load.case_settings`, which fills the
-    defaults); a name :data:`UNNAMED` is None."""
-    return Case(name=None if resolved["name"] == UNNAMED else resolved["name"], model=resolved["model"],
-                maneuver=Maneuver.from_mapping(resolved["maneuver"]), t_end=resolved["t_end"],
-                modes=resolved["modes"], tip_mass=TipMass(**resolved["tip_mass"]),
-                damping=Maneuver.from_mapping(resolved["damping"]) if "damping" in resolved else None,
-                initial=tuple((key, _frozen(value)) for key, value in resolved.get("initial", {}).items()))
+def case_from_config(cfg: Mapping, name: str) -> Case:
+    """The :class:`Case` ``name`` of a validated configuration, its defaults filled in (class
+    docstring); a ``name`` of :data:`UNNAMED` gives a case without a name."""
+    case = cfg["cases"][name]
+    tip = case.get("tip_mass", {})
+    return Case(name=None if name == UNNAMED else name, model=case["model"],
+                maneuver=maneuver_from_dict(case["maneuver"]), t_end=float(case["t_end"]),
+                modes=int(case.get("modes", cfg["numerics"]["modes"])),
+                tip_mass=TipMass(float(tip.get("mass", 0.0)), float(tip.get("position", cfg["beam"]["length"]))),
+                damping=damping_from_dict(case.get("damping")),
+                initial=InitialState.from_dict(case["initial"]) if "initial" in case else None)
 
 
 #: the name a case given without one has in messages
@@ -239,23 +258,22 @@ def simulation_settings(case: Case | Mapping, numerics: Numerics | Mapping, leng
     numerics.pop("convergence_check", None)
     if convergence_check is not None:
         numerics["convergence_check"] = (convergence_check.to_dict() if isinstance(convergence_check, ConvergenceCheck)
-                                         else convergence_check)
-    name = case.pop("name", None)
-    where = UNNAMED if name is None else name
+                                         else dict(convergence_check))
+    where = case.pop("name", None) or UNNAMED
     cfg = copy.deepcopy({"beam": {"length": length}, "numerics": numerics, "cases": {where: case}})
     validate_parts(cfg, SIMULATION_SCHEMA)
-    return _case(case_settings(cfg, where)), Numerics.from_mapping(cfg["numerics"])
+    return case_from_config(cfg, where), Numerics.from_mapping(cfg["numerics"])
 
 
 #: the schema of a bare damping mapping (the API's), the configuration's ``damping`` section
 DAMPING_SCHEMA = {"type": "object", "properties": {"damping": {"$ref": "#/$defs/damping"}}, "$defs": SCHEMA["$defs"]}
 
 
-def damping_settings(damping: Damping | Mapping | None) -> Damping | None:
-    """A damping as an object (None: no damping). An object is taken as it is; a mapping is checked
+def damping_settings(damping: ModalDamping | RayleighDamping | Mapping | None) -> ModalDamping | RayleighDamping | None:
+    """A damping as a record (None: no damping). A record is taken as it is; a mapping is checked
     in the one pass of the configuration (``ConfigError`` naming ``damping.<key>``) and converted."""
-    if damping is None or isinstance(damping, Maneuver):
+    if damping is None or isinstance(damping, ModalDamping | RayleighDamping):
         return damping
     cfg = {"damping": copy.deepcopy(dict(damping))}
     validate_parts(cfg, DAMPING_SCHEMA)
-    return Maneuver.from_mapping(cfg["damping"])
+    return damping_from_dict(cfg["damping"])

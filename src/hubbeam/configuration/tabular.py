@@ -29,12 +29,13 @@ from typing import Any
 
 from hubbeam.configuration.load import ConfigError
 from hubbeam.configuration.schema import Problem
+from hubbeam.model.maneuvers import TABLES
 
 #: columns of the beam's station table
 SECTION_COLUMNS = ("x", "rhoA", "EI", "EA")
-#: maneuver (or pd reference) kind -> columns of its table
-PROFILE_COLUMNS = {"speed_table": ("time", "speed"), "torque_table": ("time", "torque"),
-                   "angle_table": ("time", "angle")}
+#: maneuver (or controller reference) kind -> columns of its table (the tabulated records of
+#: :mod:`hubbeam.model.maneuvers`)
+PROFILE_COLUMNS = {kind: ("time", record.column) for kind, record in TABLES.items()}
 
 
 class TableError(ValueError):

@@ -148,13 +148,6 @@ def stretch_foreshortening(sm, q1s: np.ndarray) -> np.ndarray:
     return np.einsum("k,k,kij->ij", sm.w, sm.F1 @ q1s, sm.S)
 
 
-def state_names(traits, n: int) -> tuple[str, ...]:
-    """``theta``, ``q1_1..q1_n`` (models that keep q1), ``q2_1..q2_n``, then their rates ``*_dot``."""
-    blocks = ("q1", "q2") if traits.keeps_axial else ("q2",)
-    coordinates = ("theta",) + tuple(f"{b}_{i}" for b in blocks for i in range(1, n + 1))
-    return coordinates + tuple(f"{c}_dot" for c in coordinates)
-
-
 def second_order(sm, traits, speed: float, damping=None):
     """``(M, G, C, K, q1s)`` of ``M z'' + (G + C) z' + K z = e_theta tau`` (module docstring)."""
     n = sm.M2.shape[0]
@@ -273,7 +266,7 @@ def state_space(beam, sm, traits, hub, speed, names, q1s, rates) -> LinearModel:
     Cz, Cv, Ca = output_rows(beam, sm, traits, speed, q1s, names)
     return LinearModel(model=traits.name, hub=hub, speed=speed, A=A, B=B,
                        C=np.hstack([Cz + Ca @ Az, Cv + Ca @ Av]), D=Ca @ Bu,
-                       states=state_names(traits, sm.M2.shape[0]), inputs=(HUBS[hub],),
+                       states=traits.state_names(sm.M2.shape[0]), inputs=(HUBS[hub],),
                        outputs=names)
 
 

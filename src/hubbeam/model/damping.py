@@ -11,13 +11,16 @@ damping forces ``-C1 q1'`` and ``-C2 q2'`` join the elastic rows of Eq. (24):
 * ``{kind: rayleigh, mass_coefficient: alpha, stiffness_coefficient: beta}`` (s-1, s; >= 0):
   ``C = alpha M + beta K`` per block.
 
-No ``damping`` (or ``None``) gives zero matrices: the undamped equations, bit for bit. The keys
-and ranges of each kind are checked with the configuration (schema ``damping``).
+Each kind is one record (:class:`ModalDamping`, :class:`RayleighDamping`; :data:`DAMPINGS`),
+built from the checked configuration (schema ``damping``). No damping (``None``) gives zero
+matrices: the undamped equations, bit for bit.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import asdict, dataclass
+from typing import ClassVar
 
 import numpy as np
 from scipy.linalg import eigh
@@ -30,18 +33,55 @@ def modal_damping(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
     return (mphi * (2.0 * ratio * np.sqrt(np.clip(omega2, 0.0, None)))) @ mphi.T
 
 
-def damping_matrices(damping: Mapping | None, sm) -> np.ndarray:
-    """``C = [C1, C2]`` (shape ``(2, n, n)``) of a checked ``damping`` for SystemMatrices ``sm``."""
+@dataclass(frozen=True)
+class ModalDamping:
+    """The damping ratio of every axial (``q1``) and every transverse (``q2``) mode."""
+
+    kind: ClassVar[str] = "modal"
+    axial: float
+    transverse: float
+
+    def block(self, b: int, M: np.ndarray, K: np.ndarray) -> np.ndarray:
+        return modal_damping(M, K, (self.axial, self.transverse)[b])
+
+
+@dataclass(frozen=True)
+class RayleighDamping:
+    """``C = alpha M + beta K`` per block (``mass_coefficient`` s-1, ``stiffness_coefficient`` s)."""
+
+    kind: ClassVar[str] = "rayleigh"
+    mass_coefficient: float
+    stiffness_coefficient: float
+
+    def block(self, b: int, M: np.ndarray, K: np.ndarray) -> np.ndarray:
+        return self.mass_coefficient * M + self.stiffness_coefficient * K
+
+
+#: the damping kinds by name (schema ``damping``)
+DAMPINGS = {record.kind: record for record in (ModalDamping, RayleighDamping)}
+
+
+def damping_from_dict(entry: Mapping | ModalDamping | RayleighDamping | None):
+    """The record of a checked ``damping`` mapping (None: undamped; a record as it is)."""
+    if entry is None or isinstance(entry, ModalDamping | RayleighDamping):
+        return entry
+    record = DAMPINGS[entry["kind"]]
+    return record(**{key: float(value) for key, value in entry.items() if key != "kind"})
+
+
+def damping_to_dict(damping: ModalDamping | RayleighDamping | None) -> dict:
+    """``{"kind": ..., key: value}`` as written in a configuration (empty: undamped)."""
+    return {} if damping is None else {"kind": damping.kind} | asdict(damping)
+
+
+def damping_matrices(damping: ModalDamping | RayleighDamping | Mapping | None, sm) -> np.ndarray:
+    """``C = [C1, C2]`` (shape ``(2, n, n)``) of a damping (a record, or its checked mapping) for
+    SystemMatrices ``sm``."""
     n = np.shape(sm.M1)[0]
     C = np.zeros((2, n, n))
+    damping = damping_from_dict(damping)
     if damping is None:
         return C
-    blocks = ((sm.M1, sm.K1), (sm.M2, sm.K2))
-    if damping["kind"] == "modal":
-        for b, (ratio, (M, K)) in enumerate(zip((damping["axial"], damping["transverse"]), blocks)):
-            C[b] = modal_damping(np.asarray(M), np.asarray(K), float(ratio))
-    else:
-        alpha, beta = float(damping["mass_coefficient"]), float(damping["stiffness_coefficient"])
-        for b, (M, K) in enumerate(blocks):
-            C[b] = alpha * np.asarray(M) + beta * np.asarray(K)
+    for b, (M, K) in enumerate(((sm.M1, sm.K1), (sm.M2, sm.K2))):
+        C[b] = damping.block(b, np.asarray(M), np.asarray(K))
     return np.ascontiguousarray(C)

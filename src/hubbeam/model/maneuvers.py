@@ -1,50 +1,57 @@
-"""Hub maneuvers of a case: the kernel's parameter array and the times no step may cross.
+"""Hub maneuvers: one record per kind, holding everything hubbeam knows about that kind.
 
 A case's ``maneuver`` (checked with the configuration: schema ``maneuver``, one branch of keys per
-kind) has a ``kind``:
+kind) becomes one of the frozen records below (:func:`maneuver_from_dict`; the reference motion of
+a controller, :func:`reference_from_dict`). Each record states its ``kind``, whether the hub is
+``prescribed`` (its motion given, the torque that drives it an output) or ``free`` (the applied
+torque enters the hub row of Eq. 24), its fields (the schema's keys of that kind,
+``tests/test_maneuvers.py`` holds the two equal), and answers every question the rest of hubbeam
+asks of a maneuver:
 
-* ``prescribed`` ``{wf, tf}``: the spin-up of Eq. (43); ``torque`` ``{tau_max, tf}``: the torque
-  pulse of Eq. (44);
-* ``speed_table`` ``{time, speed}`` (s, rad s-1): a prescribed hub speed, a clamped cubic spline
-  with zero slope at both ends (theta_ddot continuous and zero at the ends; theta its exact
-  integral from theta(0) = 0), the first speed held before the table and the last after it;
-* ``torque_table`` ``{time, torque}`` (s, N m): the torque on a free hub, linear between the rows,
-  the first value held before the table and the last after it;
-* ``pd`` ``{kp, kd, reference}`` (N m rad-1, N m s rad-1): a free hub under ``tau = kp (theta_r -
-  theta) + kd (theta_r' - theta')`` tracking ``reference`` = ``{kind: prescribed, wf, tf}``
-  (Eq. 43) or ``{kind: angle_table, time, angle}`` (s, rad; clamped cubic spline as above);
-* ``state_feedback`` ``{reference, feedforward, gains | output_feedback | design}``: a free hub
-  under feedback of its whole state towards ``reference`` (as for ``pd``); its gains, the
-  stretch of the reference and the feedforward inertia are a :class:`FeedbackLaw`, which
+* :meth:`~Maneuver.kernel_parameters`: the kernel's integer kind and float array ``mp``
+  (:mod:`hubbeam.core.maneuver`; the splines' coefficients computed here once per run with scipy's
+  ``CubicSpline``, ``bc_type="clamped"``);
+* :meth:`~Maneuver.stops`: the times where the forcing is not smooth, which no step may cross;
+* :meth:`~Maneuver.start_speed`: a prescribed hub's speed at ``t = 0`` (None for a free hub);
+* :meth:`~Maneuver.highest_speed`: the highest hub speed reached by ``t_end`` (the derived grid
+  of the eigen-analysis, ``hubbeam.configuration.defaults``);
+* :attr:`~Maneuver.end`: when the hub input stops changing (residual vibration is measured after it).
+
+The kinds:
+
+* ``prescribed`` :class:`SpinUp` ``{wf, tf}``: the spin-up of Eq. (43); also a reference motion;
+* ``torque`` :class:`TorquePulse` ``{tau_max, tf}``: the torque pulse of Eq. (44) on a free hub;
+* ``speed_table`` :class:`SpeedTable` ``{time, speed}`` (s, rad s-1): a prescribed hub speed, a
+  clamped cubic spline with zero slope at both ends (theta its exact integral from theta(0) = 0),
+  the first speed held before the table and the last after it;
+* ``torque_table`` :class:`TorqueTable` ``{time, torque}`` (s, N m): the torque on a free hub,
+  linear between the rows, the first value held before the table and the last after it;
+* ``pd`` :class:`PdControl` ``{kp, kd, reference}``: a free hub under ``tau = kp (theta_r - theta)
+  + kd (theta_r' - theta')`` tracking a reference motion: :class:`SpinUp` or ``angle_table``
+  :class:`AngleTable` ``{time, angle}`` (clamped cubic spline as above);
+* ``state_feedback`` :class:`StateFeedback` ``{reference, feedforward, gains | output_feedback |
+  design}``: a free hub under feedback of its whole state; its resolved gains, the stretch of the
+  reference and the feedforward inertia are a :class:`FeedbackLaw`, which
   ``hubbeam.control.feedback`` resolves from the case (a design needs the linear models).
-
-The kernels (:mod:`hubbeam.core.maneuver`) take an integer kind and a float array; the splines'
-coefficients are computed here once per run (scipy's ``CubicSpline``, ``bc_type="clamped"``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import NamedTuple
+import math
+from dataclasses import dataclass, fields
+from typing import Any, ClassVar, NamedTuple
 
 import numpy as np
 from scipy.interpolate import CubicSpline
 
 from hubbeam.core import maneuver as kernels
+from hubbeam.model.frozen import FrozenMap, freeze, thaw
 
-#: kinds with scalar parameters -> (kernel id, parameters in the order of the kernel's ``mp``)
-MANEUVERS = {"prescribed": (kernels.PRESCRIBED, ("wf", "tf")),
-             "torque": (kernels.TORQUE, ("tau_max", "tf"))}
-#: tabulated kinds -> (kernel id, value column, interpolation: "spline" or "linear")
-TABLES = {"speed_table": (kernels.SPEED_TABLE, "speed", "spline"),
-          "torque_table": (kernels.TORQUE_TABLE, "torque", "linear")}
-#: reference kinds of ``pd`` -> (kernel id, parameters in the order of the kernel's reference)
-REFERENCES = {"prescribed": (kernels.PRESCRIBED, ("wf", "tf")),
-              "angle_table": (kernels.ANGLE_TABLE, ("time", "angle"))}
-
-
-#: the kinds whose controller tracks a ``reference`` motion
-TRACKING = ("pd", "state_feedback")
+#: hub conditions: the motion given (the torque an output), or the torque given (the motion free)
+PRESCRIBED_HUB = "prescribed"
+FREE_HUB = "free"
+#: points per time span on which the rigid hub speed of a torque table is integrated
+_TORQUE_TABLE_POINTS = 4001
 
 
 class FeedbackLaw(NamedTuple):
@@ -79,48 +86,332 @@ def packed_table(time, values, interpolation: str) -> np.ndarray:
     return np.concatenate([[t.size], t, integrals, coefficients.ravel(), [y[-1]]])
 
 
-def maneuver_parameters(maneuver: Mapping, law: FeedbackLaw | None = None) -> tuple[int, np.ndarray]:
-    """Kernel id and parameter array ``mp`` of a checked maneuver (:mod:`hubbeam.core.maneuver`);
-    a ``state_feedback`` maneuver needs its resolved ``law``."""
-    kind = maneuver["kind"]
-    if kind in MANEUVERS:
-        code, keys = MANEUVERS[kind]
-        return code, np.array([float(maneuver[key]) for key in keys])
-    if kind in TABLES:
-        code, column, interpolation = TABLES[kind]
-        return code, packed_table(maneuver["time"], maneuver[column], interpolation)
-    reference = maneuver["reference"]
-    ref_code, keys = REFERENCES[reference["kind"]]
-    if ref_code == kernels.ANGLE_TABLE:
-        ref = packed_table(reference["time"], reference["angle"], "spline")
-    else:
-        ref = np.array([float(reference[key]) for key in keys])
-    if kind == "pd":
-        head = [float(maneuver["kp"]), float(maneuver["kd"]), float(ref_code)]
-        assert len(head) == kernels.PD_REFERENCE
-        return kernels.PD, np.concatenate([head, ref])
-    if law is None:
-        raise ValueError("maneuver.kind = 'state_feedback' without its feedback law; allowed: "
-                         "hubbeam.control.feedback.simulate_case, which resolves the gains")
-    head = [float(law.gains.size // 2), float(law.inertia)]
-    assert len(head) == kernels.FEEDBACK_GAINS
-    return kernels.STATE_FEEDBACK, np.concatenate([head, law.gains, law.stretch, [ref_code], ref])
+@dataclass(frozen=True)
+class Record:
+    """What every maneuver and reference record shares: built from its checked mapping (the
+    schema's keys of its kind), written back as one."""
+
+    kind: ClassVar[str]
+
+    @classmethod
+    def from_dict(cls, entry) -> Record:
+        """The record of a checked mapping of this kind (numbers as floats, lists as tuples)."""
+        values = {}
+        for item in fields(cls):
+            if item.name in entry:
+                values[item.name] = _field_value(cls, item.name, entry[item.name])
+        return cls(**values)
+
+    def to_dict(self) -> dict:
+        """``{"kind": ..., key: value, ...}`` with lists for tables, as written in a configuration
+        (keys left at None are left out)."""
+        plain = {item.name: thaw(_plain(getattr(self, item.name))) for item in fields(self)}
+        return {"kind": self.kind} | {key: value for key, value in plain.items() if value is not None}
 
 
-def start_speed(maneuver: Mapping) -> float | None:
-    """The hub speed at ``t = 0`` (rad s-1) of a checked maneuver that prescribes the hub (Eq. 43
-    or a speed table); None for a free hub (a torque, a table of torques, a controller)."""
-    if maneuver["kind"] in TRACKING:
-        return None
-    kind, mp = maneuver_parameters(maneuver)
-    return float(kernels.prescribed_motion(kind, 0.0, mp)[1]) if kernels.prescribed(kind) else None
+def _field_value(cls, name: str, value: Any) -> Any:
+    if name == "reference":
+        return reference_from_dict(value)
+    if name == "design":
+        return LqrDesign.from_dict(value)
+    if isinstance(value, (list, tuple)):
+        return tuple(float(item) for item in value)
+    if isinstance(value, (bool, str)) or value is None:
+        return value
+    if isinstance(value, dict | FrozenMap):
+        return freeze({key: float(item) for key, item in value.items()})
+    return float(value)
 
 
-def maneuver_stops(maneuver: Mapping) -> np.ndarray:
-    """Sorted times where the maneuver's forcing is not smooth: the end ``tf`` of Eq. (43)/(44),
-    or the rows of a table (spline knots, kinks of a linear table)."""
-    if maneuver["kind"] in TRACKING:
-        maneuver = maneuver["reference"]
-    if "tf" in maneuver:
-        return np.array([float(maneuver["tf"])])
-    return np.asarray(maneuver["time"], dtype=float)
+def _plain(value: Any) -> Any:
+    return value.to_dict() if isinstance(value, Record | LqrDesign) else value
+
+
+class Maneuver(Record):
+    """A hub maneuver (module docstring); subclasses state ``kind`` and ``hub``."""
+
+    hub: ClassVar[str]
+
+    def kernel_parameters(self, law: FeedbackLaw | None = None) -> tuple[int, np.ndarray]:
+        raise NotImplementedError
+
+    def stops(self) -> np.ndarray:
+        raise NotImplementedError
+
+    def start_speed(self) -> float | None:
+        """The hub speed at ``t = 0`` (rad s-1) of a prescribed hub; None for a free hub."""
+        if self.hub != PRESCRIBED_HUB:
+            return None
+        code, mp = self.kernel_parameters()
+        return float(kernels.prescribed_motion(code, 0.0, mp)[1])
+
+    def highest_speed(self, t_end: float, inertia: float) -> float:
+        raise NotImplementedError
+
+    @property
+    def end(self) -> float:
+        """When the hub input stops changing, s."""
+        raise NotImplementedError
+
+    @property
+    def needs_law(self) -> bool:
+        """The kernel parameters need a :class:`FeedbackLaw` resolved for the run's matrices."""
+        return False
+
+
+@dataclass(frozen=True)
+class SpinUp(Maneuver):
+    """The spin-up of Eq. (43) with the factor ``t`` the transcription lost (reproduction note 1):
+    the hub speed rises from 0 to ``wf`` (rad s-1) over ``tf`` (s), then holds. As a maneuver the
+    hub is prescribed; as the reference of a controller it gives the angle, rate and acceleration."""
+
+    kind: ClassVar[str] = "prescribed"
+    hub: ClassVar[str] = PRESCRIBED_HUB
+    code: ClassVar[int] = kernels.PRESCRIBED
+    #: the parameters in the order of the kernel's ``mp`` (a sweep may span them)
+    kernel_keys: ClassVar[tuple[str, ...]] = ("wf", "tf")
+    #: a reference motion whose acceleration is known, so a rigid feedforward may use it
+    gives_acceleration: ClassVar[bool] = True
+    wf: float
+    tf: float
+
+    def kernel_parameters(self, law=None):
+        return self.code, np.array([getattr(self, key) for key in self.kernel_keys])
+
+    def stops(self):
+        return np.array([self.tf])
+
+    def highest_speed(self, t_end, inertia):
+        return self.wf  # Eq. 43 rises monotonically to it
+
+    @property
+    def end(self):
+        return self.tf
+
+    @property
+    def final_speed(self) -> float:
+        """The speed the motion ends at, rad s-1."""
+        return self.wf
+
+
+@dataclass(frozen=True)
+class TorquePulse(Maneuver):
+    """The rest-to-rest torque pulse of Eq. (44), ``tau_max sin(2 pi t / tf)`` for ``0 <= t <= tf``
+    (note 8), on a free hub."""
+
+    kind: ClassVar[str] = "torque"
+    hub: ClassVar[str] = FREE_HUB
+    code: ClassVar[int] = kernels.TORQUE
+    kernel_keys: ClassVar[tuple[str, ...]] = ("tau_max", "tf")
+    tau_max: float
+    tf: float
+
+    def kernel_parameters(self, law=None):
+        return self.code, np.array([getattr(self, key) for key in self.kernel_keys])
+
+    def stops(self):
+        return np.array([self.tf])
+
+    def highest_speed(self, t_end, inertia):
+        """A rigid hub of ``inertia`` under the pulse: ``tau_max tf / (pi J)`` at ``tf / 2``."""
+        return self.tau_max * self.tf / (math.pi * inertia)
+
+    @property
+    def end(self):
+        return self.tf
+
+
+@dataclass(frozen=True)
+class Table(Maneuver):
+    """A tabulated maneuver or reference: ``time`` (s, strictly increasing from >= 0) and one value
+    column, :attr:`column`, interpolated by :attr:`interpolation`."""
+
+    column: ClassVar[str]
+    interpolation: ClassVar[str]
+    time: tuple[float, ...]
+
+    @property
+    def values(self) -> tuple[float, ...]:
+        return getattr(self, self.column)
+
+    def kernel_parameters(self, law=None):
+        return self.code, packed_table(self.time, self.values, self.interpolation)
+
+    def stops(self):
+        return np.asarray(self.time, dtype=float)
+
+    @property
+    def end(self):
+        return self.time[-1]
+
+
+@dataclass(frozen=True)
+class SpeedTable(Table):
+    """A prescribed hub speed from a table (clamped cubic spline, module docstring)."""
+
+    kind: ClassVar[str] = "speed_table"
+    hub: ClassVar[str] = PRESCRIBED_HUB
+    code: ClassVar[int] = kernels.SPEED_TABLE
+    column: ClassVar[str] = "speed"
+    interpolation: ClassVar[str] = "spline"
+    speed: tuple[float, ...]
+
+    def highest_speed(self, t_end, inertia):
+        return float(np.max(np.abs(self.speed)))
+
+
+@dataclass(frozen=True)
+class TorqueTable(Table):
+    """The torque on a free hub from a table (linear between the rows, module docstring)."""
+
+    kind: ClassVar[str] = "torque_table"
+    hub: ClassVar[str] = FREE_HUB
+    code: ClassVar[int] = kernels.TORQUE_TABLE
+    column: ClassVar[str] = "torque"
+    interpolation: ClassVar[str] = "linear"
+    torque: tuple[float, ...]
+
+    def highest_speed(self, t_end, inertia):
+        """A rigid hub of ``inertia`` under the table (first value held before it, last after it)
+        up to ``t_end``; the torque is linear between the rows, which are nodes of the grid, so the
+        trapezoidal rule is exact at every node."""
+        t = np.union1d(np.linspace(0.0, t_end, _TORQUE_TABLE_POINTS), [time for time in self.time if time < t_end])
+        torque = np.interp(t, self.time, self.torque)
+        momentum = np.concatenate([[0.0], np.cumsum(np.diff(t) * (torque[1:] + torque[:-1]) / 2.0)])
+        return float(np.max(np.abs(momentum))) / inertia
+
+
+@dataclass(frozen=True)
+class AngleTable(Table):
+    """A reference hub angle from a table (clamped cubic spline, zero slope at both ends, held
+    outside the table): a controller's reference motion only."""
+
+    kind: ClassVar[str] = "angle_table"
+    hub: ClassVar[str] = FREE_HUB
+    code: ClassVar[int] = kernels.ANGLE_TABLE
+    column: ClassVar[str] = "angle"
+    interpolation: ClassVar[str] = "spline"
+    gives_acceleration: ClassVar[bool] = False
+    angle: tuple[float, ...]
+
+    def highest_speed(self, t_end, inertia):
+        """The steepest mean slope between the rows."""
+        return float(np.max(np.abs(np.diff(self.angle) / np.diff(self.time))))
+
+    @property
+    def final_speed(self) -> float:
+        return 0.0  # the spline's slope is zero at the last row, and the angle held after it
+
+
+@dataclass(frozen=True)
+class Tracking(Maneuver):
+    """A free hub under a controller that tracks the ``reference`` motion."""
+
+    hub: ClassVar[str] = FREE_HUB
+    reference: SpinUp | AngleTable
+
+    def reference_parameters(self) -> np.ndarray:
+        """``[reference kind, reference parameters...]`` as the kernel reads them."""
+        code, mp = self.reference.kernel_parameters()
+        return np.concatenate([[float(code)], mp])
+
+    def stops(self):
+        return self.reference.stops()
+
+    def highest_speed(self, t_end, inertia):
+        return self.reference.highest_speed(t_end, inertia)
+
+    @property
+    def end(self):
+        return self.reference.end
+
+
+@dataclass(frozen=True)
+class PdControl(Tracking):
+    """``tau = kp (theta_r - theta) + kd (theta_r' - theta')`` (N m rad-1, N m s rad-1)."""
+
+    kind: ClassVar[str] = "pd"
+    code: ClassVar[int] = kernels.PD
+    kp: float
+    kd: float
+
+    def kernel_parameters(self, law=None):
+        head = [self.kp, self.kd]
+        assert len(head) + 1 == kernels.PD_REFERENCE
+        return self.code, np.concatenate([head, self.reference_parameters()])
+
+
+@dataclass(frozen=True)
+class LqrDesign:
+    """LQR on the linear model of ``model`` at ``speed`` (schema ``lqr_design``)."""
+
+    model: str
+    speed: float
+    weights: FrozenMap
+    torque_weight: float
+
+    @classmethod
+    def from_dict(cls, entry) -> LqrDesign:
+        return cls(model=entry["model"], speed=float(entry["speed"]),
+                   weights=freeze({key: float(value) for key, value in entry["weights"].items()}),
+                   torque_weight=float(entry["torque_weight"]))
+
+    def to_dict(self) -> dict:
+        return {"model": self.model, "speed": self.speed, "weights": thaw(self.weights),
+                "torque_weight": self.torque_weight}
+
+
+@dataclass(frozen=True)
+class StateFeedback(Tracking):
+    """``tau = J theta_r'' - K (x - x_r)`` on the whole state, with ``K`` given by state name
+    (``gains``), from gains on measured signals (``output_feedback``) or designed (``design``):
+    exactly one of the three (``hubbeam.control.feedback``)."""
+
+    kind: ClassVar[str] = "state_feedback"
+    code: ClassVar[int] = kernels.STATE_FEEDBACK
+    feedforward: bool = False
+    gains: FrozenMap | None = None
+    output_feedback: FrozenMap | None = None
+    design: LqrDesign | None = None
+
+    @property
+    def needs_law(self):
+        return True
+
+    def kernel_parameters(self, law=None):
+        if law is None:
+            raise ValueError("maneuver.kind = 'state_feedback' without its feedback law; allowed: "
+                             "hubbeam.control.feedback.simulate_case, which resolves the gains")
+        head = [float(law.gains.size // 2), float(law.inertia)]
+        assert len(head) == kernels.FEEDBACK_GAINS
+        return self.code, np.concatenate([head, law.gains, law.stretch, self.reference_parameters()])
+
+    def to_dict(self):
+        plain = super().to_dict()
+        if not self.feedforward:
+            del plain["feedforward"]
+        return plain
+
+
+#: the maneuver kinds by name (schema ``maneuver``)
+MANEUVERS: dict[str, type[Maneuver]] = {record.kind: record for record in (
+    SpinUp, TorquePulse, SpeedTable, TorqueTable, PdControl, StateFeedback)}
+#: the kinds of a controller's reference motion by name (schema ``reference``)
+REFERENCES: dict[str, type[Maneuver]] = {record.kind: record for record in (SpinUp, AngleTable)}
+#: the tabulated kinds, maneuvers and references, by name: their columns (``hubbeam.configuration.tabular``)
+TABLES: dict[str, type[Table]] = {kind: record for kind, record in (MANEUVERS | REFERENCES).items()
+                                  if issubclass(record, Table)}
+
+
+def maneuver_from_dict(entry) -> Maneuver:
+    """The record of a checked ``maneuver`` mapping (a :class:`Maneuver` is returned as it is)."""
+    if isinstance(entry, Maneuver):
+        return entry
+    return MANEUVERS[entry["kind"]].from_dict(entry)
+
+
+def reference_from_dict(entry) -> SpinUp | AngleTable:
+    """The record of a checked ``reference`` mapping."""
+    if isinstance(entry, Maneuver):
+        return entry
+    return REFERENCES[entry["kind"]].from_dict(entry)

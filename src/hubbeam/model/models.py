@@ -57,6 +57,14 @@ class Model:
         return inputs.ModelTraits(self.keeps_axial, self.softening_terms, self.hub_velocity_force,
                                   self.exact_kinetic_energy)
 
+    def state_names(self, n: int) -> tuple[str, ...]:
+        """The states of the model with ``n`` modes, as its linear models and its feedback gains name
+        them: ``theta``, ``q1_1..q1_n`` (a model that keeps ``q1``), ``q2_1..q2_n``, then their rates
+        ``*_dot``."""
+        blocks = ("q1", "q2") if self.keeps_axial else ("q2",)
+        coordinates = ("theta",) + tuple(f"{b}_{i}" for b in blocks for i in range(1, n + 1))
+        return coordinates + tuple(f"{c}_dot" for c in coordinates)
+
     @property
     def family(self) -> str:
         """The compiled kernel family that integrates the model (``hubbeam.core.inputs.FAMILIES``)."""

@@ -28,8 +28,8 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from hubbeam.configuration.load import case_settings
-from hubbeam.model.beam import beam_from_config
+from hubbeam.configuration.settings import Case, Eigen, Numerics, Settings, simulation_settings
+from hubbeam.model.beam import CONFIG_FIELDS
 from hubbeam.model.eigen import critical_speed
 from hubbeam.model.eigen import table2 as eigen_table2
 from hubbeam.model.parameters import TipMass
@@ -160,8 +160,8 @@ def _merge(base: dict, override: Mapping) -> dict:
     return out
 
 
-def _matches(case: Mapping, where: Mapping) -> bool:
-    fields = {"model": case["model"], "kind": case["maneuver"]["kind"], "modes": case["modes"]}
+def _matches(case: Case, where: Mapping) -> bool:
+    fields = {"model": case.model, "kind": case.maneuver.kind, "modes": case.modes}
     return all(fields.get(key) == value for key, value in where.items())
 
 
@@ -169,23 +169,25 @@ def generated_name(reading: str, case: str) -> str:
     return f"reading-{reading}--{case}"
 
 
-def reading_case(name: str, reading: Mapping, base: Mapping) -> dict | None:
-    """The case of reading ``name`` generated from the resolved ``base`` case, or None when the
-    reading leaves that run unchanged (the default run is then the reading's run)."""
+def reading_case(name: str, reading: Mapping, base: Case, settings: Settings) -> Case | None:
+    """The case of reading ``name`` generated from the ``base`` case of ``settings``, or None when
+    the reading leaves that run unchanged (the default run is then the reading's run). A generated
+    case is checked as any case of a configuration (``ConfigError``)."""
     kind, value = change_of(reading)
-    new = copy.deepcopy(dict(base))
+    plain = base.to_dict()
+    new = copy.deepcopy(plain)
     if kind == "case" and _matches(base, reading.get("where", {})):
         new = _merge(new, value)
     elif kind == "maneuver":
         applies_to, generate = MANEUVER_READINGS[value]
-        if base["maneuver"]["kind"] == applies_to:
-            new["maneuver"] = generate(base["maneuver"])
-    elif kind == "tip_mass" and base["tip_mass"]["mass"] > 0.0:
-        new["tip_mass"] = _tip(value, base["tip_mass"]["mass"], base["tip_mass"]["position"])
-    if new == dict(base) and kind != "beam":
+        if base.maneuver.kind == applies_to:
+            new["maneuver"] = generate(plain["maneuver"])
+    elif kind == "tip_mass" and base.tip_mass.mass > 0.0:
+        new["tip_mass"] = _tip(value, base.tip_mass.mass, base.tip_mass.position)
+    if new == plain and kind != "beam":
         return None
-    new["name"] = generated_name(name, base["name"])
-    return new
+    new["name"] = generated_name(name, base.name)
+    return simulation_settings(new, settings.numerics, settings.beam.L)[0]
 
 
 def _tip(change: Mapping, mass: float, position: float) -> dict:
@@ -196,10 +198,13 @@ def _tip(change: Mapping, mass: float, position: float) -> dict:
     return {"mass": float(mass), "position": float(change.get("position", position))}
 
 
-def reading_beam(reading: Mapping, beam: Mapping) -> dict:
-    """The ``beam`` section under the reading (changed only by a ``beam`` change)."""
+def reading_beam(reading: Mapping, beam):
+    """The beam under the reading (changed only by a ``beam`` change of Table 1 values, given by
+    their configuration keys)."""
     kind, value = change_of(reading)
-    return {**beam, **value} if kind == "beam" else dict(beam)
+    if kind != "beam":
+        return beam
+    return dataclasses.replace(beam, **{CONFIG_FIELDS[key]: float(number) for key, number in value.items()})
 
 
 def claim_products(claim_ids) -> list[str]:
@@ -209,13 +214,13 @@ def claim_products(claim_ids) -> list[str]:
     return sorted(key for key in keys if key in PAPER_PRODUCTS)
 
 
-def reading_cases(cfg: Mapping, name: str) -> dict[str, dict | None]:
-    """``{base case: generated case or None}`` over the runs the reading's claims read."""
-    reading = cfg["readings"][name]
+def reading_cases(settings: Settings, name: str, reading: Mapping) -> dict[str, Case | None]:
+    """``{base case: generated case or None}`` over the runs the claims of reading ``name`` read
+    (the reading is checked first, :func:`check_reading`)."""
     check_reading(name, reading)
     bases = sorted({case for key in claim_products(reading["claims"])
                     for case in PAPER_PRODUCTS[key].cases})
-    return {case: reading_case(name, reading, case_settings(cfg, case)) for case in bases}
+    return {case: reading_case(name, reading, settings.case(case), settings) for case in bases}
 
 
 # --- evaluation ---------------------------------------------------------------------------------
@@ -243,41 +248,62 @@ class ReadingResults(claim_defs.Results):
         return critical_speed(model_name, e["params"], tip, e["n_modes"], e["search_max"], e["n_quad"])
 
 
-def as_base(ds, cfg: Mapping, base: str):
-    """``ds`` labelled as the run it stands for: the base case's maneuver and tip mass attributes
+def as_base(ds, base: Case):
+    """``ds`` labelled as the run it stands for: the ``base`` case's maneuver and tip mass attributes
     (which the claims select runs by), the reading's own under ``reading_maneuver`` and
     ``reading_tip_mass_kg``."""
-    settings = case_settings(cfg, base)
     out = ds.copy()
     out.attrs.update(reading_maneuver=ds.attrs["maneuver"], reading_tip_mass_kg=ds.attrs["tip_mass_kg"],
-                     maneuver=json.dumps(settings["maneuver"]), tip_mass_kg=settings["tip_mass"]["mass"])
+                     maneuver=json.dumps(base.maneuver.to_dict()), tip_mass_kg=base.tip_mass.mass)
     return out
 
 
-def _eigen_settings(cfg: Mapping, reading: Mapping) -> dict | None:
+def _eigen_settings(reading: Mapping, beam, numerics: Numerics, eigen: Eigen) -> dict | None:
     kind, value = change_of(reading)
     modes = value.get("modes") if kind == "case" and "model" not in reading.get("where", {}) else None
     if kind not in ("beam", "tip_mass") and modes is None:
         return None
-    return {"params": beam_from_config(reading_beam(reading, cfg["beam"])),
-            "tip_mass": value if kind == "tip_mass" else {},
-            "n_modes": modes or cfg["numerics"]["modes"], "n_quad": cfg["numerics"]["quadrature_points"],
-            "speed": cfg["eigen"]["table2_speed"], "search_max": cfg["eigen"]["critical_speed_search_max"]}
+    return {"params": reading_beam(reading, beam), "tip_mass": value if kind == "tip_mass" else {},
+            "n_modes": modes or numerics.modes, "n_quad": numerics.quadrature_points,
+            "speed": eigen.table2_speed, "search_max": eigen.critical_speed_search_max}
 
 
-def evaluate_reading(cfg: Mapping, name: str, simulations: Mapping, table2_csv,
+@dataclasses.dataclass(frozen=True)
+class ReadingRuns:
+    """What a reading's job needs besides the files: the reading, its base cases and the cases it
+    generates from them (None: the base run is reused), the beam and the numerics and eigen
+    settings of the configuration (:func:`reading_runs`)."""
+
+    name: str
+    reading: Mapping
+    bases: Mapping[str, Case]
+    generated: Mapping[str, Case | None]
+    beam: object
+    numerics: Numerics
+    eigen: Eigen
+
+
+def reading_runs(settings: Settings, name: str, reading: Mapping) -> ReadingRuns:
+    """The :class:`ReadingRuns` of reading ``name`` of ``settings`` (checked: :func:`reading_cases`)."""
+    generated = reading_cases(settings, name, reading)
+    return ReadingRuns(name, reading, {base: settings.case(base) for base in generated}, generated,
+                       settings.beam, settings.numerics, settings.eigen)
+
+
+def evaluate_reading(runs_of: ReadingRuns, simulations: Mapping, table2_csv,
                      critical_speeds_csv) -> tuple[list[dict], dict]:
-    """Claim rows of reading ``name`` (:func:`hubbeam.paper.claims.evaluate` on its runs) and its runs
+    """Claim rows of the reading (:func:`hubbeam.paper.claims.evaluate` on its runs) and its runs
     ``{generated name: dataset}``; ``simulations`` are the default runs by case name."""
-    reading = cfg["readings"][name]
-    params = beam_from_config(reading_beam(reading, cfg["beam"]))
+    reading = runs_of.reading
+    params = reading_beam(reading, runs_of.beam)
+    numerics = dataclasses.replace(runs_of.numerics, convergence_check=None)
     runs, by_base = {}, {}
-    for base, case in reading_cases(cfg, name).items():
+    for base, case in runs_of.generated.items():
         if case is not None:
-            runs[case["name"]] = simulate(case, params, cfg["numerics"])
-            by_base[base] = as_base(runs[case["name"]], cfg, base)
+            runs[case.name] = simulate(case, params, numerics)
+            by_base[base] = as_base(runs[case.name], runs_of.bases[base])
     results = ReadingResults(simulations, table2_csv, critical_speeds_csv, by_base,
-                             _eigen_settings(cfg, reading))
+                             _eigen_settings(reading, runs_of.beam, runs_of.numerics, runs_of.eigen))
     selected = [claim for claim in claim_defs.claims() if claim.id in reading["claims"]]
     kind, value = change_of(reading)
     if kind == "measure":

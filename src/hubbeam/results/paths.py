@@ -25,6 +25,20 @@ LOGS_ROOT = "logs"
 FIGURE_FORMATS = ("pdf", "png")
 #: the formats every table is written in
 TABLE_FORMATS = ("csv", "md", "tex")
+#: the folder of each kind of file in a results folder: the one statement of their names
+FOLDERS = {
+    "simulation": "simulations",
+    "matrices": "matrices",
+    "eigen": "eigen",
+    "linear": "linear",
+    "figure": "figures",
+    "table": "tables",
+    "report": "report",
+    "validation": "validation",
+    "sweep": "sweeps",
+    "reading": "readings",
+    "benchmark": "benchmarks",
+}
 
 
 @dataclass(frozen=True)
@@ -53,51 +67,55 @@ class StudyPaths:
         return "/".join(part for part in (self.logs, *parts) if part)
 
     def simulation(self, case: str) -> str:
-        return self.result("simulations", f"{case}.nc")
+        return self.result(FOLDERS["simulation"], f"{case}.nc")
 
     def matrices(self, configuration: str) -> str:
-        return self.result("matrices", f"{configuration}.nc")
+        return self.result(FOLDERS["matrices"], f"{configuration}.nc")
 
     def eigen(self, name: str) -> str:
         """An eigen-analysis dataset (``k22``, ``campbell``, ``critical_speeds``)."""
-        return self.result("eigen", f"{name}.nc")
+        return self.result(FOLDERS["eigen"], f"{name}.nc")
 
     def linear(self, name: str, ext: str = "nc") -> str:
         """A linear-model product (``campbell``, ``poles_zeros``, ``bode``, ``mode_shapes``, or the
         exported models ``models/<model>_<hub>_tip<k>``, as ``nc`` or ``mat``)."""
-        return self.result("linear", f"{name}.{ext}")
+        return self.result(FOLDERS["linear"], f"{name}.{ext}")
 
     def figure(self, key: str, ext: str) -> str:
-        return self.result("figures", f"{key}.{ext}")
+        return self.result(FOLDERS["figure"], f"{key}.{ext}")
 
     def figures(self, key: str) -> list[str]:
         """The figure ``key`` in every format of :data:`FIGURE_FORMATS`."""
         return [self.figure(key, ext) for ext in FIGURE_FORMATS]
 
     def table(self, key: str, ext: str) -> str:
-        return self.result("tables", f"{key}.{ext}")
+        return self.result(FOLDERS["table"], f"{key}.{ext}")
 
     def report(self, name: str) -> str:
         """A file of the reports folder (``claims.csv``, ``report.html``, ...)."""
-        return self.result("report", name)
+        return self.result(FOLDERS["report"], name)
 
     def validation(self, name: str) -> str:
         """A file of the independent validation (``published_comparison.csv``, ``runs/...``)."""
-        return self.result("validation", name)
+        return self.result(FOLDERS["validation"], name)
 
     def sweep(self, name: str) -> str:
-        return self.result("sweeps", f"{name}.nc")
+        return self.result(FOLDERS["sweep"], f"{name}.nc")
 
     def sweep_chunk(self, name: str, chunk: str) -> str:
-        return self.result("sweeps", "chunks", name, f"{chunk}.nc")
+        return self.result(FOLDERS["sweep"], "chunks", name, f"{chunk}.nc")
 
     def reading(self, name: str) -> str:
         """The claims evaluated under the alternative reading ``name``."""
-        return self.result("readings", "claims", f"{name}.csv")
+        return self.result(FOLDERS["reading"], "claims", f"{name}.csv")
 
     def readings(self, ext: str) -> str:
         """The claims x readings matrix (``csv`` or ``nc``)."""
-        return self.result("readings", f"readings.{ext}")
+        return self.result(FOLDERS["reading"], f"readings.{ext}")
+
+    def benchmarks(self) -> str:
+        """The folder of the benchmark's tables (``make benchmark``)."""
+        return self.result(FOLDERS["benchmark"])
 
     def archive(self) -> str:
         return self.result(f"{self.archive_top}.tar.gz")
@@ -107,6 +125,8 @@ class StudyPaths:
 SHARED = StudyPaths()
 #: paths relative to a results folder, for declarations that hold for every configuration
 IN_RESULTS = StudyPaths(results="", logs="")
+#: the names a study may not take: the folders of the paper's products directly under results/
+PAPER_FOLDERS = tuple(sorted(FOLDERS.values()))
 
 
 def study_paths(cfg: Mapping) -> StudyPaths:

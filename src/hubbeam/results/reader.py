@@ -22,6 +22,7 @@ import numpy as np
 import xarray as xr
 
 from hubbeam.model.beam import beam_from_attributes
+from hubbeam.model.maneuvers import maneuver_from_dict
 from hubbeam.results.variables import CUMULATIVE_VARIABLES, HIGH_ORDER_VARIABLES, VARIABLES
 
 #: every variable a simulation dataset may hold -> its UDUNITS units (the tables of
@@ -103,16 +104,12 @@ def maneuver_value(case: str, ds: xr.Dataset, key: str) -> float:
 
 
 def maneuver_end(found: Mapping) -> float:
-    """When the hub input of the maneuver ``found`` stops changing, s: ``tf`` of the spin-up
-    (Eq. 43), of the torque pulse (Eq. 44) or of a pd maneuver's reference spin-up; the last time
-    of a table otherwise."""
-    if "tf" in found:
-        return float(found["tf"])
-    if "time" in found:
-        return float(found["time"][-1])
-    if "reference" in found:
-        return maneuver_end(found["reference"])
-    raise DatasetError(f"maneuver {dict(found)} has neither tf, a time table nor a reference")
+    """When the hub input of the maneuver ``found`` (a dataset's ``maneuver`` attribute) stops
+    changing, s (:attr:`hubbeam.model.maneuvers.Maneuver.end`)."""
+    try:
+        return float(maneuver_from_dict(found).end)
+    except (KeyError, TypeError) as err:
+        raise DatasetError(f"maneuver {dict(found)} is not a maneuver hubbeam knows ({err!r})") from err
 
 
 # --- how the run ended ------------------------------------------------------------------------------

@@ -25,7 +25,7 @@ import xarray as xr
 from numba.core.dispatcher import Dispatcher
 from scipy.integrate import solve_ivp
 
-from hubbeam.configuration.settings import simulation_settings
+from hubbeam.configuration.settings import Case, Numerics, simulation_settings
 from hubbeam.core import eom
 from hubbeam.core.inputs import SimulationInputs, Trajectory
 from hubbeam.core.integrate import fill_outputs, n_output_columns
@@ -38,7 +38,6 @@ from hubbeam.simulation.simulate import (
     build_dataset,
     case_matrices,
     initial_state,
-    maneuver_parameters,
     output_times,
     step_stops,
 )
@@ -69,7 +68,7 @@ def pure_python(func, _done=None):
     return clone
 
 
-def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mapping,
+def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics: Numerics | Mapping,
                          matrices: SystemMatrices | None = None, *, method: str = "Radau",
                          rtol: float = 1e-12, atol: float = 1e-14,
                          pure_python_rhs: bool = True) -> xr.Dataset:
@@ -82,14 +81,13 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     its counts (``n_steps`` is not known to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
     The run starts from the case's initial state (:func:`hubbeam.simulation.simulate.initial_state`).
     """
-    case, numerics = (item.to_dict() for item in simulation_settings(case, numerics, params.L))
+    case, numerics = simulation_settings(case, numerics, params.L)
     if method not in METHODS:
         raise ValueError(f"method = {method!r}; allowed: one of {', '.join(METHODS)}")
     sm = case_matrices(case, params, numerics, matrices)
-    kind, mp = maneuver_parameters(case["maneuver"])
-    inputs = SimulationInputs(model(case["model"]).traits, kind, mp,
-                              damping_matrices(case.get("damping"), sm), sm)
-    n = case["modes"]
+    kind, mp = case.maneuver.kernel_parameters()
+    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm)
+    n = case.modes
     free = eom.free_dofs(inputs.traits, kind, n)
     nf = free.size
     accelerations = pure_python(eom.accelerations) if pure_python_rhs else eom.accelerations
@@ -103,14 +101,14 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
         accelerations(inputs, t, y, v, free, a)
         return np.concatenate([z[nf:], a[free]])
 
-    tip_limit = float(numerics["divergence_limit"]) * params.L
+    tip_limit = float(numerics.divergence_limit) * params.L
 
     def tip_event(t, z):  # q2 are the last n free coordinates
         return tip_limit - abs(sm.f2L @ z[nf - n:nf])
 
     tip_event.terminal = True
 
-    t = output_times(case["t_end"], numerics["output_step"])
+    t = output_times(case.t_end, numerics.output_step)
     edges = [t[0], *step_stops(case, t), t[-1]]
     start = initial_state(case, sm)
     z = np.concatenate([start.y[free], start.v[free]])

@@ -23,6 +23,7 @@ arguments that reproduce it.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import logging
 import math
@@ -33,8 +34,7 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import cumulative_simpson
 
-from hubbeam.configuration.checks import INITIAL_MODAL_KEYS
-from hubbeam.configuration.settings import simulation_settings
+from hubbeam.configuration.settings import Case, ConvergenceCheck, Numerics, simulation_settings
 from hubbeam.core import radau
 from hubbeam.core.inputs import IntegratorSettings, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
@@ -46,9 +46,8 @@ from hubbeam.model.limits import (
     MAX_QUADRATURE_POINTS,
     MIN_QUADRATURE_POINTS,
     MIN_RTOL,
-    SMALL_DEFLECTION_LIMIT,
 )
-from hubbeam.model.maneuvers import maneuver_parameters, maneuver_stops
+from hubbeam.model.maneuvers import FeedbackLaw, SpinUp
 from hubbeam.model.matrices import SystemMatrices, assemble
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
@@ -61,11 +60,6 @@ from hubbeam.results.variables import (
 
 LOG = logging.getLogger(__name__)
 
-#: numerics keys a simulation reads
-NUMERICS_KEYS = ("rtol", "atol", "output_step", "max_steps", "step_warning", "divergence_limit")
-#: optional numerics keys a simulation reads, with their defaults
-OPTIONAL_NUMERICS = {"small_deflection_limit": SMALL_DEFLECTION_LIMIT}
-
 INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
 
 
@@ -73,10 +67,10 @@ class SimulationError(ValueError):
     """A case or the numerics cannot be simulated; the message names key, value and allowed."""
 
 
-def initial_state(case: Mapping, sm: SystemMatrices) -> State:
-    """The state ``(y, y')`` of ``y = (theta, q1, q2)`` at ``t = 0`` for a checked case (the
+def initial_state(case: Case, sm: SystemMatrices) -> State:
+    """The state ``(y, y')`` of ``y = (theta, q1, q2)`` at ``t = 0`` of a checked case (the
     configuration's checks, ``hubbeam.configuration.checks``), from its optional ``initial``
-    mapping (default: rest):
+    state (:class:`~hubbeam.configuration.settings.InitialState`; default: rest):
 
     * ``hub_speed`` (rad s-1, default 0): a steady spin, ``theta = 0``, ``theta' = hub_speed``,
       with ``q1`` at its centrifugal stretch ``q1s`` for that speed
@@ -85,23 +79,14 @@ def initial_state(case: Mapping, sm: SystemMatrices) -> State:
     * ``q1``, ``q2``, ``q1_dot``, ``q2_dot`` (one value per mode, default zeros): added to the
       modal coordinates and rates of that state.
     """
-    spec = case.get("initial") or {}
-    n = case["modes"]
-    speed = float(spec.get("hub_speed", 0.0))
-    extra = {key: np.asarray(spec.get(key, np.zeros(n)), dtype=float) for key in INITIAL_MODAL_KEYS}
-    q1s = linearised.axial_stretch(sm, speed) if model(case["model"]).keeps_axial else np.zeros(n)
-    return State(np.concatenate([[0.0], q1s + extra["q1"], extra["q2"]]),
-                 np.concatenate([[speed], extra["q1_dot"], extra["q2_dot"]]))
-
-
-def _with_modes(case: Mapping, modes: int) -> dict:
-    """``case`` with ``modes`` modes; initial modal values of the added modes are zero."""
-    spec = case.get("initial")
-    if not spec:
-        return dict(case, modes=modes)
-    padded = {key: [*value, *[0.0] * (modes - len(value))] if key in INITIAL_MODAL_KEYS else value
-              for key, value in spec.items()}
-    return dict(case, modes=modes, initial=padded)
+    n = case.modes
+    spec = case.initial
+    if spec is None:
+        return State(np.zeros(1 + 2 * n), np.zeros(1 + 2 * n))
+    speed = spec.hub_speed or 0.0
+    q1s = linearised.axial_stretch(sm, speed) if model(case.model).keeps_axial else np.zeros(n)
+    return State(np.concatenate([[0.0], q1s + spec.modal("q1", n), spec.modal("q2", n)]),
+                 np.concatenate([[speed], spec.modal("q1_dot", n), spec.modal("q2_dot", n)]))
 
 
 def output_times(t_end: float, output_step: float) -> np.ndarray:
@@ -115,62 +100,58 @@ def kernel_matrices(sm: SystemMatrices) -> SystemMatrices:
                             else float(value) for value in sm))
 
 
-def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
+def case_matrices(case: Case, params: BeamParameters, numerics: Numerics,
                   matrices: SystemMatrices | None = None) -> SystemMatrices:
     """The system matrices of ``case``: ``matrices`` (checked) or assembled from ``params``."""
-    n = case["modes"]
+    n = case.modes
     if matrices is None:
-        tip = TipMass(**case["tip_mass"]) if case.get("tip_mass") else None
-        quadrature = numerics.get("quadrature_points")
-        if quadrature is None:
+        if numerics.quadrature_points is None:
             raise SimulationError(f"numerics.quadrature_points: missing (required when no matrices are "
                                   f"given); allowed: an integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
-        matrices = assemble(params, tip, n, int(quadrature))
+        matrices = assemble(params, case.tip_mass, n, numerics.quadrature_points)
     if np.shape(matrices.K1) != (n, n):
-        raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.modes = {n}, but the "
-                              f"matrices given have {np.shape(matrices.K1)[0]} modes; allowed: "
-                              "matrices assembled with the case's number of modes")
+        raise SimulationError(f"cases.{case.label}.modes = {n}, but the matrices given have "
+                              f"{np.shape(matrices.K1)[0]} modes; allowed: matrices assembled with the case's "
+                              "number of modes")
     return kernel_matrices(matrices)
 
 
-def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
+def simulate(case: Case | Mapping, params: BeamParameters, numerics: Numerics | Mapping,
              matrices: SystemMatrices | None = None, *,
-             convergence_check: Mapping | None = None, feedback=None) -> xr.Dataset:
+             convergence_check: ConvergenceCheck | Mapping | None = None, feedback=None) -> xr.Dataset:
     """Simulate one case from its initial state and return the labelled simulation dataset.
 
     Parameters
     ----------
-    case : a resolved case (``hubbeam.configuration.load.case_settings``): ``name``, ``model``, ``maneuver``
-        (:mod:`hubbeam.model.maneuvers`), ``t_end``, ``modes``, ``tip_mass``, optional ``damping``
-        (:mod:`hubbeam.model.damping`) and optional ``initial`` (:func:`initial_state`; default: rest).
-    params : Table 1 parameters.
-    numerics : the ``numerics`` section of the config (``rtol``, ``atol``, ``output_step``,
-        ``max_steps``, ``step_warning``, ``divergence_limit``, and ``quadrature_points`` when
-        ``matrices`` is not given).
+    case : a :class:`~hubbeam.configuration.settings.Case` (its ``maneuver`` and ``damping`` the
+        records of :mod:`hubbeam.model.maneuvers` and :mod:`hubbeam.model.damping`, its optional
+        ``initial`` state, :func:`initial_state`), or the mapping of a resolved case.
+    params : the beam (Table 1 parameters, or any beam of :mod:`hubbeam.model.beam`).
+    numerics : :class:`~hubbeam.configuration.settings.Numerics` or the ``numerics`` mapping of a
+        configuration (``quadrature_points`` is needed when ``matrices`` is not given).
     matrices : the case's :class:`~hubbeam.model.matrices.SystemMatrices` (assembled if None).
-    convergence_check : ``numerics.convergence_check`` of the config (``tolerance_factor``,
-        ``extra_modes``, ``threshold_m``); if given, the case is rerun at a tighter tolerance and
-        with more modes and the differences are recorded (:func:`convergence`).
+    convergence_check : ``numerics.convergence_check`` (``tolerance_factor``, ``extra_modes``,
+        ``threshold_m``); if given, the case is rerun at a tighter tolerance and with more modes and
+        the differences are recorded (:func:`convergence`).
     feedback : for a ``state_feedback`` maneuver, the function ``(case, sm) -> (law,
         attributes)`` that resolves its :class:`~hubbeam.model.maneuvers.FeedbackLaw` for the case's
         matrices (every rerun its own) and the dataset attributes that record it
         (``hubbeam.control.feedback.simulate_case`` passes it).
 
-    The attribute ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so
-    that :func:`hubbeam.results.reader.simulation_inputs` can rebuild them. ``case`` and ``numerics`` may
-    be the objects of :mod:`hubbeam.configuration.settings`; mappings are checked there once
-    (``hubbeam.configuration.load.ConfigError``).
+    Objects are used as they are (the workflow's jobs get them from the one check of the
+    configuration); mappings are checked once, by the same schema and checks
+    (:func:`hubbeam.configuration.settings.simulation_settings`, ``ConfigError``). The attribute
+    ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so that
+    :func:`hubbeam.results.reader.simulation_inputs` can rebuild them.
     """
     case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
-    convergence_check = numerics.convergence_check and numerics.convergence_check.to_dict()
-    case, numerics = case.to_dict(), numerics.to_dict()  # what the integration below reads
     sm = case_matrices(case, params, numerics, matrices)
     ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback))
     ds.attrs["quadrature_points"] = quadrature_points(sm)
-    if case["maneuver"]["kind"] == "state_feedback":
+    if case.maneuver.needs_law:
         ds.attrs.update(feedback(case, sm)[1])
-    if convergence_check is not None:
-        found = convergence(ds, case, params, numerics, sm, convergence_check, feedback)
+    if numerics.convergence_check is not None:
+        found = convergence(ds, case, params, numerics, sm, feedback)
         notes = found.pop("warnings")
         ds.attrs.update(found)
         ds.attrs["warnings"] = "; ".join(filter(None, [ds.attrs["warnings"], *notes]))
@@ -182,79 +163,78 @@ def quadrature_points(sm: SystemMatrices) -> int:
     return int(np.size(sm.x) - 1)
 
 
-def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices,
-               feedback=None):
+def _feedback_law(case: Case, sm: SystemMatrices, feedback) -> FeedbackLaw | None:
+    """The resolved law of a maneuver that needs one (``feedback`` as in :func:`simulate`)."""
+    if not case.maneuver.needs_law:
+        return None
+    if feedback is None:
+        raise SimulationError(f"cases.{case.label}.maneuver.kind = {case.maneuver.kind!r}; allowed here only "
+                              "with its feedback (run it with hubbeam.control.feedback.simulate_case)")
+    return feedback(case, sm)[0]
+
+
+def _integrate(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices, feedback=None):
     """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`
     (``feedback`` as in :func:`simulate`)."""
-    law = None
-    if case["maneuver"]["kind"] == "state_feedback":
-        if feedback is None:
-            raise SimulationError(f"cases.{case.get('name', '<unnamed>')}.maneuver.kind = "
-                                  "'state_feedback'; allowed here only with its feedback "
-                                  "(run it with hubbeam.control.feedback.simulate_case)")
-        law = feedback(case, sm)[0]
-    kind, mp = maneuver_parameters(case["maneuver"], law)
-    t = output_times(case["t_end"], numerics["output_step"])
-    out = np.empty((t.size, n_output_columns(case["modes"])))
+    kind, mp = case.maneuver.kernel_parameters(_feedback_law(case, sm, feedback))
+    t = output_times(case.t_end, numerics.output_step)
+    out = np.empty((t.size, n_output_columns(case.modes)))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
-    C = damping_matrices(case.get("damping"), sm)
     start = time.perf_counter()
-    inputs = SimulationInputs(model(case["model"]).traits, kind, mp, C, sm)
+    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm)
     status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
                                      integrator_settings(numerics, params.L), out, stats)
     wall = time.perf_counter() - start
     LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
-             "%d rhs calls, %d Jacobians, %d LU", case.get("name", "<unnamed>"), case["model"],
-             case["modes"], radau.STATUS_NAMES[status], t_stop, wall, stats[radau.ACCEPTED],
-             stats[radau.REJECTED], stats[radau.RHS_CALLS], stats[radau.JACOBIANS],
-             stats[radau.FACTORIZATIONS])
-    integrator = {"integrator": INTEGRATOR, "rtol": float(numerics["rtol"]),
-                  "atol": float(numerics["atol"]),
+             "%d rhs calls, %d Jacobians, %d LU", case.label, case.model, case.modes, radau.STATUS_NAMES[status],
+             t_stop, wall, stats[radau.ACCEPTED], stats[radau.REJECTED], stats[radau.RHS_CALLS],
+             stats[radau.JACOBIANS], stats[radau.FACTORIZATIONS])
+    integrator = {"integrator": INTEGRATOR, "rtol": float(numerics.rtol), "atol": float(numerics.atol),
                   **{name: int(value) for name, value in zip(radau.STAT_NAMES, stats)}}
     return t, out, status, t_stop, integrator
 
 
-def integrator_settings(numerics: Mapping, length: float) -> IntegratorSettings:
+def integrator_settings(numerics: Numerics, length: float) -> IntegratorSettings:
     """The kernel's :class:`~hubbeam.core.inputs.IntegratorSettings` from checked ``numerics``
     for a beam of length ``length`` (the tip limit is ``divergence_limit * length``)."""
-    return IntegratorSettings(float(numerics["rtol"]), float(numerics["atol"]),
-                              float(numerics["divergence_limit"]) * length,
-                              int(numerics["max_steps"]))
+    return IntegratorSettings(float(numerics.rtol), float(numerics.atol), float(numerics.divergence_limit) * length,
+                              int(numerics.max_steps))
 
 
-def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics: Mapping,
-                sm: SystemMatrices, settings: Mapping, feedback=None) -> dict:
-    """Check the run ``ds`` of ``case`` (made with matrices ``sm``) against two reruns.
+def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Numerics,
+                sm: SystemMatrices, feedback=None) -> dict:
+    """Check the run ``ds`` of ``case`` (made with matrices ``sm``) against two reruns, with the
+    settings ``numerics.convergence_check``.
 
     The reruns change one setting each: the tolerances ``rtol`` and ``atol`` multiplied by
-    ``settings["tolerance_factor"]`` (``rtol`` not below :data:`MIN_RTOL`), and the number of
-    modes raised by ``settings["extra_modes"]`` (at most :data:`MAX_MODES`; the extra-mode
-    matrices are assembled with at least the Gauss nodes of ``sm``). Each difference is the
-    largest ``|tip_transverse - tip_transverse_rerun|`` in m over the output times where both
-    runs have values, i.e. excluding what follows a divergence or an exhausted step budget.
+    ``tolerance_factor`` (``rtol`` not below :data:`MIN_RTOL`), and the number of modes raised by
+    ``extra_modes`` (at most :data:`MAX_MODES`; the extra-mode matrices are assembled with at
+    least the Gauss nodes of ``sm``). Each difference is the largest ``|tip_transverse -
+    tip_transverse_rerun|`` in m over the output times where both runs have values, i.e. excluding
+    what follows a divergence or an exhausted step budget.
 
     Returns the attributes ``convergence_check`` (the settings), ``convergence_rtol``,
     ``convergence_atol``, ``convergence_modes``, ``convergence_tolerance_diff_m``,
     ``convergence_modes_diff_m`` (NaN when the case already has :data:`MAX_MODES` modes) and
-    ``warnings``, a list of texts: a difference above ``settings["threshold_m"]``, a mode check
-    that could not be made, a rerun that stopped on its step budget before the run did.
+    ``warnings``, a list of texts: a difference above ``threshold_m``, a mode check that could not
+    be made, a rerun that stopped on its step budget before the run did.
     """
-    threshold = float(settings["threshold_m"])
+    settings = numerics.convergence_check
+    threshold = float(settings.threshold_m)
     tip = ds["tip_transverse"].values
     t_stop = float(ds.attrs["stopped_at_s"])
-    n = int(case["modes"])
-    tight = dict(numerics, rtol=max(float(numerics["rtol"]) * settings["tolerance_factor"], MIN_RTOL),
-                 atol=float(numerics["atol"]) * settings["tolerance_factor"])
-    more = min(n + int(settings["extra_modes"]), MAX_MODES)
-    found = {"convergence_check": json.dumps(dict(settings), sort_keys=True),
-             "convergence_rtol": tight["rtol"], "convergence_atol": tight["atol"],
-             "convergence_modes": more}
+    n = case.modes
+    tight = dataclasses.replace(numerics, rtol=max(float(numerics.rtol) * settings.tolerance_factor, MIN_RTOL),
+                                atol=float(numerics.atol) * settings.tolerance_factor)
+    more = min(n + int(settings.extra_modes), MAX_MODES)
+    found = {"convergence_check": json.dumps(settings.to_dict(), sort_keys=True),
+             "convergence_rtol": tight.rtol, "convergence_atol": tight.atol, "convergence_modes": more}
     warnings = []
-    reruns = {"tolerance": (case, tight, sm,
-                            f"a rerun at rtol = {tight['rtol']:.3g}, atol = {tight['atol']:.3g}")}
+    reruns = {"tolerance": (case, tight, sm, f"a rerun at rtol = {tight.rtol:.3g}, atol = {tight.atol:.3g}")}
     if more > n:
-        more_case = _with_modes(case, more)
-        more_sm = case_matrices(more_case, params, {"quadrature_points": quadrature_points(sm)})
+        more_case = case.with_modes(more)
+        nodes = dataclasses.replace(numerics, quadrature_points=quadrature_points(sm))
+        more_sm = case_matrices(more_case, params, nodes)
         reruns["modes"] = (more_case, numerics, more_sm, f"a rerun with {more} modes")
     else:
         found["convergence_modes_diff_m"] = math.nan
@@ -262,12 +242,11 @@ def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics:
                         f"maximum of {MAX_MODES} modes")
     for label, (rerun_case, rerun_numerics, rerun_sm, what) in reruns.items():
         _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm, feedback)
-        rerun_tip = out[:, output_columns(rerun_case["modes"])["tip_transverse"]]
+        rerun_tip = out[:, output_columns(rerun_case.modes)["tip_transverse"]]
         both = np.isfinite(tip) & np.isfinite(rerun_tip)
         difference = float(np.max(np.abs(tip - rerun_tip)[both])) if both.any() else math.nan
         found[f"convergence_{label}_diff_m"] = difference
-        LOG.info("case %s: max |tip deflection difference| to %s: %.3g m", case.get("name"),
-                 what, difference)
+        LOG.info("case %s: max |tip deflection difference| to %s: %.3g m", case.label, what, difference)
         if difference > threshold:
             warnings.append(f"not converged in the {label}: the tip deflection differs by up to "
                             f"{difference:.3g} m from {what} (convergence_{label}_diff_m > "
@@ -282,7 +261,7 @@ def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics:
     return found
 
 
-def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices,
+def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices,
                   t: np.ndarray, out: np.ndarray, status: int, t_stop: float,
                   integrator: Mapping) -> xr.Dataset:
     """The simulation dataset of ``docs/architecture.md`` from the kernel's output array.
@@ -292,9 +271,9 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, sm: 
     kernel's return values; ``integrator`` holds the integrator attributes (name, tolerances and
     statistics, including ``n_steps``).
     """
-    n = case["modes"]
+    n = case.modes
     columns = output_columns(n)
-    variables = dataset_variables(case["model"])
+    variables = dataset_variables(case.model)
     data_vars = {name: (dims, np.ascontiguousarray(out[:, columns[name]]),
                         {"units": units, "long_name": long_name})
                  for name, (dims, units, long_name) in variables.items()}
@@ -307,42 +286,41 @@ def build_dataset(case: Mapping, params: BeamParameters, numerics: Mapping, sm: 
                              "standard_name": "time"}),
         "mode": ("mode", np.arange(1, n + 1), {"units": "1", "long_name": "mode number"}),
     }
-    small_limit = float(numerics.get("small_deflection_limit", OPTIONAL_NUMERICS["small_deflection_limit"]))
-    found = validity.run_attributes(status, t_stop, case["model"], sm, out[:, columns["theta_dot"]],
-                                    out[:, columns["tip_transverse"]], params.L, small_limit)
+    found = validity.run_attributes(status, t_stop, case.model, sm, out[:, columns["theta_dot"]],
+                                    out[:, columns["tip_transverse"]], params.L, float(numerics.small_deflection_limit))
     warnings = []
-    if integrator.get("n_steps", 0) > numerics["step_warning"]:
+    if integrator.get("n_steps", 0) > numerics.step_warning:
         warnings.append(f"{integrator['n_steps']} accepted steps exceed numerics.step_warning = "
-                        f"{numerics['step_warning']}")
+                        f"{numerics.step_warning}")
     if status == radau.TOO_MANY_STEPS:
-        warnings.append(f"step budget numerics.max_steps = {numerics['max_steps']} exhausted at "
+        warnings.append(f"step budget numerics.max_steps = {numerics.max_steps} exhausted at "
                         f"t = {t_stop:.6g} s; outputs after it are NaN")
     warning = found.pop("warning")
     if warning:
         warnings.append(warning)
-    tip = case.get("tip_mass") or {"mass": 0.0, "position": params.L}
+    recorded = case.to_dict()
     attributes = {
-        "model": case["model"],
-        "maneuver": dict(case["maneuver"]),
-        "damping": dict(case.get("damping") or {}),
-        "initial": dict(case.get("initial") or {}),
-        "tip_mass_kg": float(tip["mass"]),
-        "tip_position_m": float(tip["position"]),
+        "model": case.model,
+        "maneuver": recorded["maneuver"],
+        "damping": recorded.get("damping", {}),
+        "initial": recorded.get("initial", {}),
+        "tip_mass_kg": case.tip_mass.mass,
+        "tip_position_m": case.tip_mass.position,
         "n_modes": int(n),
         **beam_attributes(params),
         **found,
         "integrator_status": radau.STATUS_NAMES[status],
         "stopped_at_s": float(t_stop),
-        "output_step": float(numerics["output_step"]),
-        "divergence_limit": float(numerics["divergence_limit"]),
-        "max_steps": int(numerics["max_steps"]),
-        "step_warning": int(numerics["step_warning"]),
+        "output_step": float(numerics.output_step),
+        "divergence_limit": float(numerics.divergence_limit),
+        "max_steps": int(numerics.max_steps),
+        "step_warning": int(numerics.step_warning),
         **integrator,
         "warnings": "; ".join(warnings),
     }
-    maneuver = json.dumps(dict(case["maneuver"]), sort_keys=True)  # as in case_config
-    title = f"hubbeam simulation {case.get('name', '')}: {case['model']}, {maneuver}"
-    attrs = global_attributes(title, case_config=dict(case), extra=attributes)
+    maneuver = json.dumps(recorded["maneuver"], sort_keys=True)  # as in case_config
+    title = f"hubbeam simulation {case.name or ''}: {case.model}, {maneuver}"
+    attrs = global_attributes(title, case_config=recorded, extra=attributes)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 
@@ -358,28 +336,20 @@ def compile_kernels(family: str | None = None) -> float:
     if family is not None and family not in FAMILIES:
         raise ValueError(f"family: got {family!r}; allowed: {', '.join(FAMILIES)}")
     params = BeamParameters(L=1.0, rho=1.0, A=1.0, E=1.0, I=1.0, Jh=1.0, rA=0.1)
-    numerics = {"rtol": 1e-6, "atol": 1e-8, "output_step": 0.05, "max_steps": 1000,
-                "step_warning": 1000, "divergence_limit": 1.0, "quadrature_points": 8}
+    numerics = Numerics(rtol=1e-6, atol=1e-8, output_step=0.05, max_steps=1000, step_warning=1000,
+                        divergence_limit=1.0, quadrature_points=8)
     start = time.perf_counter()
     for name in [family] if family else FAMILIES:
-        case = {"name": "compile_kernels", "model": family_model(name).name, "modes": 1, "t_end": 0.1,
-                "maneuver": {"kind": "prescribed", "wf": 0.1, "tf": 0.05},
-                "tip_mass": {"mass": 0.0, "position": 1.0}}
-        sm = case_matrices(case, params, numerics)
-        kind, mp = maneuver_parameters(case["maneuver"])
-        t = output_times(case["t_end"], numerics["output_step"])
-        out = np.empty((t.size, n_output_columns(1)))
-        stats = np.zeros(len(radau.STAT_NAMES), np.int64)
-        inputs = SimulationInputs(family_model(name).traits, kind, mp, damping_matrices(None, sm), sm)
-        simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
-                        IntegratorSettings(1e-6, 1e-8, 1.0, 1000), out, stats)
+        case = Case(name="compile_kernels", model=family_model(name).name, maneuver=SpinUp(wf=0.1, tf=0.05),
+                    t_end=0.1, modes=1, tip_mass=TipMass(0.0, 1.0))
+        _integrate(case, params, numerics, case_matrices(case, params, numerics))
     return time.perf_counter() - start
 
 
-def step_stops(case: Mapping, t: np.ndarray) -> np.ndarray:
+def step_stops(case: Case, t: np.ndarray) -> np.ndarray:
     """Times no step may cross: where the maneuver is not smooth (the end of Eq. 43/44, where they
     are only C^1 or C^3; table rows), inside the output span."""
-    stops = maneuver_stops(case["maneuver"])
+    stops = case.maneuver.stops()
     return np.ascontiguousarray(stops[(stops > 0.0) & (stops < t[-1])])
 
 

@@ -132,7 +132,7 @@ def _points(sweep: Mapping):
         return np.broadcast_to(swept if swept is not None else fixed, shape[1:])
 
     maneuver = sweep["maneuver"]
-    mp = np.stack([value(key, maneuver.get(key)) for key in MANEUVERS[maneuver["kind"]][1]],
+    mp = np.stack([value(key, maneuver.get(key)) for key in MANEUVERS[maneuver["kind"]].kernel_keys],
                   axis=-1).astype(float)
     tf = value("tf", maneuver.get("tf")).astype(float)
     tips = np.stack([value("tip_mass", sweep["tip_mass"]["mass"]),
@@ -200,7 +200,7 @@ def run_points(sweep: Mapping, params: BeamParameters, points: range | None = No
     found = kernels.SweepResults(np.full((count, len(kernels.RESULT_COLUMNS)), np.nan),
                                  np.zeros(count, np.int64), np.zeros((count, kernels.N_STATS), np.int64))
     sweep_points = kernels.SweepPoints(
-        np.ascontiguousarray(traits[selected]), MANEUVERS[sweep["maneuver"]["kind"]][0],
+        np.ascontiguousarray(traits[selected]), MANEUVERS[sweep["maneuver"]["kind"]].code,
         np.ascontiguousarray(mp[selected]), np.ascontiguousarray(local_index.ravel()),
         np.ascontiguousarray(t_end[selected]), np.ascontiguousarray(t_mark[selected]))
     settings = IntegratorSettings(float(numerics["rtol"]), float(numerics["atol"]),

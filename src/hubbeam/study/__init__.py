@@ -16,9 +16,6 @@ from pathlib import Path
 
 from hubbeam.results.paths import DEFAULT_CONFIG_FILE, StudyPaths
 
-#: folders of the paper's products directly under results/, which a study name must not take
-PAPER_FOLDERS = ("benchmarks", "eigen", "figures", "matrices", "readings", "report", "simulations",
-                 "sweeps", "tables", "validation")
 #: the file in a study's folder that records the config file owning it
 MARKER = ".study"
 

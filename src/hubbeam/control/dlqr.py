@@ -17,7 +17,10 @@ hold every ``Ts`` seconds, its delayed inputs among the states) with one input, 
 Checked before anything is solved, each a ``ValueError``: the weights (names, ``>= 0``), ``R > 0``,
 one input, and that every mode of the discrete model that is not asymptotically stable can be
 moved by the input (PBH on its left eigenvectors); a Riccati equation without a stabilising
-solution is reported with the weights to change.
+solution, and a gain that leaves a pole of the sampled loop on or outside the unit circle (what
+the solvers return when the weights do not see a mode there, such as the rigid-body mode without
+a weight on the hub angle; or a continuous gain too fast for the sample time), are reported with
+the weights to change.
 """
 
 from __future__ import annotations
@@ -27,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubbeam.control.sampling import positive_weight, reachability_check, weight_matrix
+from hubbeam.control.sampling import positive_weight, reachability_check, stability_check, weight_matrix
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,6 +71,7 @@ def discrete_lqr(dm, weights: Mapping[str, float], input_weight: float) -> LqrDe
 
     Q, R = _checked(dm, weights, input_weight, dm)
     K, P, poles = _solved(lambda: ct.dlqr(dm.A, dm.B, Q, R), f"the discrete LQR design on {dm.name}")
+    stability_check(dm, poles, f"the discrete LQR design on {dm.name}")
     return LqrDesign(model=dm, K=np.asarray(K)[0], P=np.asarray(P), poles=np.asarray(poles), weights=dict(weights),
                      input_weight=R, method="discrete LQR (control.dlqr)")
 
@@ -81,8 +85,10 @@ def continuous_lqr(dm, weights: Mapping[str, float], input_weight: float) -> Lqr
     K, P, _ = _solved(lambda: ct.lqr(lm.A, lm.B, Q, R), f"the continuous LQR design on {lm.name}")
     gains = np.zeros(dm.A.shape[0])
     gains[:dm.plant_states] = np.asarray(K)[0]
-    return LqrDesign(model=dm, K=gains, P=np.asarray(P), poles=np.linalg.eigvals(dm.A - np.outer(dm.B[:, 0], gains)),
-                     weights=dict(weights), input_weight=R, method="continuous LQR (control.lqr) through the hold")
+    poles = np.linalg.eigvals(dm.A - np.outer(dm.B[:, 0], gains))
+    stability_check(dm, poles, f"the continuous LQR design on {lm.name} sampled every {dm.Ts:g} s")
+    return LqrDesign(model=dm, K=gains, P=np.asarray(P), poles=poles, weights=dict(weights), input_weight=R,
+                     method="continuous LQR (control.lqr) through the hold")
 
 
 __all__ = ["LqrDesign", "continuous_lqr", "discrete_lqr"]

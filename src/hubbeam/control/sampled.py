@@ -226,7 +226,9 @@ def state_controller(lqr, simulated, u_max: float = math.inf, u_init: float = 0.
     lags = size - n
     matrices = (dm.A[n:, n:], np.zeros((lags, n)), dm.B[n:, 0].copy(),
                 np.vstack([np.zeros((n, lags)), np.eye(lags)]), np.vstack([np.eye(n), np.zeros((lags, n))]), lqr.K)
-    poles = np.linalg.eigvals(dm.A - np.outer(dm.B[:, 0], lqr.K))
+    # the design's loop and, at 0, the difference between the plant's delayed commands and the
+    # controller's copy of them (neither seen nor moved)
+    poles = np.concatenate([np.linalg.eigvals(dm.A - np.outer(dm.B[:, 0], lqr.K)), np.zeros(lags)])
     return _controller(dm, readings, np.array(rows), matrices, np.full(lags, settings[1]), settings, dm.states[n:],
                        dm.states, poles, "LQR on the true state")
 

@@ -277,6 +277,17 @@ def reachability_check(dm, columns: np.ndarray, what: str, by: str, unit_circle_
                          f"undisturbed by {by} (PBH on its left eigenvectors); allowed: {by} that move it")
 
 
+def stability_check(dm, poles: np.ndarray, what: str) -> None:
+    """``ValueError`` when a pole of the sampled loop of ``dm`` is not asymptotically stable (a
+    Riccati solver may return a gain that leaves a mode the weights do not see where it was),
+    naming the open-loop mode nearest to it."""
+    for z in poles:
+        if _not_asymptotically_stable(dm, z):
+            raise ValueError(f"{what}: the loop leaves {_plant_mode(dm, z)} at z = {z:.6g} (Ts = {dm.Ts:g} s), not "
+                             "asymptotically stable: the weights do not see it; allowed: weights on a state or output "
+                             "that does (the hub angle for the rigid-body mode)")
+
+
 __all__ = ["INVISIBLE", "NYQUIST_MARGIN", "PARALLEL", "SAME_EIGENVALUE", "Sensor", "describe_modes",
            "measurement_rows", "nyquist_check", "observability_check", "positive_weight", "reachability_check",
-           "weight_matrix", "zero_tolerance"]
+           "stability_check", "weight_matrix", "zero_tolerance"]

@@ -34,6 +34,7 @@ from collections.abc import Mapping
 import numpy as np
 import scipy.linalg
 
+from hubbeam.control.sampling import weight_matrix
 from hubbeam.linear.statespace import OUTPUTS, linear_model, state_names
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.maneuvers import FeedbackLaw
@@ -116,13 +117,7 @@ def lqr_design(case: Mapping, beam, sm) -> tuple[dict, dict]:
     lin = linear_model(beam, sm, spec["model"], speed, "free",
                        damping_matrices(case.get("damping"), sm), outputs=list(SIGNALS))
     stabilisability_check(where, lin)
-    Q = np.zeros_like(lin.A)
-    for key, value in weights.items():
-        if key in names:
-            Q[names.index(key), names.index(key)] += value
-        else:
-            row = lin.C[lin.outputs.index(key)]
-            Q += value * np.outer(row, row)
+    Q = weight_matrix(lin, weights)
     try:
         K, P, poles = ct.lqr(lin.A, lin.B, Q, R)
     except ValueError as error:  # the Riccati solver's Hamiltonian has imaginary eigenvalues

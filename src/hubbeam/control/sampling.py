@@ -31,6 +31,7 @@ the input or noise columns.
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -109,13 +110,17 @@ def measurement_rows(model, sensors) -> np.ndarray:
     return np.array(rows).reshape(len(rows), np.shape(model.C)[1])
 
 
+def _real(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
 def weight_matrix(model, weights: Mapping[str, float], argument: str = "weights") -> np.ndarray:
     """``Q``: ``w`` on the diagonal of each named state of ``model`` and ``w c^T c`` for each named
     output (rows of ``model.C``, outputs without feedthrough); ``ValueError`` for an unknown name or a
     weight that is negative or not finite."""
     Q = np.zeros((len(model.states), len(model.states)))
     for key, value in weights.items():
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0.0):
+        if not (_real(value) and math.isfinite(value) and value >= 0.0):
             raise ValueError(f"{argument}.{key} = {value!r}; allowed: weights >= 0 (Q positive semidefinite)")
         if key in model.states:
             i = model.states.index(key)
@@ -132,7 +137,7 @@ def weight_matrix(model, weights: Mapping[str, float], argument: str = "weights"
 
 def positive_weight(value, argument: str) -> float:
     """``value`` as a float; ``ValueError`` unless finite and > 0."""
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
+    if not (_real(value) and math.isfinite(value) and value > 0.0):
         raise ValueError(f"{argument} = {value!r}; allowed: a finite weight > 0")
     return float(value)
 
@@ -150,12 +155,11 @@ def describe_modes(A: np.ndarray, states) -> tuple[np.ndarray, list[str]]:
     eigenvector's position part (``states`` the names of ``A``'s states)."""
     values, vectors = np.linalg.eig(A)
     tol = zero_tolerance(A)
-    half = len(states) // 2
+    positions = [k for k, name in enumerate(states) if not name.endswith("_dot")]
     vibration = sorted({round(abs(v.imag), 12) for v in values if abs(v) > tol and v.imag != 0.0})
     described = []
     for value, vector in zip(values, vectors.T):
-        part = np.abs(vector[:half]) if half else np.abs(vector)
-        mostly = states[int(np.argmax(part))]
+        mostly = states[positions[int(np.argmax(np.abs(vector[positions])))]]
         hz = abs(value.imag) / (2.0 * math.pi)
         if abs(value) <= tol:
             text = f"the rigid-body mode (0 Hz, mostly {mostly})"

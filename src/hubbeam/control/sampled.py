@@ -41,11 +41,13 @@ ignored), for its poles.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
 
 from hubbeam.control.sampling import Sensor, measurement_rows
+from hubbeam.linear.export import state_units
 from hubbeam.linear.statespace import state_names
 from hubbeam.model.models import model as model_traits
 
@@ -136,9 +138,9 @@ def rigid_feedforward(inertia: float, motor=None) -> np.ndarray:
 
 
 def _loop_settings(u_max, u_init, feedforward) -> tuple[float, float, np.ndarray]:
-    if not (isinstance(u_max, (int, float)) and u_max > 0.0 and not math.isnan(u_max)):
+    if not (isinstance(u_max, numbers.Real) and u_max > 0.0 and not math.isnan(u_max)):
         raise ValueError(f"u_max = {u_max!r}; allowed: a command limit > 0 (inf: none)")
-    if not (isinstance(u_init, (int, float)) and math.isfinite(u_init)):
+    if not (isinstance(u_init, numbers.Real) and math.isfinite(u_init)):
         raise ValueError(f"u_init = {u_init!r}; allowed: a finite command")
     U_r = np.zeros(3) if feedforward is None else np.asarray(feedforward, dtype=float)
     if U_r.shape != (3,) or not np.all(np.isfinite(U_r)):
@@ -174,9 +176,8 @@ class StateReading:
 
     @property
     def sensor_unit(self) -> str:
-        """The state's unit: rad for the hub angle, kg1/2 m for a modal coordinate, per second for a rate."""
-        unit = "rad" if self.state.startswith("theta") else "kg1/2 m"
-        return unit + (" s-1" if self.state.endswith("_dot") else "")
+        """The state's unit (``hubbeam.linear.export.state_units``)."""
+        return state_units(self.state)
 
 
 def _controller(design, sensors, rows, matrices, xc0, settings, names, estimate_states, poles, kind):

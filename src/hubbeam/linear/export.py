@@ -39,7 +39,9 @@ from hubbeam.results.io import staged, write_netcdf
 from hubbeam.results.provenance import global_attributes
 
 
-def _state_units(name: str, inputs=()) -> str:
+def state_units(name: str, inputs=()) -> str:
+    """The unit of a state: rad for the hub angle, kg1/2 m for a modal coordinate, s-1 more for a
+    rate (``*_dot``), the input's for a delayed input (``<input>_lag<j>`` of ``inputs``)."""
     for input_name in inputs:
         if name.startswith(f"{input_name}_lag"):
             return INPUT_UNITS[input_name]
@@ -89,7 +91,7 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
         "state_j": ("state_j", list(first.states), {"long_name": "state (column of A)"}),
         "input": ("input", list(first.inputs), {"long_name": "input"}),
         "output": ("output", list(first.outputs), {"long_name": "output"}),
-        "state_units": ("state", [_state_units(name, first.inputs) for name in first.states],
+        "state_units": ("state", [state_units(name, first.inputs) for name in first.states],
                         {"long_name": "units of each state"}),
         "input_units": ("input", [INPUT_UNITS[name] for name in first.inputs],
                         {"long_name": "units of each input"}),
@@ -171,4 +173,4 @@ def write_mat(ds: xr.Dataset, path: os.PathLike | str) -> Path:
     return path
 
 
-__all__ = ["cell", "to_dataset", "write_dataset", "write_mat"]
+__all__ = ["cell", "state_units", "to_dataset", "write_dataset", "write_mat"]

@@ -40,6 +40,7 @@ import scipy.linalg
 from hubbeam.configuration.load import ConfigError
 from hubbeam.configuration.schema import MEASURED_SIGNALS, Problem
 from hubbeam.configuration.settings import Case, Settings
+from hubbeam.control.sampling import weight_matrix
 from hubbeam.linear.statespace import linear_model
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.maneuvers import FeedbackLaw, StateFeedback
@@ -112,13 +113,7 @@ def lqr_design(case: Case, beam, sm) -> tuple[dict, dict]:
     lin = linear_model(beam, sm, spec.model, spec.speed, "free", damping_matrices(case.damping, sm),
                        outputs=list(MEASURED_SIGNALS))
     stabilisability_check(where, lin)
-    Q = np.zeros_like(lin.A)
-    for key, value in spec.weights.items():
-        if key in names:
-            Q[names.index(key), names.index(key)] += value
-        else:
-            row = lin.C[lin.outputs.index(key)]
-            Q += value * np.outer(row, row)
+    Q = weight_matrix(lin, spec.weights)
     try:
         K, P, poles = ct.lqr(lin.A, lin.B, Q, spec.torque_weight)
     except ValueError as error:  # the Riccati solver's Hamiltonian has imaginary eigenvalues

@@ -117,9 +117,12 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
     """Tracked, damped Campbell diagram of every model, held and free hub (module docstring).
 
     Mode ``k`` is one tracked mode (numbered by frequency at the first speed); ``mode_label`` its
-    group there (numbered by frequency within the group), ``label`` its dominant coordinate at each
-    speed. ``unstable_from`` is the lowest grid speed with an unstable mode; ``critical_speed`` that
-    of ``K22`` (Eq. 31, hub held) of the model's linearisation
+    group there (numbered by frequency within the group), ``label`` its group at each speed,
+    numbered by frequency within the group at that speed (``bending 2`` is the second bending mode
+    by frequency, also on a light free hub where every bending mode's dominant coordinate is the
+    first: :func:`hubbeam.linear.tracking.numbered_by_frequency`). ``unstable_from`` is the lowest
+    grid speed with an unstable mode; ``critical_speed`` that of ``K22`` (Eq. 31, hub held) of the
+    model's linearisation
     (:func:`hubbeam.model.eigen.critical_speed`), NaN where none up to the last speed.
     """
     speeds, systems = _checked(beam, tip_masses, speeds, n_modes, n_quad, damping)
@@ -149,8 +152,8 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
                                                 np.where(modes.divergent, KINDS["divergent"],
                                                          KINDS["vibration"]))
                 stable[i, j, h, :, :k] = modes.stable
-                label[i, j, h, :, :k] = tracking.dominant_content(modes.shape, names,
-                                                                  modes.weights)[0]
+                label[i, j, h, :, :k] = tracking.numbered_by_frequency(
+                    tracking.dominant_content(modes.shape, names, modes.weights)[0], modes.frequency)
                 components[i, j, h, :, :k][..., where] = modes.shape
     growing = (stable == 0).any(axis=-1)  # (model, tip_mass, hub, speed)
     unstable_from = np.where(growing.any(axis=-1), speeds[np.argmax(growing, axis=-1)], np.nan)
@@ -172,7 +175,8 @@ def campbell(beam, tip_masses, speeds, n_modes, n_quad=64, damping=None) -> xr.D
                                       "flag_values": np.array([-1, 0, 1], dtype=np.int8),
                                       "flag_meanings": "none unstable stable"}),
             "label": (dims, label.astype(str),
-                      {"long_name": "dominant content of the mode's shape at this speed"}),
+                      {"long_name": "dominant content of the mode's shape at this speed, numbered by "
+                                    "frequency within its group at this speed"}),
             "mode_label": (dims[:3] + ("mode",), tracking.numbered_by_frequency(label[..., 0, :]),
                            {"long_name": "dominant content of the mode's shape at the first speed, numbered "
                                          "by frequency within its group"}),

@@ -8,6 +8,13 @@ poles) says where a plant is unstable (TLAM above its critical speed): it is not
 ``.mat`` file (:func:`write_mat`) holds the same arrays with the speed last (``A(:, :, k)`` in
 MATLAB), the speed vector and the names as cell arrays. Both are written atomically
 (``hubbeam.results.io``); ``docs/linear-models.md`` shows how to load each.
+
+Optional, both absent by default: ``motor`` (a ``hubbeam.model.drive.DcMotor``) gives the models
+with the drive's voltage as input (``hubbeam.linear.voltage``, free hub), with the operating-point
+voltage of each speed; ``sample_time`` (s) gives the zero-order-hold models with the input
+delayed by ``delay`` samples (``hubbeam.linear.discrete``, attributes ``sample_time_s`` and
+``input_delay_samples``; the delayed inputs are states in the input's unit; ``growth_rate`` is
+then ``ln(max |z|) / Ts``, the continuous rate the largest discrete pole stands for).
 """
 
 from __future__ import annotations
@@ -18,6 +25,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from hubbeam.linear.discrete import check_sampling, discretise
 from hubbeam.linear.statespace import (
     INPUT_UNITS,
     OUTPUTS,
@@ -25,37 +33,65 @@ from hubbeam.linear.statespace import (
     check_speeds,
     linear_model,
 )
+from hubbeam.linear.voltage import check_motor, voltage_model
 from hubbeam.model.beam import beam_attributes
 from hubbeam.results.io import staged, write_netcdf
 from hubbeam.results.provenance import global_attributes
 
 
-def _state_units(name: str) -> str:
+def state_units(name: str, inputs=()) -> str:
+    """The unit of a state: rad for the hub angle, kg1/2 m for a modal coordinate, s-1 more for a
+    rate (``*_dot``), the input's for a delayed input (``<input>_lag<j>`` of ``inputs``)."""
+    for input_name in inputs:
+        if name.startswith(f"{input_name}_lag"):
+            return INPUT_UNITS[input_name]
     coordinate = "rad" if name.startswith("theta") else "kg1/2 m"
     return coordinate + (" s-1" if name.endswith("_dot") else "")
 
 
+def _growth_rate(lm) -> float:
+    """The largest real part of the poles; for a discrete model ``ln(max |z|) / Ts``."""
+    poles = np.linalg.eigvals(lm.A)
+    if getattr(lm, "Ts", None) is None:
+        return float(np.max(poles.real))
+    with np.errstate(divide="ignore"):
+        return float(np.log(np.max(np.abs(poles))) / lm.Ts)
+
+
 def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, damping=None,
-               outputs=None) -> xr.Dataset:
+               outputs=None, *, motor=None, sample_time=None, delay=0.0) -> xr.Dataset:
     """The linear models of ``model`` at every speed of ``speeds`` (rad s-1) as a dataset.
 
     Arguments as :func:`hubbeam.linear.linear_model`; ``tip`` (``TipMass`` or None) is the tip
-    mass ``sm`` was assembled with, recorded in the attributes. Every argument is checked before
-    the first model is computed.
+    mass ``sm`` was assembled with, recorded in the attributes; ``motor``, ``sample_time`` and
+    ``delay`` as in the module docstring. Every argument is checked before the first model is
+    computed.
     """
     check_request(model, hub, outputs)
     grid = check_speeds(speeds)
-    models = [linear_model(beam, sm, model, float(speed), hub, damping, outputs) for speed in grid]
+    if motor is not None:
+        check_motor(motor)
+        if hub != "free":
+            raise ValueError(f"hub = {hub!r} with a motor; allowed: 'free' (the drive turns a free hub)")
+    if sample_time is not None:
+        check_sampling(sample_time, delay)
+
+    def one(speed):
+        lm = (linear_model(beam, sm, model, speed, hub, damping, outputs) if motor is None
+              else voltage_model(beam, sm, model, motor, speed, damping, outputs))
+        return lm if sample_time is None else discretise(lm, sample_time, delay)
+
+    models = [one(float(speed)) for speed in grid]
     first = models[0]
     stack = {name: np.stack([getattr(lm, name) for lm in models]) for name in "ABCD"}
-    growth = np.array([np.max(np.linalg.eigvals(lm.A).real) for lm in models])
+    growth = np.array([_growth_rate(lm) for lm in models])
     coords = {
         "speed": ("speed", grid, {"units": "rad s-1", "long_name": "hub speed of the steady spin"}),
         "state": ("state", list(first.states), {"long_name": "state (row of A and B, column of C)"}),
         "state_j": ("state_j", list(first.states), {"long_name": "state (column of A)"}),
         "input": ("input", list(first.inputs), {"long_name": "input"}),
         "output": ("output", list(first.outputs), {"long_name": "output"}),
-        "state_units": ("state", [_state_units(name) for name in first.states],
+        "state_units": ("state", [state_units(name, first.inputs) for name in first.states],
                         {"long_name": "units of each state"}),
         "input_units": ("input", [INPUT_UNITS[name] for name in first.inputs],
                         {"long_name": "units of each input"}),
@@ -87,7 +123,25 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
                         "D: the output's units per the column state's or input's (state_units, "
                         "input_units, output_units)",
     }
+    if motor is not None:
+        data_vars["operating_voltage"] = ("speed", np.array([getattr(lm, "continuous", lm).operating_voltage
+                                                             for lm in models]),
+                                          {"units": "V", "long_name": "voltage that holds the steady spin "
+                                                                      "(the input is the deviation from it)"})
+    if sample_time is not None:
+        attrs |= {"title": attrs["title"] + f", sampled every {first.Ts:g} s (zero-order hold)",
+                  "sample_time_s": first.Ts, "input_delay_samples": first.delay,
+                  "matrix_units": "A, B: the row state's units per the column state's or input's (one "
+                                  "sample); C, D: the output's units per the column state's or input's "
+                                  "(state_units, input_units, output_units)"}
     return xr.Dataset(data_vars, coords=coords, attrs=attrs | beam_attributes(beam))
+
+
+def cell(names) -> np.ndarray:
+    """``names`` as a column of strings that ``scipy.io.savemat`` writes as a MATLAB cell array."""
+    array = np.empty((len(names), 1), dtype=object)
+    array[:, 0] = [str(name) for name in names]
+    return array
 
 
 def write_dataset(ds: xr.Dataset, path: os.PathLike | str) -> Path:
@@ -100,24 +154,23 @@ def write_dataset(ds: xr.Dataset, path: os.PathLike | str) -> Path:
 def write_mat(ds: xr.Dataset, path: os.PathLike | str) -> Path:
     """Write the dataset of :func:`to_dataset` as a MATLAB file (``scipy.io.savemat``): ``A, B, C,
     D`` with the speed as their last index, ``speed``, the names ``states, inputs, outputs`` as
-    cell arrays, and ``model``, ``hub``, ``tip_mass_kg``, ``tip_position_m``, ``n_modes``."""
+    cell arrays, and ``model``, ``hub``, ``tip_mass_kg``, ``tip_position_m``, ``n_modes`` (and,
+    where present, ``sample_time_s``, ``input_delay_samples``, ``operating_voltage``)."""
     from scipy.io import savemat
-
-    def cell(names):
-        array = np.empty((len(names), 1), dtype=object)
-        array[:, 0] = [str(name) for name in names]
-        return array
 
     contents = {name: np.moveaxis(ds[name].values, 0, -1) for name in "ABCD"}
     contents |= {"speed": ds.speed.values, "growth_rate": ds.growth_rate.values,
                  "states": cell(ds.state.values), "inputs": cell(ds.input.values),
                  "outputs": cell(ds.output.values)}
     contents |= {key: ds.attrs[key] for key in ("model", "hub", "tip_mass_kg", "tip_position_m",
-                                                 "n_modes")}
+                                                 "n_modes", "sample_time_s", "input_delay_samples")
+                 if key in ds.attrs}
+    if "operating_voltage" in ds:
+        contents["operating_voltage"] = ds.operating_voltage.values
     path = Path(path)
     with staged(path) as (stand_in,):
         savemat(stand_in, contents, do_compression=True, oned_as="column")
     return path
 
 
-__all__ = ["to_dataset", "write_dataset", "write_mat"]
+__all__ = ["cell", "state_units", "to_dataset", "write_dataset", "write_mat"]

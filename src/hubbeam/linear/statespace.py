@@ -51,9 +51,11 @@ OUTPUTS = {
     "tip_arc": ("m", "arc position of the tip (rA + L) theta + v(L)"),
     "root_moment": ("N m", "root bending moment EI(0) v''(0)"),
     "tip_acceleration": ("m s-2", "transverse inertial acceleration of the beam tip"),
+    "deflection_angle": ("rad", "link deflection angle alpha = v(L) / L (a root strain gauge's reading)"),
+    "deflection_rate": ("rad s-1", "rate of the link deflection angle v'(L) / L"),
 }
-#: units of the inputs
-INPUT_UNITS = {"hub_torque": "N m", "hub_acceleration": "rad s-2"}
+#: units of the inputs (``voltage``: the drive's input, ``hubbeam.linear.voltage``)
+INPUT_UNITS = {"hub_torque": "N m", "hub_acceleration": "rad s-2", "voltage": "V"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -203,38 +205,93 @@ def check_matrices(beam, sm) -> None:
                          "hubbeam.model.matrices.assemble(beam, tip, n_modes) of this beam")
 
 
+@dataclass(frozen=True)
+class RowContext:
+    """What the output rows need: the length ``N`` of ``z``, the slices of ``q1`` and ``q2`` in it,
+    the beam, its matrices, the model's traits, the speed and the axial stretch ``q1s``."""
+
+    N: int
+    q1: slice
+    q2: slice
+    beam: object
+    sm: object
+    traits: object
+    speed: float
+    q1s: np.ndarray
+
+
+def _hub_angle(c: RowContext, z, v, a) -> None:
+    z[0] = 1.0
+
+
+def _hub_speed(c: RowContext, z, v, a) -> None:
+    v[0] = 1.0
+
+
+def _tip_deflection(c: RowContext, z, v, a) -> None:
+    z[c.q2] = c.sm.f2L
+
+
+def _tip_arc(c: RowContext, z, v, a) -> None:
+    z[0], z[c.q2] = c.sm.rA + c.beam.L, c.sm.f2L
+
+
+def _root_moment(c: RowContext, z, v, a) -> None:
+    n = c.sm.M2.shape[0]
+    z[c.q2] = float(c.beam.EI_at(0.0)) * transverse_modes(0.0, n, c.beam, derivative=2)[0]
+
+
+def _tip_acceleration(c: RowContext, z, v, a) -> None:
+    a[0] = c.sm.rA + c.beam.L + c.sm.f1L @ c.q1s
+    a[c.q2] = c.sm.f2L
+    z[c.q2] = -c.speed**2 * c.sm.f2L
+    if c.traits.keeps_axial:
+        v[c.q1] = 2.0 * c.speed * c.sm.f1L
+
+
+def _deflection_angle(c: RowContext, z, v, a) -> None:
+    z[c.q2] = c.sm.f2L / c.beam.L
+
+
+def _deflection_rate(c: RowContext, z, v, a) -> None:
+    v[c.q2] = c.sm.f2L / c.beam.L
+
+
+#: output name -> the function filling its rows ``(z, v, a)`` (one per name of :data:`OUTPUTS`)
+ROW_BUILDERS = {
+    "hub_angle": _hub_angle,
+    "hub_speed": _hub_speed,
+    "tip_deflection": _tip_deflection,
+    "tip_arc": _tip_arc,
+    "root_moment": _root_moment,
+    "tip_acceleration": _tip_acceleration,
+    "deflection_angle": _deflection_angle,
+    "deflection_rate": _deflection_rate,
+}
+
+
 def output_rows(beam, sm, traits, speed: float, q1s, names):
     """``(Cz, Cv, Ca)``: each output is ``Cz z + Cv z' + Ca z''`` (rows in the order of ``names``).
 
-    The tip's transverse acceleration in the rotating frame is ``a_y = v'' + 2 theta' u' +
-    theta'' (rA + L + u) - theta'^2 v`` at ``x = L``, linearised about the steady spin:
-    ``f2(L) q2'' + 2 Omega f1(L) q1' + (rA + L + f1(L) q1s) theta'' - Omega^2 f2(L) q2``
-    (``u = f1 q1``; the foreshortening part of the axial displacement is of second order).
+    Each name's rows come from its builder in :data:`ROW_BUILDERS`; an unknown name is a
+    ``ValueError``. The tip's transverse acceleration in the rotating frame is ``a_y = v'' +
+    2 theta' u' + theta'' (rA + L + u) - theta'^2 v`` at ``x = L``, linearised about the steady
+    spin: ``f2(L) q2'' + 2 Omega f1(L) q1' + (rA + L + f1(L) q1s) theta'' - Omega^2 f2(L) q2``
+    (``u = f1 q1``; the foreshortening part of the axial displacement is of second order). The
+    link deflection angle is ``alpha = v(L) / L`` (the rotation of the chord from the clamp to the
+    tip relative to the hub, what the Quanser courseware calls ``alpha``), its rate ``v'(L) / L``.
     """
+    unknown = [name for name in names if name not in ROW_BUILDERS]
+    if unknown:
+        raise ValueError(f"outputs = {list(names)!r}: {unknown[0]!r} is unknown; allowed: names among "
+                         f"{', '.join(ROW_BUILDERS)}")
     n = sm.M2.shape[0]
     N = 1 + (2 if traits.keeps_axial else 1) * n
-    q2 = slice(N - n, N)
-    q1 = slice(1, 1 + n)
-    lever = sm.rA + beam.L
-    curvature = float(beam.EI_at(0.0)) * transverse_modes(0.0, n, beam, derivative=2)[0]
+    context = RowContext(N=N, q1=slice(1, 1 + n), q2=slice(N - n, N), beam=beam, sm=sm, traits=traits,
+                         speed=speed, q1s=q1s)
     rows = {name: (np.zeros(N), np.zeros(N), np.zeros(N)) for name in names}
     for name, (z, v, a) in rows.items():
-        if name == "hub_angle":
-            z[0] = 1.0
-        elif name == "hub_speed":
-            v[0] = 1.0
-        elif name == "tip_deflection":
-            z[q2] = sm.f2L
-        elif name == "tip_arc":
-            z[0], z[q2] = lever, sm.f2L
-        elif name == "root_moment":
-            z[q2] = curvature
-        else:  # tip_acceleration
-            a[0] = lever + sm.f1L @ q1s
-            a[q2] = sm.f2L
-            z[q2] = -speed**2 * sm.f2L
-            if traits.keeps_axial:
-                v[q1] = 2.0 * speed * sm.f1L
+        ROW_BUILDERS[name](context, z, v, a)
     return tuple(np.array([rows[name][k] for name in names]) for k in range(3))
 
 
@@ -256,16 +313,21 @@ def linear_model(beam, sm, model: str, speed: float, hub: str = "free", damping=
     return state_space(beam, sm, traits, hub, speed, names, q1s, accelerations(M, G, C, K, hub))
 
 
-def state_space(beam, sm, traits, hub, speed, names, q1s, rates) -> LinearModel:
-    """The :class:`LinearModel` with the accelerations ``rates = (Az, Av, Bu)`` of either route
+def state_space_matrices(beam, sm, traits, speed, names, q1s, rates):
+    """``(A, B, C, D)`` from the accelerations ``rates = (Az, Av, Bu)`` of either route
     (``z'' = Az z + Av z' + Bu u``) and the output rows of :func:`output_rows`."""
     Az, Av, Bu = rates
     N = Az.shape[0]
     A = np.block([[np.zeros((N, N)), np.eye(N)], [Az, Av]])
     B = np.vstack([np.zeros((N, 1)), Bu])
     Cz, Cv, Ca = output_rows(beam, sm, traits, speed, q1s, names)
-    return LinearModel(model=traits.name, hub=hub, speed=speed, A=A, B=B,
-                       C=np.hstack([Cz + Ca @ Az, Cv + Ca @ Av]), D=Ca @ Bu,
+    return A, B, np.hstack([Cz + Ca @ Az, Cv + Ca @ Av]), Ca @ Bu
+
+
+def state_space(beam, sm, traits, hub, speed, names, q1s, rates) -> LinearModel:
+    """The :class:`LinearModel` of :func:`state_space_matrices` with the input of the hub condition."""
+    A, B, C, D = state_space_matrices(beam, sm, traits, speed, names, q1s, rates)
+    return LinearModel(model=traits.name, hub=hub, speed=speed, A=A, B=B, C=C, D=D,
                        states=traits.state_names(sm.M2.shape[0]), inputs=(HUBS[hub],),
                        outputs=names)
 

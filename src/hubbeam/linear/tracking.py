@@ -40,6 +40,9 @@ the tracked curves follow the continuous branches.
 Labels (:func:`dominant_content`): the fraction of ``|w_i u_i|^2`` in each coordinate decides a
 mode's label, from the group with the largest sum (``hub``, ``axial``, ``bending``) and the
 coordinate with the largest fraction inside it: ``hub``, ``axial k``, ``bending k``.
+:func:`numbered_by_frequency` then numbers each group's modes by their rank in frequency, the name
+that stays distinct on a light free hub (where every bending mode's content is mostly the first
+clamped-free function).
 """
 
 from __future__ import annotations
@@ -224,17 +227,24 @@ def dominant_content(shapes: np.ndarray, names, weights: np.ndarray):
     return labels.astype(str), fractions
 
 
-def numbered_by_frequency(labels: np.ndarray) -> np.ndarray:
-    """``labels`` (..., modes) of modes ordered by frequency with each group's modes numbered in
-    that order: ``bending 1, bending 1, axial 1, bending 2`` -> ``bending 1, bending 2, axial 1,
-    bending 3``. The dominant coordinate names a mode well with the hub held; with a free hub the
-    hub's rotation puts most of every bending mode's mass-weighted content into the first
-    clamped-free function, so the rank within the group is the name that stays distinct."""
+def numbered_by_frequency(labels: np.ndarray, frequency: np.ndarray | None = None) -> np.ndarray:
+    """``labels`` (..., modes) with each group's modes numbered by frequency: ``bending 1, bending 1,
+    axial 1, bending 2`` -> ``bending 1, bending 2, axial 1, bending 3``.
+
+    Without ``frequency`` the modes are taken as ordered by frequency along the last axis; with it
+    (the same shape, e.g. tracked modes at each speed) they are ranked by it, ties kept in order.
+    The dominant coordinate names a mode well with the hub held; with a free hub whose inertia is
+    small against the beam's the hub's rotation puts most of every bending mode's mass-weighted
+    content into the first clamped-free function (all would be ``bending 1``), so the rank within
+    the group is the name that stays distinct: the k-th bending mode by frequency is ``bending k``.
+    """
     out = np.array(labels, dtype=object)
+    rank = (np.broadcast_to(np.arange(out.shape[-1]), out.shape) if frequency is None
+            else np.argsort(np.argsort(np.asarray(frequency), axis=-1, kind="stable"), axis=-1, kind="stable"))
     for index in np.ndindex(out.shape[:-1]):
         counts: dict[str, int] = {}
-        for k, text in enumerate(out[index]):
-            group = str(text).partition(" ")[0]
+        for k in np.argsort(rank[index], kind="stable"):
+            group = str(out[index + (k,)]).partition(" ")[0]
             if group and group != "hub":
                 counts[group] = counts.get(group, 0) + 1
                 out[index + (k,)] = f"{group} {counts[group]}"

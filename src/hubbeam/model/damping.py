@@ -11,6 +11,8 @@ damping forces ``-C1 q1'`` and ``-C2 q2'`` join the elastic rows of Eq. (24):
 * ``{kind: rayleigh, mass_coefficient: alpha, stiffness_coefficient: beta}`` (s-1, s; >= 0):
   ``C = alpha M + beta K`` per block.
 
+The transverse block's mass is ``M2`` with a tip body's rotary inertia (``transverse_mass``).
+
 No ``damping`` (or ``None``) gives zero matrices: the undamped equations, bit for bit. The keys
 and ranges of each kind are checked with the configuration (schema ``damping``).
 """
@@ -21,6 +23,8 @@ from collections.abc import Mapping
 
 import numpy as np
 from scipy.linalg import eigh
+
+from hubbeam.core.system_matrices import transverse_mass
 
 
 def modal_damping(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
@@ -36,7 +40,7 @@ def damping_matrices(damping: Mapping | None, sm) -> np.ndarray:
     C = np.zeros((2, n, n))
     if damping is None:
         return C
-    blocks = ((sm.M1, sm.K1), (sm.M2, sm.K2))
+    blocks = ((sm.M1, sm.K1), (transverse_mass(sm), sm.K2))
     if damping["kind"] == "modal":
         for b, (ratio, (M, K)) in enumerate(zip((damping["axial"], damping["transverse"]), blocks)):
             C[b] = modal_damping(np.asarray(M), np.asarray(K), float(ratio))

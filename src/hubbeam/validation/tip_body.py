@@ -32,7 +32,9 @@ this is the tip-mass equation ``1 + cos z cosh z + mu z (cos z sinh z - sin z co
 (``hubbeam.model.eigen.tip_mass_frequency_roots``), with ``mu = 0`` as well the clamped-free one
 ``1 + cos z cosh z = 0``.
 
-The classic single link of De Luca and Siciliano (1991) is :data:`DE_LUCA_SICILIANO`.
+The classic single link of De Luca and Siciliano (1991) is :data:`DE_LUCA_SICILIANO`;
+:func:`ritz_convergence` sets hubbeam's frequencies (its Ritz model at rest, hub held) beside the
+closed form, and ``python -m hubbeam.validation.tip_body`` prints them for that link.
 """
 
 from __future__ import annotations
@@ -42,7 +44,9 @@ import math
 import numpy as np
 import scipy.optimize
 
-from hubbeam.model.parameters import TipMass, UniformBeam, check_tip
+from hubbeam.model.eigen import natural_frequencies
+from hubbeam.model.matrices import assemble
+from hubbeam.model.parameters import BeamProducts, TipMass, UniformBeam, check_tip
 
 #: De Luca, A. and Siciliano, B. (1991), "Closed-form dynamic model of planar multilink
 #: lightweight robots", IEEE Transactions on Systems, Man, and Cybernetics 21(4), 826-839: the
@@ -135,3 +139,33 @@ def body_frequencies(beam: UniformBeam, tip: TipMass, count: int) -> np.ndarray:
     rhoA, L = beam.rhoA, beam.L
     z = body_frequency_roots(tip.mass / (rhoA * L), tip.inertia / (rhoA * L**3), tip.offset / L, count)
     return z**2 * math.sqrt(beam.EI / (rhoA * L**4))
+
+
+def ritz_convergence(beam: UniformBeam, tip: TipMass, modes, count: int = 3):
+    """The closed-form frequencies (rad s-1) of ``beam`` with ``tip`` at its end (hub held) and
+    hubbeam's (``hubbeam.model.eigen.natural_frequencies`` of ``assemble(beam, tip, n)``) for
+    each ``n`` of ``modes``: ``(exact, ritz)`` of shapes ``(count,)`` and ``(len(modes), count)``.
+    """
+    exact = body_frequencies(beam, tip, count)
+    ritz = np.array([natural_frequencies(assemble(beam, tip, int(n)))[:count] for n in modes])
+    return exact, ritz
+
+
+def main() -> None:
+    """Print the De Luca and Siciliano link's frequencies: published, closed form, and hubbeam's
+    with 5 to 20 modes, for the payload and for the payload as a point mass."""
+    link = DE_LUCA_SICILIANO
+    beam = BeamProducts(L=link["L"], rhoA=link["rhoA"], EI=link["EI"], EA=1.0e4, Jh=0.1, rA=0.0)
+    modes = (5, 10, 15, 20)
+    hz = 1.0 / (2.0 * math.pi)
+    print(f"De Luca and Siciliano (1991) link, clamped at the hub; published: {link['frequencies_hz']} Hz")
+    for label, inertia in (("payload", link["inertia"]), ("point mass", 0.0)):
+        exact, ritz = ritz_convergence(beam, TipMass(link["mass"], link["L"], inertia), modes)
+        print(f"{label}: closed form " + ", ".join(f"{f:.6f}" for f in exact * hz) + " Hz")
+        for n, row in zip(modes, ritz):
+            print(f"  hubbeam, {n:2d} modes: " + ", ".join(f"{f:.6f} ({f / e - 1:+.2e})"
+                                                         for f, e in zip(row * hz, exact * hz)))
+
+
+if __name__ == "__main__":
+    main()

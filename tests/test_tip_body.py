@@ -362,6 +362,18 @@ def test_the_bodys_centre_is_among_the_outputs(_study_config, paper_beam, model)
     assert scale > 1.01 * float(abs(ds.tip_transverse).max())  # the offset adds e v'(L)
 
 
+def test_exported_linear_models_record_the_body(paper_beam, tmp_path):
+    """The netCDF and MATLAB files of the linear models name the body they were built with."""
+    from scipy.io import loadmat
+
+    from hubbeam.linear.export import to_dataset, write_mat
+
+    ds = to_dataset(paper_beam, assemble(paper_beam, BODY, 3), "FOAM", [0.0, 1.0], tip=BODY)
+    mat = loadmat(write_mat(ds, tmp_path / "body.mat"))
+    for attrs in (ds.attrs, {key: float(np.squeeze(mat[key])) for key in ("tip_inertia_kg_m2", "tip_offset_m")}):
+        assert attrs["tip_inertia_kg_m2"] == BODY.inertia and attrs["tip_offset_m"] == BODY.offset
+
+
 # --- bad input ---------------------------------------------------------------------------------
 
 

@@ -26,6 +26,7 @@ from hubbeam.linear.statespace import (
     linear_model,
 )
 from hubbeam.model.beam import beam_attributes
+from hubbeam.model.parameters import TipMass
 from hubbeam.results.io import staged, write_netcdf
 from hubbeam.results.provenance import global_attributes
 
@@ -40,7 +41,7 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
     """The linear models of ``model`` at every speed of ``speeds`` (rad s-1) as a dataset.
 
     Arguments as :func:`hubbeam.linear.linear_model`; ``tip`` (``TipMass`` or None) is the tip
-    mass ``sm`` was assembled with, recorded in the attributes. Every argument is checked before
+    mass or body ``sm`` was assembled with, recorded in the attributes. Every argument is checked before
     the first model is computed.
     """
     check_request(model, hub, outputs)
@@ -74,13 +75,15 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
                                           "poles (> 0: an unstable plant, e.g. TLAM above its "
                                           "critical speed; about 0 for a free hub's rigid mode)"}),
     }
-    mass, position = (0.0, float(beam.L)) if tip is None else (float(tip.mass), float(tip.position))
+    tip = TipMass(0.0, float(beam.L)) if tip is None else tip
     attrs = {
         "title": f"linear models of {first.model}, {hub} hub, about a steady spin",
         "model": first.model,
         "hub": hub,
-        "tip_mass_kg": mass,
-        "tip_position_m": position,
+        "tip_mass_kg": float(tip.mass),
+        "tip_position_m": float(tip.position),
+        "tip_inertia_kg_m2": float(tip.inertia),
+        "tip_offset_m": float(tip.offset),
         "n_modes": int(sm.M2.shape[0]),
         "damped": int(damping is not None and bool(np.any(np.asarray(damping)))),
         "matrix_units": "A, B: the row state's units s-1 per the column state's or input's; C, "
@@ -100,7 +103,8 @@ def write_dataset(ds: xr.Dataset, path: os.PathLike | str) -> Path:
 def write_mat(ds: xr.Dataset, path: os.PathLike | str) -> Path:
     """Write the dataset of :func:`to_dataset` as a MATLAB file (``scipy.io.savemat``): ``A, B, C,
     D`` with the speed as their last index, ``speed``, the names ``states, inputs, outputs`` as
-    cell arrays, and ``model``, ``hub``, ``tip_mass_kg``, ``tip_position_m``, ``n_modes``."""
+    cell arrays, and ``model``, ``hub``, ``tip_mass_kg``, ``tip_position_m``, ``tip_inertia_kg_m2``,
+    ``tip_offset_m``, ``n_modes``."""
     from scipy.io import savemat
 
     def cell(names):
@@ -113,7 +117,7 @@ def write_mat(ds: xr.Dataset, path: os.PathLike | str) -> Path:
                  "states": cell(ds.state.values), "inputs": cell(ds.input.values),
                  "outputs": cell(ds.output.values)}
     contents |= {key: ds.attrs[key] for key in ("model", "hub", "tip_mass_kg", "tip_position_m",
-                                                 "n_modes")}
+                                                 "tip_inertia_kg_m2", "tip_offset_m", "n_modes")}
     path = Path(path)
     with staged(path) as (stand_in,):
         savemat(stand_in, contents, do_compression=True, oned_as="column")

@@ -79,6 +79,7 @@ def simulation_dataset(case: str, spec: dict, *, n_modes: int | None = None, t_e
         "q1": q1, "q2": q2,
         "tip_transverse": tip, "tip_axial": q1.sum(axis=1) * 0.35,
         "tip_foreshortening": -0.6 * tip**2 / 8.0,
+        "body_transverse": tip, "body_axial": q1.sum(axis=1) * 0.35 - 0.6 * tip**2 / 8.0,
         "energy": 0.5 * 230.0 * thd**2, "angular_momentum": 230.0 * thd,
     }
     variables = dict(SIMULATION_VARIABLES)

@@ -293,7 +293,7 @@ def test_key_of_the_other_maneuver_kind(study_config, case, key, kind, allowed):
 @pytest.mark.parametrize("section, key, allowed", [
     ("cases.fig04_foam", "t_ned", "model, maneuver, t_end, modes, tip_mass"),
     ("beam", "colour", "length, density, area"),
-    ("cases.fig10_foam_mt0p1.tip_mass", "offset", "mass, position"),
+    ("cases.fig10_foam_mt0p1.tip_mass", "radius", "mass, position, inertia, offset"),
 ])
 def test_unknown_key_is_named(study_config, section, key, allowed):
     set_at(study_config, f"{section}.{key}", 1.5)
@@ -552,3 +552,23 @@ def test_every_pattern_of_the_schema_is_said_in_words():
 
     used = set(patterns(SCHEMA))
     assert used and used <= set(_PATTERNS), used - set(_PATTERNS)
+
+
+def test_a_tip_body_is_read_with_its_inertia_and_offset(study_config):
+    study_config["cases"]["fig10_foam_mt0p1"]["tip_mass"] |= {"inertia": 5e-4, "offset": 0.02}
+    validate_config(study_config)
+    case = from_config(study_config).cases["fig10_foam_mt0p1"]
+    assert case.tip_mass == TipMass(0.1, 8.0, 5e-4, 0.02)
+    assert case.to_dict()["tip_mass"] == {"mass": 0.1, "position": 8.0, "inertia": 5e-4, "offset": 0.02}
+    assert "inertia" not in from_config(study_config).cases["fig10_tlam_mt0p1"].to_dict()["tip_mass"]
+
+
+@pytest.mark.parametrize("changes, key, fragments", [
+    ({"inertia": -1e-3}, "inertia", ["got -0.001", "allowed: a number >= 0"]),
+    ({"position": 2.0, "offset": -2.5}, "offset", ["got -2.5", "allowed: offset >= -position = -2.0"]),
+])
+def test_a_tip_body_with_a_negative_inertia_or_a_centre_in_the_hub_is_refused(study_config, changes, key, fragments):
+    cases = study_config["cases"]
+    last = sorted(cases)[-1]
+    cases[last]["tip_mass"] = {"mass": 0.1} | changes
+    assert_reported(problems_of(study_config), f"cases.{last}.tip_mass.{key}", *fragments)

@@ -8,7 +8,9 @@
 
 The point cloud and matrices here are synthetic but consistent (every matrix is the point-cloud
 sum of its integrand), so these tests check the algebra of the models independently of the mode
-shapes and quadrature.
+shapes and quadrature. Every test runs on a cloud whose last point is a point mass and on one
+whose last point carries a tip body's rotary inertia ``Jt`` (turning with the slope ``dF2t . q2``,
+kinetic energy ``Jt (theta' + dF2t . q2')^2 / 2``, docs/tip-body.md).
 """
 
 import numpy as np
@@ -37,7 +39,7 @@ def _spd(rng, n, scale):
     return scale * (a @ a.T + n * np.eye(n))
 
 
-def make_cloud(n=3, npts=9, seed=0, tip_mass=0.3):
+def make_cloud(n=3, npts=9, seed=0, tip_mass=0.3, rotary_inertia=0.0):
     rng = np.random.default_rng(seed)
     rA = 0.5
     x = np.sort(rng.uniform(0.0, 8.0, npts))
@@ -68,6 +70,8 @@ def make_cloud(n=3, npts=9, seed=0, tip_mass=0.3):
         f1L=F1[-1].copy(),
         f2L=F2[-1].copy(),
         SL=S[-1].copy(),
+        Jt=rotary_inertia,
+        dF2t=rng.normal(size=n),
     )
 
 
@@ -86,7 +90,8 @@ def exact_kinetic_energy(sm, y, v):
     Xd = sm.F1 @ q1d - Sq2 @ q2d
     Yd = sm.F2 @ q2d
     speed2 = (Xd - thd * Y) ** 2 + (Yd + thd * X) ** 2
-    return 0.5 * sm.Jh * thd**2 + 0.5 * np.sum(sm.w * speed2)
+    rotation = thd + sm.dF2t @ q2d  # the tip body's angular rate
+    return 0.5 * sm.Jh * thd**2 + 0.5 * np.sum(sm.w * speed2) + 0.5 * sm.Jt * rotation**2
 
 
 def truncated_kinetic_energy(sm, y, v, order=2):
@@ -141,8 +146,16 @@ def jitted_system(model, sm, y, v, tau=0.0):
     return M, F
 
 
+def rotary_mass(sm):
+    """The mass matrix of the tip body's rotation, ``Jt e^T e`` with ``e = (1, 0, dF2t)``."""
+    n = sm.M1.shape[0]
+    e = np.concatenate([[1.0], np.zeros(n), sm.dF2t])
+    return sm.Jt * np.outer(e, e)
+
+
 def paper_foam(sm, y, v, tau, with_D=True):
-    """Plain numpy transcription of Eqs. (24)-(34) (FOAM) and of TLAM (with_D=False)."""
+    """Plain numpy transcription of Eqs. (24)-(34) (FOAM) and of TLAM (with_D=False), with the
+    tip body's rotary inertia."""
     n = sm.M1.shape[0]
     _, q1, q2 = split(y, n)
     thd, q1d, q2d = split(v, n)
@@ -156,7 +169,7 @@ def paper_foam(sm, y, v, tau, with_D=True):
             [M_thq1[:, None], sm.M1, np.zeros((n, n))],
             [M_thq2[:, None], np.zeros((n, n)), sm.M2],
         ]
-    )
+    ) + rotary_mass(sm)
     G = np.block(
         [
             [np.zeros((1, 1)), np.zeros((1, n)), np.zeros((1, n))],
@@ -177,9 +190,9 @@ def paper_foam(sm, y, v, tau, with_D=True):
     return M, F
 
 
-@pytest.fixture(scope="module")
-def sm():
-    return make_cloud()
+@pytest.fixture(scope="module", params=[0.0, 7.5], ids=["point_mass", "body"])
+def sm(request):
+    return make_cloud(rotary_inertia=request.param)
 
 
 @pytest.fixture(scope="module")
@@ -217,7 +230,7 @@ def test_sfoam_is_equation_40(sm, state):
             [np.array([[sm.Jh + sm.Jb + q2 @ (sm.M2 - sm.D) @ q2]]), sm.V2[None, :]],
             [sm.V2[:, None], sm.M2],
         ]
-    )
+    ) + rotary_mass(sm)[np.ix_(hub, hub)]
     F40 = np.concatenate([[3.0], -(sm.K2 - thd**2 * sm.M2 + thd**2 * sm.D) @ q2])
     np.testing.assert_allclose(M[np.ix_(hub, hub)], M40, rtol=1e-13)
     np.testing.assert_allclose(F[hub], F40, rtol=1e-13, atol=1e-12)
@@ -412,8 +425,10 @@ def test_dataset_outputs_equal_the_general_equations(sm, state, maneuver, model)
         eom.add_damping(C, vv, ws.F)
         torque, q_theta, e, p = eom.outputs(kind, tau, yy, vv, sm, free, a, ws)
         dissipation = vv[1:1 + n] @ C[0] @ vv[1:1 + n] + vv[1 + n:] @ C[1] @ vv[1 + n:]
+        q1, q2 = yy[1:1 + n], yy[1 + n:]  # the body's centre is the last point of the cloud
+        body = (sm.F2[-1] @ q2, sm.F1[-1] @ q1 - 0.5 * q2 @ sm.S[-1] @ q2)
         expected[k, :N_SCALAR] = (yy[0], vv[0], a[0], torque, q_theta,
-                                  *eom.tip_outputs(yy, sm), e, p, dissipation)
+                                  *eom.tip_outputs(yy, sm), e, p, dissipation, *body)
         expected[k, N_SCALAR:N_SCALAR + 2 * n] = yy[1:]
         if model.exact_kinetic_energy:
             dM = eom.high_order_terms(ws.M, ws.F, tau, (yy, vv, a), inputs, Mf, Ff, dQ)

@@ -51,6 +51,8 @@ from hubbeam.simulation.simulate import simulate
 
 EPS = np.finfo(float).eps
 TIP = TipMass(mass=0.5, position=8.0)
+#: a tip body: the mass with rotary inertia and its centre beyond the tip (docs/tip-body.md)
+BODY = TipMass(mass=0.5, position=8.0, inertia=2.0, offset=0.3)
 MODAL = {"kind": "modal", "axial": 0.02, "transverse": 0.05}
 
 
@@ -90,7 +92,7 @@ def scaled(lm, sm):
 
 
 @pytest.mark.parametrize("model", MODELS)
-@pytest.mark.parametrize("tip", [None, TIP], ids=["no_tip", "tip"])
+@pytest.mark.parametrize("tip", [None, TIP, BODY], ids=["no_tip", "tip", "body"])
 @pytest.mark.parametrize("damping", [None, MODAL], ids=["undamped", "modal"])
 @pytest.mark.parametrize("hub", HUBS)
 def test_assembled_and_jacobian_routes_agree(beam, matrices, model, tip, damping, hub):
@@ -116,7 +118,7 @@ def test_assembled_and_jacobian_routes_agree(beam, matrices, model, tip, damping
 
 
 @pytest.mark.parametrize("model", MODELS)
-@pytest.mark.parametrize("tip", [None, TIP], ids=["no_tip", "tip"])
+@pytest.mark.parametrize("tip", [None, TIP, BODY], ids=["no_tip", "tip", "body"])
 def test_steady_spin_needs_no_torque(beam, matrices, model, tip):
     """At the operating point with zero torque every acceleration of the nonlinear equations
     vanishes, damping included (it acts on the elastic rates, zero there): what is left is the

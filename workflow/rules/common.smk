@@ -206,18 +206,20 @@ def simulation_matrices(wildcards):
 
 
 def matrices_configurations():
-    """{name: {"mass", "position", "modes"}} over the tip masses of the configured cases."""
+    """{name: {"mass", "position", "inertia", "offset", "modes"}} over the tip masses (or bodies) of the
+    configured cases."""
     from hubbeam.model.matrices import configuration_name
     from hubbeam.model.parameters import TipMass
 
     configurations = {}
     for case in SETTINGS.cases.values():
         tip = case.tip_mass
-        if tip.mass == 0.0:
+        if tip.mass == 0.0 and tip.is_point:
             tip = TipMass(mass=0.0, position=config["beam"]["length"])
         entry = configurations.setdefault(
             configuration_name(tip),
-            {"mass": tip.mass, "position": tip.position, "modes": case.modes},
+            {"mass": tip.mass, "position": tip.position, "inertia": tip.inertia, "offset": tip.offset,
+             "modes": case.modes},
         )
         entry["modes"] = max(entry["modes"], case.modes)
     return configurations

@@ -8,7 +8,7 @@ from hubbeam.results.provenance import global_attributes
 
 p = snakemake.params
 params = beam_from_config(p.beam)
-tip = TipMass(mass=p.configuration["mass"], position=p.configuration["position"])
+tip = TipMass(**{key: value for key, value in p.configuration.items() if key != "modes"})
 sm = assemble(params, tip, p.configuration["modes"], p.n_quad)
 ds = to_dataset(sm, params, tip, n_quad_requested=p.n_quad)
 ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)

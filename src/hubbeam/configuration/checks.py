@@ -1,16 +1,15 @@
 """Checks of a configuration that a JSON schema cannot express (:func:`physical_problems`).
 
-The tip mass lies on the beam (``0 <= l <= L``), every case spans at least one output step, grids
-increase, numbers are finite, case names stay distinct on case-insensitive file systems, keys are
-text; a beam has the keys of one form only (the forms and their keys are the schema's), stations
-run from x = 0 to x = L, tables of stations and times increase, a case can start from its
-``initial`` state (one value per mode, no axial coordinates for SFOAM, a prescribed hub at its
-maneuver's speed at t = 0), a study (``study`` section) neither
-takes a folder of the paper's products nor compares unknown cases, and no case, validation run or
-sweep would need more memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.results.variables`). Each
-check runs only on values the schema accepted, and each problem names the key, the value and what
-is allowed.
-"""
+The tip mass lies on the beam (``0 <= l <= L``) and a tip body's centre beyond the root, every
+case spans at least one output step, grids increase, numbers are finite, case names stay
+distinct on case-insensitive file systems, keys are text; a beam has the keys of one form only
+(the forms and their keys are the schema's), stations run from x = 0 to x = L, tables of stations
+and times increase, a case can start from its ``initial`` state (one value per mode, no axial
+coordinates for SFOAM, a prescribed hub at its maneuver's speed at t = 0), a state feedback names
+states and signals its models have, a study (``study`` section) neither takes a folder of the
+paper's products nor compares unknown cases, and no case, validation run or sweep would need more
+memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.results.variables`). Each check runs only
+on values the schema accepted, and each problem names the key, the value and what is allowed."""
 
 from __future__ import annotations
 
@@ -89,6 +88,12 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
         if position is not None and length is not None and position > length:
             problems.append(Problem(f"cases.{name}.tip_mass.position",
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
+        offset = _number(_section(case, "tip_mass").get("offset"))
+        attached = position if position is not None else length
+        if offset is not None and attached is not None and attached + offset < 0.0:
+            problems.append(Problem(f"cases.{name}.tip_mass.offset",
+                                    f"got {offset}; allowed: offset >= -position = {-attached} (the body's centre "
+                                    "on the beam's side of the clamped root, not inside the hub)"))
         entry_problems = _case_entry_problems(f"cases.{name}", case)
         modes = _integer(case.get("modes", numerics.get("modes")))
         problems += entry_problems + _initial_problems(f"cases.{name}", case, modes, check_speed=not entry_problems)

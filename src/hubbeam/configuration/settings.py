@@ -92,12 +92,19 @@ class Case:
         settings = {} if self.name is None else {"name": self.name}
         settings |= {"model": self.model, "maneuver": self.maneuver.to_dict(),
                      "t_end": self.t_end, "modes": self.modes,
-                     "tip_mass": {"mass": self.tip_mass.mass, "position": self.tip_mass.position}}
+                     "tip_mass": tip_mass_to_dict(self.tip_mass)}
         if self.damping is not None:
             settings["damping"] = damping_to_dict(self.damping)
         if self.initial is not None:
             settings["initial"] = self.initial.to_dict()
         return settings
+
+
+def tip_mass_to_dict(tip: TipMass) -> dict:
+    """``{mass, position}`` of a tip mass as a configuration writes it, with ``inertia`` and
+    ``offset`` for a body (left out for a point mass, which a dataset records as before)."""
+    plain = {"mass": tip.mass, "position": tip.position}
+    return plain if tip.is_point else plain | {"inertia": tip.inertia, "offset": tip.offset}
 
 
 @dataclass(frozen=True)
@@ -223,7 +230,8 @@ def case_from_config(cfg: Mapping, name: str) -> Case:
     return Case(name=None if name == UNNAMED else name, model=case["model"],
                 maneuver=maneuver_from_dict(case["maneuver"]), t_end=float(case["t_end"]),
                 modes=int(case.get("modes", cfg["numerics"]["modes"])),
-                tip_mass=TipMass(float(tip.get("mass", 0.0)), float(tip.get("position", cfg["beam"]["length"]))),
+                tip_mass=TipMass(float(tip.get("mass", 0.0)), float(tip.get("position", cfg["beam"]["length"])),
+                                 float(tip.get("inertia", 0.0)), float(tip.get("offset", 0.0))),
                 damping=damping_from_dict(case.get("damping")),
                 initial=InitialState.from_dict(case["initial"]) if "initial" in case else None)
 

@@ -155,7 +155,7 @@ def feedback_law(case: Case, sm, beam) -> tuple[FeedbackLaw, dict]:
     speed = maneuver.reference.final_speed
     steady_spin_check(f"{_where(case)}.reference.wf", sm, traits, speed)
     stretch = np.linalg.solve(sm.K1 - speed**2 * sm.M1, sm.V1) if traits.keeps_axial else np.zeros(n)
-    inertia = float(sm.Jh + sm.Jb) if maneuver.feedforward else 0.0
+    inertia = float(sm.Jh + sm.Jb + sm.Jt) if maneuver.feedforward else 0.0  # the rigid inertia, a body's too
     attributes["feedback_gains"] = json.dumps(
         {name: value for name, value in zip(coordinate_names(n), gains.tolist(), strict=True)
          if name in kept})

@@ -46,6 +46,10 @@ and with them every entry of ``M = Jh e e^T + sum w J^T J`` and ``F = tau e - K 
 (``M1, M2, K1, K2, Jh`` are the :class:`~hubbeam.model.matrices.SystemMatrices` fields the point-cloud
 kernel uses directly; ``M1c, M2c`` are their point-cloud sums, equal to them up to rounding.)
 
+A tip body's rotary inertia ``Jt`` (``docs/tip-body.md``, ``g = f2'(l)``) adds the constant
+``Jt``, ``Jt g`` and ``Jt g^T g`` to ``M_thth``, ``M_thq2`` and ``M_q2q2`` and nothing to the force:
+:func:`cfoam_tensors` folds them into ``Jb``, ``V2`` and ``M2`` (each used only there).
+
 Symmetry. ``W`` and ``G`` are symmetric, and so are the quadratic forms in ``q2`` and ``q2'``, so
 the 4-index work runs over packed pairs ``p = (a <= b)``, ``m = n (n + 1) / 2`` of them: with
 ``Q_p = q2_a q2_b`` and ``U_p = q2'_a q2'_b`` (doubled for ``a < b``),
@@ -73,9 +77,10 @@ from hubbeam.core.jit import borrowing_kernel, kernel
 #: Pre-contracted point-cloud sums of CFOAM (see the module docstring), built by
 #: :func:`cfoam_tensors`:
 #:
-#: * ``Jh``: hub inertia; ``Jb``: ``sum w (rA + x)^2``;
-#: * ``vecs`` (2, n): ``V1, V2``;
-#: * ``mats`` (8, n, n): ``M1, M2, K1, K2`` (from SystemMatrices), ``M1c, M2c, R, D`` (sums);
+#: * ``Jh``: hub inertia; ``Jb``: ``sum w (rA + x)^2 + Jt``;
+#: * ``vecs`` (2, n): ``V1``, ``V2 + Jt g``;
+#: * ``mats`` (8, n, n): ``M1, M2 + Jt g^T g, K1, K2`` (from SystemMatrices), ``M1c, M2c, R, D``
+#:   (sums);
 #: * ``A`` (2, n, n, n): ``A1, A2``;
 #: * ``T`` (2, m, m): ``TW, TG`` over packed pairs;
 #: * ``work`` (4, m): scratch for ``Q, U, W, G`` (packed) of the state, overwritten by every call of
@@ -147,6 +152,12 @@ def cfoam_tensors(sm):
                         T[1, po, p] += wk * S[i, j] * S[a, b]
                         p += 1
                 po += 1
+    if sm.Jt != 0.0:  # the tip body's rotary inertia (module docstring)
+        Jb += sm.Jt
+        for i in range(n):
+            vecs[1, i] += sm.Jt * sm.dF2t[i]
+            for j in range(n):
+                mats[_M2, i, j] += sm.Jt * sm.dF2t[i] * sm.dF2t[j]
     return CfoamTensors(float(sm.Jh), Jb, vecs, mats, A, T, np.empty((4, m)))
 
 

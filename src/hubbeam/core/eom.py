@@ -18,7 +18,11 @@ the form of Eq. (24) with the gyroscopic, stiffness and velocity terms moved to 
 
       M = Jh e e^T + sum_k w_k J_k^T J_k,   F = tau e - K y - sum_k w_k J_k^T b_k,
 
-  summed over the point cloud (Gauss nodes of the beam and the tip mass).
+  summed over the point cloud (Gauss nodes of the beam and the tip body's centre).
+
+A tip body's rotary inertia ``Jt`` (``SystemMatrices.Jt``, ``docs/tip-body.md``) adds
+``Jt (theta' + f2'(l) q2')^2 / 2`` to the kinetic energy of every model: constant entries of the
+mass matrix (:func:`add_rotary_inertia`) and no force.
 
 A model enters as its :class:`~hubbeam.core.inputs.ModelTraits` (``traits``), built from the one
 table of models (``hubbeam.model.models``): the kernels branch on what a model keeps, never on its name.
@@ -95,6 +99,23 @@ def dissipation_rate(C, v):
 
 
 @borrowing_kernel
+def add_rotary_inertia(sm, M):
+    """Add the tip body's rotary inertia to the mass matrix ``M`` of ``y = (theta, q1, q2)``: the
+    rates' Hessian of ``Jt (theta' + g q2')^2 / 2``, ``g = f2'(l)`` (``sm.dF2t``): ``Jt`` on the
+    hub, ``Jt g`` between the hub and ``q2``, ``Jt g^T g`` on ``q2``."""
+    n = sm.M1.shape[0]
+    o2 = 1 + n
+    Jt = sm.Jt
+    M[0, 0] += Jt
+    for i in range(n):
+        c = Jt * sm.dF2t[i]
+        M[0, o2 + i] += c
+        M[o2 + i, 0] += c
+        for j in range(n):
+            M[o2 + i, o2 + j] += c * sm.dF2t[j]
+
+
+@borrowing_kernel
 def _elastic_forces(cD, y, v, sm, out):
     """The q1 and q2 rows of FOAM's right-hand side (``cD = 0``: TLAM) into ``out[1:]``:
     ``Q_q1 - K_q1q1 q1 - 2 thd G_q1q2 q2'`` and ``-K_q2q2 q2 - 2 thd G_q2q1 q1'`` (Eqs. 29-31,
@@ -160,6 +181,8 @@ def foam_system(traits, y, v, tau, sm, M, F):
     F[0] = tau + q_theta
 
     _elastic_forces(cD, y, v, sm, F)
+    if sm.Jt != 0.0:
+        add_rotary_inertia(sm, M)
 
     if not traits.keeps_axial:
         # Eq. (40): q1 rows decoupled (held at zero by the caller)
@@ -250,6 +273,8 @@ def _cfoam_system(y, v, tau, sm, M, F):
             F[o1 + i] -= sm.K1[i, j] * y[o1 + j]
             F[o2 + i] -= sm.K2[i, j] * y[o2 + j]
     F[0] += tau
+    if sm.Jt != 0.0:
+        add_rotary_inertia(sm, M)
 
 
 @kernel
@@ -473,6 +498,21 @@ def tip_outputs(y, sm):
         axial += sm.f1L[i] * y[1 + i]
     foreshortening = -0.5 * _quad(sm.SL, y, y, n, 1 + n, 1 + n)
     return transverse, axial, foreshortening
+
+
+@borrowing_kernel
+def body_outputs(y, sm):
+    """Displacement of the tip body's centre, the last point of the cloud (``docs/tip-body.md``):
+    transverse ``(f2(l) + e f2'(l)) q2`` and axial ``f1(l) q1 - q2^T (S(l) + e f2'(l)^T f2'(l)) q2
+    / 2``; the beam tip's values (:func:`tip_outputs`) for no tip mass."""
+    n = sm.f1L.shape[0]
+    k = sm.x.shape[0] - 1
+    transverse = 0.0
+    axial = 0.0
+    for i in range(n):
+        transverse += sm.F2[k, i] * y[1 + n + i]
+        axial += sm.F1[k, i] * y[1 + i]
+    return transverse, axial - 0.5 * _quad(sm.S[k], y, y, n, 1 + n, 1 + n)
 
 
 @borrowing_kernel

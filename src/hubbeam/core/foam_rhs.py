@@ -10,20 +10,23 @@ affine in the hub rate and acceleration:
     u   = thd^2 b0 + (P0 + thd^2 P1) e + (2 thd P2 + P3) e',       r = b1 + P2 e,
 
     P0 = -Me^-1 diag(K1, K2),     P1 = Me^-1 diag(M1, M2 - D),   P2 = Me^-1 [[0, R], [-R^T, 0]],
-    P3 = -Me^-1 diag(C1, C2),     b0 = Me^-1 (V1, 0),            b1 = Me^-1 (0, -V2),
+    P3 = -Me^-1 diag(C1, C2),     b0 = Me^-1 (V1, 0),            b1 = Me^-1 (0, -V2t),
 
 all restricted to the free elastic coordinates, so that an evaluation costs a few ``n x n``
 products instead of assembling and factoring ``M(y)``; ``C1, C2`` are the damping matrices of
 the elastic coordinates (``hubbeam.model.damping``; zero by default, when ``P3 = 0`` adds exact zeros).
+A tip body's rotary inertia ``Jt`` (``docs/tip-body.md``, ``g = f2'(l)``) joins the constant mass:
+``Me = diag(M1, M2 + Jt g^T g)``, ``V2t = V2 + Jt g`` and ``J0`` below; ``G`` keeps ``M2`` (the
+centrifugal terms of the translating masses).
 For a prescribed hub (Eq. 43, a speed table) theta_ddot is known. For a free hub (Eq. 44, a
 torque table, PD or state feedback) the hub row ``m00 theta_ddot + c . e'' = tau + Q_theta``
-(Eqs. 25-27, 32) with ``c = C0 + C1 e = (-R q2, V2 + R^T q1)`` is solved by eliminating ``e''``
+(Eqs. 25-27, 32) with ``c = C0 + C1 e = (-R q2, V2t + R^T q1)`` is solved by eliminating ``e''``
 (a Schur complement of the constant block):
 
     theta_ddot = (tau + Q_theta - c . u) / (m00 + c . r),
     m00 = J0 + e^T G e + 2 g . e,     Q_theta = -2 thd (e^T G e' + g . e'),
 
-with ``J0 = Jh + Jb``, ``G = diag(M1, M2 - D)`` and ``g = (V1, 0)`` (SFOAM: ``Q_theta`` deleted).
+with ``J0 = Jh + Jb + Jt``, ``G = diag(M1, M2 - D)`` and ``g = (V1, 0)`` (SFOAM: ``Q_theta`` deleted).
 The same hub row gives the outputs of a state (:func:`foam_outputs`): the angular momentum
 ``p_theta = m00 thd + c . e'``, the kinetic energy ``(m00 thd^2 + 2 thd c . e' + e'^T Me e') / 2``
 and, for a prescribed hub, the torque it requires, ``m00 theta_ddot + c . e'' - Q_theta``.
@@ -64,7 +67,7 @@ def foam_problem(inputs):
     m = 2 * n
     cD = 1.0 if traits.softening_terms else 0.0
     # on (q1, q2): diag(K1, K2), G = diag(M1, M2 - D), [[0, R], [-R^T, 0]], diag(C1, C2),
-    # Me = diag(M1, M2), and the vectors (V1, 0), (0, -V2)
+    # Me = diag(M1, M2 + Jt g^T g), and the vectors (V1, 0), (0, -V2t), V2t = V2 + Jt g
     A = np.zeros((5, m, m))
     f = np.zeros((2, m))
     for i in range(n):
@@ -81,6 +84,11 @@ def foam_problem(inputs):
             A[3, n + i, n + j] = C[1, i, j]
             A[4, i, j] = sm.M1[i, j]
             A[4, n + i, n + j] = sm.M2[i, j]
+    if sm.Jt != 0.0:  # the tip body's rotary inertia, g = f2'(l)
+        for i in range(n):
+            f[1, n + i] -= sm.Jt * sm.dF2t[i]
+            for j in range(n):
+                A[4, n + i, n + j] += sm.Jt * sm.dF2t[i] * sm.dF2t[j]
     # Me^-1 times the first four matrices (column by column) and the two vectors
     factor = A[4].copy()
     cholesky_factor(factor)
@@ -107,7 +115,7 @@ def foam_problem(inputs):
         b[B0, i] = fx[0, r]
         b[B1, i] = fx[1, r]
         b[G_VEC, i] = f[0, r]
-        b[C0, i] = sm.V2[r - n] if r >= n else 0.0
+        b[C0, i] = -f[1, r] if r >= n else 0.0  # V2t on q2
         for j in range(ne):
             c = elastic[j]
             P[P0, i, j] = -X[0, r, c]
@@ -118,7 +126,7 @@ def foam_problem(inputs):
             P[P3, i, j] = -X[3, r, c]
             P[ME, i, j] = A[4, r, c]
     q_theta_factor = 1.0 if traits.hub_velocity_force else 0.0
-    scalars = np.array([sm.Jh + sm.Jb, q_theta_factor])
+    scalars = np.array([sm.Jh + sm.Jb + sm.Jt, q_theta_factor])
     return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)))
 
 

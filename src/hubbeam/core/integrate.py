@@ -29,6 +29,7 @@ from hubbeam.core.cfoam_rhs import cfoam_problem
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
 from hubbeam.core.eom import (
     add_damping,
+    body_outputs,
     dissipation_rate,
     free_dofs,
     high_order_terms,
@@ -46,10 +47,11 @@ from hubbeam.core.radau import radau5
 #: Columns of the output array: these, then ``q1[0..n-1]``, ``q2[0..n-1]``, then the CFOAM
 #: high-order terms ``dM_thth``, ``dQ_theta``, ``dQ_q1[0..n-1]``, ``dQ_q2[0..n-1]`` (NaN for the
 #: other models); see :func:`output_columns`. ``dissipation_rate`` is the power of the damping
-#: forces (:func:`hubbeam.core.eom.dissipation_rate`).
+#: forces (:func:`hubbeam.core.eom.dissipation_rate`); ``body_transverse`` and ``body_axial`` the
+#: displacement of the tip body's centre (:func:`hubbeam.core.eom.body_outputs`).
 SCALAR_OUTPUTS = ("theta", "theta_dot", "theta_ddot", "hub_torque", "Q_theta", "tip_transverse",
                   "tip_axial", "tip_foreshortening", "energy", "angular_momentum",
-                  "dissipation_rate")
+                  "dissipation_rate", "body_transverse", "body_axial")
 N_SCALAR = len(SCALAR_OUTPUTS)
 
 
@@ -108,11 +110,12 @@ def _start_row(out, k, free, states, y, v):
 
 
 @inline_kernel
-def _write_row(out_row, y, v, a, hub, tip, dissipation):
+def _write_row(out_row, y, v, a, hub, ends, dissipation):
     """The columns of :data:`SCALAR_OUTPUTS` and ``q1``, ``q2`` of one output time: ``hub`` is
-    ``(torque, Q_theta, total energy, angular momentum)``, ``tip`` is ``eom.tip_outputs`` and
-    ``dissipation`` the dissipation rate of the state."""
+    ``(torque, Q_theta, total energy, angular momentum)``, ``ends`` is ``(eom.tip_outputs,
+    eom.body_outputs)`` and ``dissipation`` the dissipation rate of the state."""
     torque, q_theta, e, p = hub
+    tip, body = ends
     out_row[0] = y[0]
     out_row[1] = v[0]
     out_row[2] = a[0]
@@ -124,6 +127,8 @@ def _write_row(out_row, y, v, a, hub, tip, dissipation):
     out_row[8] = e
     out_row[9] = p
     out_row[10] = dissipation
+    out_row[11] = body[0]
+    out_row[12] = body[1]
     for i in range(y.shape[0] - 1):
         out_row[N_SCALAR + i] = y[1 + i]
 
@@ -148,7 +153,8 @@ def _foam_rows(problem, inputs, damped, free, states, out, work):
         for i in range(free.shape[0]):
             a[free[i]] = af[i]
         _write_row(out[k], y, v, a, (torque, q_theta, kinetic + strain_energy(y, sm.K1, sm.K2), p),
-                   tip_outputs(y, sm), dissipation_rate(inputs.C, v) if damped else 0.0)
+                   (tip_outputs(y, sm), body_outputs(y, sm)),
+                   dissipation_rate(inputs.C, v) if damped else 0.0)
 
 
 @kernel
@@ -184,7 +190,7 @@ def _fill_rows_cfoam(ct, inputs, free, states, out):
         cfoam_system(y, v, tau, ct, ws.M, ws.F)
         add_damping(C, v, ws.F)
         hub = outputs(inputs.kind, tau, y, v, sm, free, a, ws)
-        _write_row(out[k], y, v, a, hub, tip_outputs(y, sm),
+        _write_row(out[k], y, v, a, hub, (tip_outputs(y, sm), body_outputs(y, sm)),
                    dissipation_rate(C, v) if damped else 0.0)
         out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, (y, v, a), inputs, Mf, Ff, dQ)
         for i in range(N):

@@ -83,7 +83,8 @@ def matrices_at(stack, k):
     return SystemMatrices(stack.Jh[k], stack.Jb[k], stack.K1[k], stack.K2[k], stack.M1[k],
                           stack.M2[k], stack.V1[k], stack.V2[k], stack.D[k], stack.R[k],
                           stack.rA[k], stack.x[k], stack.w[k], stack.F1[k], stack.F2[k],
-                          stack.S[k], stack.f1L[k], stack.f2L[k], stack.SL[k])
+                          stack.S[k], stack.f1L[k], stack.f2L[k], stack.SL[k], stack.Jt[k],
+                          stack.dF2t[k])
 
 
 @kernel

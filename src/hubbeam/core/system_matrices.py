@@ -3,6 +3,14 @@
 Defined in the core so that jitted code can build it (``core.sweep.matrices_at``) without
 importing the rest of the package; :func:`hubbeam.model.matrices.assemble` fills it (Eqs. 13-20 and the
 tip-mass terms of the Appendix).
+
+The tip body (``hubbeam.model.parameters.TipMass``, ``docs/tip-body.md``) enters twice. Its mass
+is the last point of the point cloud, at its centre of mass, and is summed into ``Jb``, ``M1``,
+``M2``, ``V1``, ``V2``, ``D``, ``R`` like every other mass point. Its rotary inertia ``Jt`` about
+that centre turns with the hub and the beam's slope ``v'(l) = dF2t . q2`` at the attachment: it
+adds ``Jt (theta' + dF2t . q2')^2 / 2`` to the kinetic energy, a constant block of the mass matrix
+that the fields leave out (``M2`` also carries the centrifugal terms ``theta'^2 q2^T M2 q2 / 2``
+of the translating masses, which the rotation lacks) and :func:`rotary_mass` gives.
 """
 
 from typing import NamedTuple
@@ -36,3 +44,25 @@ class SystemMatrices(NamedTuple):
     f1L: np.ndarray  # (n,) f1(L), kg-1/2
     f2L: np.ndarray  # (n,) f2(L), kg-1/2
     SL: np.ndarray  # (n, n) S(L), kg-1 m-1
+    Jt: float  # rotary inertia of the tip body about its centre, kg m2
+    dF2t: np.ndarray  # (n,) f2'(l), the slope at the tip body's attachment, kg-1/2 m-1
+
+
+def rotary_mass(sm):
+    """The tip body's rotary inertia in the mass matrix of ``y = (theta, q1, q2)``: its hub entry
+    ``Jt``, its hub-``q2`` coupling ``Jt f2'(l)`` and its ``q2``-``q2`` block
+    ``Jt f2'(l)^T f2'(l)`` (the Hessian in the rates of ``Jt (theta' + f2'(l) q2')^2 / 2``).
+
+    Exact zeros for a body without rotary inertia (the point tip mass), so that adding them changes
+    no value."""
+    g = np.asarray(sm.dF2t, dtype=float)
+    Jt = float(sm.Jt)
+    return Jt, Jt * g, Jt * np.multiply.outer(g, g)
+
+
+def transverse_mass(sm):
+    """The ``q2``-``q2`` block of the mass matrix: ``M2`` (the translating masses, Eq. 16) plus the
+    tip body's rotary inertia ``Jt f2'(l)^T f2'(l)``; ``M2`` itself when ``Jt = 0``."""
+    if float(sm.Jt) == 0.0:
+        return sm.M2
+    return sm.M2 + rotary_mass(sm)[2]

@@ -35,6 +35,7 @@ from hubbeam.linear.statespace import (
 )
 from hubbeam.linear.voltage import check_motor, voltage_model
 from hubbeam.model.beam import beam_attributes
+from hubbeam.model.parameters import TipMass
 from hubbeam.results.io import staged, write_netcdf
 from hubbeam.results.provenance import global_attributes
 
@@ -63,8 +64,8 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
     """The linear models of ``model`` at every speed of ``speeds`` (rad s-1) as a dataset.
 
     Arguments as :func:`hubbeam.linear.linear_model`; ``tip`` (``TipMass`` or None) is the tip
-    mass ``sm`` was assembled with, recorded in the attributes; ``motor``, ``sample_time`` and
-    ``delay`` as in the module docstring. Every argument is checked before the first model is
+    mass or body ``sm`` was assembled with, recorded in the attributes; ``motor``, ``sample_time``
+    and ``delay`` as in the module docstring. Every argument is checked before the first model is
     computed.
     """
     check_request(model, hub, outputs)
@@ -110,13 +111,15 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
                                           "poles (> 0: an unstable plant, e.g. TLAM above its "
                                           "critical speed; about 0 for a free hub's rigid mode)"}),
     }
-    mass, position = (0.0, float(beam.L)) if tip is None else (float(tip.mass), float(tip.position))
+    tip = TipMass(0.0, float(beam.L)) if tip is None else tip
     attrs = {
         "title": f"linear models of {first.model}, {hub} hub, about a steady spin",
         "model": first.model,
         "hub": hub,
-        "tip_mass_kg": mass,
-        "tip_position_m": position,
+        "tip_mass_kg": float(tip.mass),
+        "tip_position_m": float(tip.position),
+        "tip_inertia_kg_m2": float(tip.inertia),
+        "tip_offset_m": float(tip.offset),
         "n_modes": int(sm.M2.shape[0]),
         "damped": int(damping is not None and bool(np.any(np.asarray(damping)))),
         "matrix_units": "A, B: the row state's units s-1 per the column state's or input's; C, "
@@ -154,8 +157,9 @@ def write_dataset(ds: xr.Dataset, path: os.PathLike | str) -> Path:
 def write_mat(ds: xr.Dataset, path: os.PathLike | str) -> Path:
     """Write the dataset of :func:`to_dataset` as a MATLAB file (``scipy.io.savemat``): ``A, B, C,
     D`` with the speed as their last index, ``speed``, the names ``states, inputs, outputs`` as
-    cell arrays, and ``model``, ``hub``, ``tip_mass_kg``, ``tip_position_m``, ``n_modes`` (and,
-    where present, ``sample_time_s``, ``input_delay_samples``, ``operating_voltage``)."""
+    cell arrays, and ``model``, ``hub``, ``tip_mass_kg``, ``tip_position_m``, ``tip_inertia_kg_m2``,
+    ``tip_offset_m``, ``n_modes`` (and, where present, ``sample_time_s``, ``input_delay_samples``,
+    ``operating_voltage``)."""
     from scipy.io import savemat
 
     contents = {name: np.moveaxis(ds[name].values, 0, -1) for name in "ABCD"}
@@ -163,7 +167,8 @@ def write_mat(ds: xr.Dataset, path: os.PathLike | str) -> Path:
                  "states": cell(ds.state.values), "inputs": cell(ds.input.values),
                  "outputs": cell(ds.output.values)}
     contents |= {key: ds.attrs[key] for key in ("model", "hub", "tip_mass_kg", "tip_position_m",
-                                                 "n_modes", "sample_time_s", "input_delay_samples")
+                                                 "tip_inertia_kg_m2", "tip_offset_m", "n_modes", "sample_time_s",
+                                                 "input_delay_samples")
                  if key in ds.attrs}
     if "operating_voltage" in ds:
         contents["operating_voltage"] = ds.operating_voltage.values

@@ -11,7 +11,9 @@ the exact kinetic energy for CFOAM) linearised about it give, in the deviations
 with (``p = V1 + M1 q1s``; derivation in ``docs/linear-models.md``)
 
 * ``M``: ``M_thth = Jh + Jb + 2 V1 q1s + q1s^T M1 q1s`` (Eq. 25 at the operating point),
-  ``M_thq1 = 0``, ``M_thq2 = V2 + R^T q1s`` (Eq. 27), ``diag(M1, M2)`` below;
+  ``M_thq1 = 0``, ``M_thq2 = V2 + R^T q1s`` (Eq. 27), ``diag(M1, M2)`` below, and a tip body's
+  rotary inertia ``Jt``, ``Jt g``, ``Jt g^T g`` on the hub, hub-``q2`` and ``q2`` entries
+  (``g = f2'(l)``, ``core.system_matrices.rotary_mass``, ``docs/tip-body.md``);
 * ``G``: Eq. (29) in the elastic block and the hub couplings ``G_thq1 = 2 Omega p^T`` (``Q_theta``
   of Eq. 32 linearised; deleted with it in SFOAM) and ``G_q1th = -2 Omega p`` (the centrifugal
   force ``theta_dot^2 p`` of Eq. 33 linearised in the hub speed): skew-symmetric;
@@ -35,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.configuration.settings import damping_settings
+from hubbeam.core.system_matrices import rotary_mass
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.linearised import axial_stretch, constant_speed_matrices
 from hubbeam.model.matrices import assemble
@@ -166,8 +169,9 @@ def second_order(sm, traits, speed: float, damping=None):
     N = 1 + Me.shape[0]
     M, G, C, K = (np.zeros((N, N)) for _ in range(4))
     M[1:, 1:], G[1:, 1:], C[1:, 1:], K[1:, 1:] = Me, Ge, Ce, Ke
-    M[0, 0] = sm.Jh + sm.Jb + 2.0 * sm.V1 @ q1s + q1s @ sm.M1 @ q1s
-    M[0, -n:] = M[-n:, 0] = sm.V2 + sm.R.T @ q1s
+    hub, coupling, _ = rotary_mass(sm)  # the q2 block has it already (constant_speed_matrices)
+    M[0, 0] = sm.Jh + sm.Jb + 2.0 * sm.V1 @ q1s + q1s @ sm.M1 @ q1s + hub
+    M[0, -n:] = M[-n:, 0] = sm.V2 + sm.R.T @ q1s + coupling
     if traits.keeps_axial:
         p = sm.V1 + sm.M1 @ q1s
         G[1:1 + n, 0] = -2.0 * speed * p

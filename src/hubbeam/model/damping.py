@@ -11,6 +11,8 @@ damping forces ``-C1 q1'`` and ``-C2 q2'`` join the elastic rows of Eq. (24):
 * ``{kind: rayleigh, mass_coefficient: alpha, stiffness_coefficient: beta}`` (s-1, s; >= 0):
   ``C = alpha M + beta K`` per block.
 
+The transverse block's mass is ``M2`` with a tip body's rotary inertia (``transverse_mass``).
+
 Each kind is one record (:class:`ModalDamping`, :class:`RayleighDamping`; :data:`DAMPINGS`),
 built from the checked configuration (schema ``damping``). No damping (``None``) gives zero
 matrices: the undamped equations, bit for bit.
@@ -24,6 +26,8 @@ from typing import ClassVar
 
 import numpy as np
 from scipy.linalg import eigh
+
+from hubbeam.core.system_matrices import transverse_mass
 
 
 def modal_damping(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
@@ -82,6 +86,6 @@ def damping_matrices(damping: ModalDamping | RayleighDamping | Mapping | None, s
     damping = damping_from_dict(damping)
     if damping is None:
         return C
-    for b, (M, K) in enumerate(((sm.M1, sm.K1), (sm.M2, sm.K2))):
+    for b, (M, K) in enumerate(((sm.M1, sm.K1), (transverse_mass(sm), sm.K2))):
         C[b] = damping.block(b, np.asarray(M), np.asarray(K))
     return np.ascontiguousarray(C)

@@ -33,6 +33,7 @@ import pandas as pd
 import scipy.optimize
 import xarray as xr
 
+from hubbeam.core.system_matrices import transverse_mass
 from hubbeam.model import linearised
 from hubbeam.model import printed as paper
 from hubbeam.model.beam import beam_attributes
@@ -61,8 +62,9 @@ def K22(sm, model, speed):
 
 
 def natural_frequencies(sm):
-    """Circular natural frequencies (rad s-1) of the non-rotating beam: ``(K2, M2)``."""
-    return linearised.frequencies_from_squares(linearised.symmetric_eigenvalues(sm.K2, sm.M2))
+    """Circular natural frequencies (rad s-1) of the non-rotating beam with its hub held:
+    ``(K2, M2t)``, ``M2t`` with a tip body's rotary inertia (``transverse_mass``)."""
+    return linearised.frequencies_from_squares(linearised.symmetric_eigenvalues(sm.K2, transverse_mass(sm)))
 
 
 def transverse_frequencies(sm, model, speed):

@@ -5,7 +5,7 @@ motion (Eq. 24 with Eqs. 29-33) then have constant coefficients; about the stead
 stretch ``q1s = Omega^2 (K1 - Omega^2 M1)^-1 V1^T``, ``q2s = 0`` the deviation ``x = (q1 - q1s,
 q2)`` obeys exactly
 
-    M x'' + G x' + K x = 0,     M = diag(M1, M2),     G = 2 Omega [[0, -R], [R^T, 0]],   (29)
+    M x'' + G x' + K x = 0,     M = diag(M1, M2t),    G = 2 Omega [[0, -R], [R^T, 0]],   (29)
                                 K = diag(K1 - Omega^2 M1, K22(Omega)),                    (30)
 
 with the transverse stiffness of Eq. (31), ``K22 = K2 - Omega^2 B`` and
@@ -14,20 +14,23 @@ with the transverse stiffness of Eq. (31), ``K22 = K2 - Omega^2 B`` and
     FOAM:      B = M2 - D             (centrifugal softening and stiffening)
     flapwise:  B = -D                 (out of the plane of rotation: no softening, no coupling)
 
-``M2``, ``D``, ``R`` include the tip-mass terms of Section 4.4 when the matrices do. The
-transverse block alone is ``M2 q2'' + K22 q2 = 0`` (``G = 0``). A model's variant is its
+``M2``, ``D``, ``R`` include the tip-mass terms of Section 4.4 when the matrices do; ``M2t = M2 +
+Jt f2'(l)^T f2'(l)`` adds a tip body's rotary inertia (``core.system_matrices.transverse_mass``),
+which has no centrifugal term of its own, so ``B`` keeps ``M2`` (``docs/tip-body.md``). The
+transverse block alone is ``M2t q2'' + K22 q2 = 0`` (``G = 0``). A model's variant is its
 ``linearisation`` in the table of models (``hubbeam.model.models``); the variants' terms follow from
 the models' traits (``softening_terms``: the ``D`` terms; ``keeps_axial``: the axial block). The flapwise variant is the
 transverse motion perpendicular to the plane of rotation (``w = f2 q3``), which the published
 rotating-cantilever tables tabulate (:mod:`hubbeam.validation.rotating_eigen` derives it).
 
 Eigenproblems, both reduced by the Cholesky factor of the mass matrix and solved for stacks of
-speeds at once: the symmetric one ``K22 v = omega^2 M2 v`` and the gyroscopic quadratic one
+speeds at once: the symmetric one ``K22 v = omega^2 M2t v`` and the gyroscopic quadratic one
 ``(lambda^2 M + lambda G + K) x = 0`` (:func:`quadratic_eigenvalues`).
 """
 
 import numpy as np
 
+from hubbeam.core.system_matrices import transverse_mass
 from hubbeam.model.models import MODELS
 
 #: ``B`` of ``K22 = K2 - Omega^2 B`` as ``a M2 - c D``: variant -> ``(a, c)`` (Eq. 31): the
@@ -78,17 +81,19 @@ def constant_speed_matrices(sm, model, speed, axial=False):
     ``sm`` is a :class:`~hubbeam.model.matrices.SystemMatrices`; ``model`` a key of
     :data:`CENTRIFUGAL_TERMS`. Without ``axial`` the transverse block ``(M2, 0, K22)``; with it
     the coupled axial-transverse system of ``x = (q1, q2)`` (TLAM, FOAM only). ``speed`` of shape
-    ``s`` gives ``G`` and ``K`` of shape ``s + (N, N)``; ``M`` does not depend on the speed.
+    ``s`` gives ``G`` and ``K`` of shape ``s + (N, N)``; ``M`` does not depend on the speed. The
+    transverse mass block is ``M2t`` (with a tip body's rotary inertia), the centrifugal one ``M2``.
     """
     k22 = transverse_stiffness(sm.K2, sm.M2, sm.D, model, speed)
+    mass = transverse_mass(sm)
     if not axial:
-        return sm.M2, np.zeros_like(k22), k22
+        return mass, np.zeros_like(k22), k22
     if model not in AXIAL_MODELS:
         raise ValueError(f"model = {model!r}: the axial coupling is defined for "
                          f"{', '.join(AXIAL_MODELS)}")
     w = np.asarray(speed, dtype=float)[..., None, None]
     zero = np.zeros(k22.shape)
-    M = np.block([[sm.M1, np.zeros_like(sm.M1)], [np.zeros_like(sm.M2), sm.M2]])
+    M = np.block([[sm.M1, np.zeros_like(sm.M1)], [np.zeros_like(sm.M2), mass]])
     G = 2.0 * w * np.block([[zero, -np.broadcast_to(sm.R, zero.shape)],
                             [np.broadcast_to(sm.R.T, zero.shape), zero]])  # Eq. (29)
     K = np.block([[sm.K1 - w**2 * sm.M1, zero], [zero, k22]])  # Eqs. (30), (31)

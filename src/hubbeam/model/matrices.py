@@ -12,6 +12,13 @@ term ``m_t (.)(l)``; for ``l = L`` this reproduces the Appendix, Eqs. (A1)-(A10)
     R   = int rho A f1^T f2 dx              + m_t f1(l)^T f2(l)                (19), (A6)
     S(x) = int_0^x f2'(xi)^T f2'(xi) dxi                                       (20)
 
+A tip body (``TipMass`` with ``offset`` e, ``docs/tip-body.md``) has its centre of mass ``e``
+beyond the attachment along the deformed beam's end tangent: to the order of the models at the
+transverse displacement ``(f2(l) + e f2'(l)) q2`` and the axial ``f1(l) q1 - q2^T (S(l) + e
+f2'(l)^T f2'(l)) q2 / 2`` from the abscissa ``l + e``. The mass terms above take these values
+(:func:`body_centre`) in place of ``f2(l)``, ``S(l)`` and ``l``; the body's rotary inertia is kept
+apart (``SystemMatrices.Jt``, ``dF2t``).
+
 ``rho A``, ``EI`` and ``EA`` may vary along the beam (``hubbeam.model.beam.BeamSections``): they are
 evaluated at the quadrature nodes, and the rule breaks at the stations of the tables
 (``hubbeam.model.quadrature.beam_rule``). For the uniform beam they are the constants of Table 1.
@@ -23,32 +30,36 @@ beam), so that one Gauss rule integrates the double integral. ``S`` at the point
 its own Gauss rule on ``[0, x]``.
 """
 
-import math
-
 import numpy as np
 
 from hubbeam.core.system_matrices import SystemMatrices
 from hubbeam.model.beam import beam_attributes
 from hubbeam.model.modes import axial_modes, transverse_modes
+from hubbeam.model.parameters import TipMass, check_tip
 from hubbeam.model.quadrature import beam_rule, effective_points, gauss_legendre, point_cloud
 
 
-def _check_tip(params, mass, position):
-    if not (math.isfinite(mass) and mass >= 0.0):
-        raise ValueError(f"tip_mass.mass = {mass!r}: expected a finite mass >= 0 kg")
-    if not (math.isfinite(position) and 0.0 <= position <= params.L):
-        raise ValueError(
-            f"tip_mass.position = {position!r}: expected 0 <= position <= L = {params.L} m"
-        )
-
-
-def _tip_values(params, tip):
-    """(mass, position) of ``tip``; no tip mass is a zero mass at the beam tip."""
+def checked_tip(params, tip):
+    """``tip`` checked on the beam ``params`` (``check_tip``); no tip mass is a zero point mass at
+    the beam tip."""
     if tip is None:
-        return 0.0, float(params.L)
-    mass, position = float(tip.mass), float(tip.position)
-    _check_tip(params, mass, position)
-    return mass, position
+        return TipMass(0.0, float(params.L))
+    check_tip(tip, params.L)
+    return tip
+
+
+def body_centre(f2, S, slope, offset):
+    """``f2`` and ``S`` at the centre of a body ``offset`` beyond its attachment, from ``f2``,
+    ``S`` and the slope functions ``slope = f2'`` there: ``f2 + e f2'`` and ``S + e f2'^T f2'``.
+
+    The centre lies ``e`` along the deformed beam's tangent at the attachment, turned by the
+    slope ``phi = f2' q2``: it moves ``e sin(phi) = e f2' q2`` across and ``e (cos(phi) - 1) =
+    -e (f2' q2)^2 / 2`` along the beam to the second order, the order of the foreshortening
+    ``-q2^T S q2 / 2`` (Eq. 20). Arrays of shape ``s + (n,)`` and ``s + (n, n)`` with ``offset`` of
+    shape ``s``.
+    """
+    e = np.asarray(offset, dtype=float)[..., None]
+    return f2 + e * slope, S + e[..., None] * slope[..., :, None] * slope[..., None, :]
 
 
 def _gram(values, weights):
@@ -71,23 +82,29 @@ def S_matrix(params, x, n_modes, n_quad=64):
     return 0.5 * (S + np.swapaxes(S, -1, -2))
 
 
-def point_mass_terms(params, mass, position, n_modes, n_quad=64):
-    """Contributions of a point mass ``mass`` at ``position`` to Jb, M1, M2, V1, V2, D, R.
+def point_mass_terms(params, mass, position, n_modes, n_quad=64, offset=0.0):
+    """Contributions of a mass ``mass`` attached at ``position`` to Jb, M1, M2, V1, V2, D, R.
 
-    ``mass`` and ``position`` broadcast against each other (shape ``s``); each returned array has
-    shape ``s`` (Jb), ``s + (n,)`` (V1, V2) or ``s + (n, n)`` (M1, M2, D, R). This is the term
-    ``m_t * integrand(l)`` of every mass integral (Appendix with ``L -> l``), shared by
-    :func:`assemble` and the parameter sweeps of :mod:`hubbeam.model.eigen`.
+    ``mass``, ``position`` and ``offset`` broadcast against each other (shape ``s``); each returned
+    array has shape ``s`` (Jb), ``s + (n,)`` (V1, V2) or ``s + (n, n)`` (M1, M2, D, R). This is the
+    term ``m_t * integrand(l)`` of every mass integral (Appendix with ``L -> l``), shared by
+    :func:`assemble` and the parameter sweeps of :mod:`hubbeam.model.eigen`; a nonzero ``offset``
+    moves the mass to its body's centre (:func:`body_centre`, lever ``rA + l + e``).
     """
-    mass, position = np.broadcast_arrays(np.asarray(mass, float), np.asarray(position, float))
-    for m, l in zip(mass.ravel(), position.ravel()):
-        _check_tip(params, float(m), float(l))
+    mass, position, offset = np.broadcast_arrays(np.asarray(mass, float), np.asarray(position, float),
+                                                 np.asarray(offset, float))
+    for m, l, e in zip(mass.ravel(), position.ravel(), offset.ravel()):
+        check_tip(TipMass(m, l, 0.0, e), params.L)
     shape = mass.shape
     flat_l = position.ravel()
     f1 = axial_modes(flat_l, n_modes, params).reshape(shape + (n_modes,))
     f2 = transverse_modes(flat_l, n_modes, params).reshape(shape + (n_modes,))
     S = S_matrix(params, flat_l, n_modes, n_quad).reshape(shape + (n_modes, n_modes))
     lever = params.rA + position
+    if np.any(offset != 0.0):
+        slope = transverse_modes(flat_l, n_modes, params, derivative=1).reshape(shape + (n_modes,))
+        f2, S = body_centre(f2, S, slope, offset)
+        lever = lever + offset
     m = mass[..., None]
     mm = mass[..., None, None]
     return {
@@ -109,7 +126,9 @@ def assemble(params, tip=None, n_modes=5, n_quad=64):
     params : BeamParameters or BeamSections
         Table 1 (``L, rho, A, E, I, Jh, rA``) or a beam with tabulated sections.
     tip : TipMass or None
-        Point mass ``tip.mass`` (kg) at ``0 <= tip.position <= L`` (m); ``None`` for none.
+        Tip mass ``tip.mass`` (kg) at ``0 <= tip.position <= L`` (m), a point mass or a body with
+        rotary inertia ``tip.inertia`` and offset ``tip.offset`` (``docs/tip-body.md``); ``None``
+        for none. Checked by ``hubbeam.model.parameters.check_tip``.
     n_modes : int
         Number of assumed modes for each of q1 and q2 (1..20).
     n_quad : int
@@ -117,10 +136,11 @@ def assemble(params, tip=None, n_modes=5, n_quad=64):
         The rule actually used has ``effective_points(n_quad, n_modes) = max(n_quad,
         30 + 3 n_modes)`` nodes (64 for 5 modes with the configured 64, 90 for 20 modes), enough
         for every matrix to be converged to 1e-12 relative; the point cloud then has that many
-        nodes plus the tip. A beam with sections gets a composite rule broken at its stations
-        with at least that many nodes (``hubbeam.model.quadrature.beam_rule``).
+        nodes plus the tip body's centre. A beam with sections gets a composite rule broken at its
+        stations with at least that many nodes (``hubbeam.model.quadrature.beam_rule``).
     """
-    mass, position = _tip_values(params, tip)
+    tip = checked_tip(params, tip)
+    mass, position = tip.mass, tip.position
     nq = effective_points(n_quad, n_modes)
     x, w = point_cloud(params, mass, position, nq)
     xb, gauss = beam_rule(params, nq)  # the beam nodes of x and their plain weights
@@ -132,8 +152,12 @@ def assemble(params, tip=None, n_modes=5, n_quad=64):
     dF2 = transverse_modes(xb, n_modes, params, derivative=1)
     ddF2 = transverse_modes(xb, n_modes, params, derivative=2)
 
-    tip_terms = point_mass_terms(params, mass, position, n_modes, n_quad)
+    tip_terms = point_mass_terms(params, mass, position, n_modes, n_quad, tip.offset)
     S = S_matrix(params, x, n_modes, n_quad)
+    slope = transverse_modes(position, n_modes, params, derivative=1)[0]
+    if tip.offset != 0.0:  # the last point of the cloud is the body's centre
+        x[-1] = position + tip.offset
+        F2[-1], S[-1] = body_centre(F2[-1], S[-1], slope, tip.offset)
     return SystemMatrices(
         Jh=float(params.Jh),
         Jb=float(wb @ lever**2 + tip_terms["Jb"]),
@@ -154,13 +178,16 @@ def assemble(params, tip=None, n_modes=5, n_quad=64):
         f1L=axial_modes(params.L, n_modes, params)[0],
         f2L=transverse_modes(params.L, n_modes, params)[0],
         SL=S_matrix(params, params.L, n_modes, n_quad)[0],
+        Jt=tip.inertia,
+        dF2t=slope,
     )
 
 
 #: units and long names of the SystemMatrices fields (CF/UDUNITS strings)
 _FIELD_META = {
     "Jh": ("kg m2", "hub moment of inertia J_h", ()),
-    "Jb": ("kg m2", "beam and tip-mass moment of inertia about the hub axis J_b (Eq. 13)", ()),
+    "Jb": ("kg m2", "beam and tip-mass moment of inertia about the hub axis J_b (Eq. 13), the tip "
+                    "body's rotary inertia J_t apart", ()),
     "K1": ("s-2", "axial stiffness matrix K_1 per unit modal mass (Eq. 14)", ("mode", "mode_j")),
     "K2": ("s-2", "bending stiffness matrix K_2 per unit modal mass (Eq. 15)", ("mode", "mode_j")),
     "M1": ("1", "axial mass matrix M_1 incl. tip mass (Eq. 16, A4)", ("mode", "mode_j")),
@@ -171,7 +198,7 @@ _FIELD_META = {
     "R": ("1", "gyroscopic coupling matrix R incl. m_t f1(l)^T f2(l) (Eq. 19, A6)",
           ("mode", "mode_j")),
     "rA": ("m", "hub radius r_A", ()),
-    "x": ("m", "point-cloud abscissa (Gauss nodes on [0, L], then the tip mass)", ("point",)),
+    "x": ("m", "point-cloud abscissa (Gauss nodes on [0, L], then the tip body's centre)", ("point",)),
     "w": ("kg", "point-cloud mass (rho A(x) times Gauss weight, then m_t)", ("point",)),
     "F1": ("kg-1/2", "axial admissible functions f1 at the points", ("point", "mode")),
     "F2": ("kg-1/2", "transverse admissible functions f2 at the points", ("point", "mode")),
@@ -180,6 +207,8 @@ _FIELD_META = {
     "f1L": ("kg-1/2", "axial admissible functions at the beam tip f1(L)", ("mode",)),
     "f2L": ("kg-1/2", "transverse admissible functions at the beam tip f2(L)", ("mode",)),
     "SL": ("kg-1 m-1", "foreshortening matrix at the beam tip S(L) (Eq. 20)", ("mode", "mode_j")),
+    "Jt": ("kg m2", "rotary inertia J_t of the tip body about its centre of mass", ()),
+    "dF2t": ("kg-1/2 m-1", "slope functions f2'(l) at the tip body's attachment", ("mode",)),
 }
 
 MODE_NORMALISATION = (
@@ -191,27 +220,34 @@ MODE_NORMALISATION = (
 
 
 def configuration_name(tip):
-    """Wildcard-safe name of a tip-mass configuration: ``mt0``, ``mt0p1_l8``, ``mt0p5_l7p5``."""
+    """Wildcard-safe name of a tip-mass configuration: ``mt0``, ``mt0p1_l8``, ``mt0p5_l7p5``; a
+    body adds its rotary inertia and offset, ``mt0p1_l0p5_J0p0005_e0p02``."""
 
     def token(value):
         return f"{float(value):.10g}".replace("-", "m").replace(".", "p").replace("+", "")
 
-    if tip is None or float(tip.mass) == 0.0:
+    if tip is None or (float(tip.mass) == 0.0 and tip.is_point):
         return "mt0"
-    return f"mt{token(tip.mass)}_l{token(tip.position)}"
+    name = f"mt{token(tip.mass)}_l{token(tip.position)}"
+    if tip.inertia != 0.0:
+        name += f"_J{token(tip.inertia)}"
+    if tip.offset != 0.0:
+        name += f"_e{token(tip.offset)}"
+    return name
 
 
 def to_dataset(sm, params, tip, n_quad_requested=None):
     """Self-describing :class:`xarray.Dataset` of ``sm`` (units, long names, mode coordinates).
 
-    Global attributes record a ``title``, the configuration name, the tip mass, the beam under
-    its config keys (``hubbeam.model.beam.beam_attributes``), the number of modes and of Gauss nodes,
+    Global attributes record a ``title``, the configuration name, the tip mass (and the body's
+    rotary inertia and offset), the beam under its config keys
+    (``hubbeam.model.beam.beam_attributes``), the number of modes and of Gauss nodes,
     and the mode normalisation. Provenance
     attributes (``Conventions``, ``history``, ...) are added by the writer.
     """
     import xarray as xr
 
-    mass, position = _tip_values(params, tip)
+    body = checked_tip(params, tip)
     n = sm.M1.shape[0]
     data_vars = {}
     for name, (units, long_name, dims) in _FIELD_META.items():
@@ -224,13 +260,15 @@ def to_dataset(sm, params, tip, n_quad_requested=None):
         "mode_j": ("mode_j", np.arange(1, n + 1),
                    {"long_name": "mode number j (column)", "units": "1"}),
         "point": ("point", np.arange(sm.x.size),
-                  {"long_name": "point-cloud index (last = tip mass)", "units": "1"}),
+                  {"long_name": "point-cloud index (last = tip body's centre)", "units": "1"}),
     }
     attrs = {
         "title": f"hub-beam system matrices, configuration {configuration_name(tip)}",
         "configuration": configuration_name(tip),
-        "tip_mass_kg": mass,
-        "tip_position_m": position,
+        "tip_mass_kg": body.mass,
+        "tip_position_m": body.position,
+        "tip_inertia_kg_m2": body.inertia,
+        "tip_offset_m": body.offset,
         "n_modes": n,
         "n_quad": sm.x.size - 1,
         "mode_normalisation": MODE_NORMALISATION,

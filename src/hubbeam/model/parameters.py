@@ -7,6 +7,7 @@ Young's modulus, second moment of area) or by the products the equations use
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, fields
 
@@ -136,10 +137,21 @@ class BeamParameters(UniformBeam):
 
 @dataclass(frozen=True)
 class TipMass:
-    """Point mass ``mass`` (kg) at distance ``position`` (m) from the clamped root, 0 <= l <= L."""
+    """The body at the beam's end or along it: mass ``mass`` (kg) attached at distance ``position``
+    (m) from the clamped root, ``0 <= position <= L``, with rotary inertia ``inertia`` (kg m2)
+    about its centre of mass, which lies ``offset`` (m) beyond the attachment point along the
+    beam's end tangent there (``docs/tip-body.md``).
+
+    The defaults ``inertia = offset = 0`` give the paper's point tip mass (Section 4.4, Appendix);
+    ``inertia`` is the moment of inertia about the axis of the hub (normal to the plane of
+    rotation). The body turns with the hub and with the slope ``v'(position)`` of the beam. The
+    values are stored as float and checked by :func:`check_tip` where they are used.
+    """
 
     mass: float
     position: float
+    inertia: float = 0.0
+    offset: float = 0.0
 
     def __post_init__(self) -> None:
         _store_floats(self)
@@ -148,6 +160,32 @@ class TipMass:
     def from_case(cls, case: Mapping) -> TipMass:
         """Build from a resolved case (``hubbeam.configuration.load.case_settings``)."""
         return cls(**case["tip_mass"])
+
+    @property
+    def is_point(self) -> bool:
+        """Whether this is the paper's point mass: no rotary inertia, centre at the attachment."""
+        return self.inertia == 0.0 and self.offset == 0.0
+
+
+def check_tip(tip: TipMass, length: float) -> None:
+    """``ValueError`` naming the first bad field of ``tip`` on a beam of length ``length`` (m).
+
+    Allowed: a finite ``mass >= 0``, ``0 <= position <= L``, a finite ``inertia >= 0`` and a
+    finite ``offset`` that keeps the centre on the beam's side of the clamped root,
+    ``position + offset >= 0`` (a centre behind the root would lie inside the hub).
+    """
+    mass, position, inertia, offset = tip.mass, tip.position, tip.inertia, tip.offset
+    if not (math.isfinite(mass) and mass >= 0.0):
+        raise ValueError(f"tip_mass.mass = {mass!r}: expected a finite mass >= 0 kg")
+    if not (math.isfinite(position) and 0.0 <= position <= length):
+        raise ValueError(f"tip_mass.position = {position!r}: expected 0 <= position <= L = {length} m")
+    if not (math.isfinite(inertia) and inertia >= 0.0):
+        raise ValueError(f"tip_mass.inertia = {inertia!r}: expected a finite rotary inertia >= 0 kg m2 "
+                         "about the body's centre")
+    if not (math.isfinite(offset) and position + offset >= 0.0):
+        raise ValueError(f"tip_mass.offset = {offset!r}: expected a finite offset (m) with position + "
+                         f"offset >= 0 (position = {position} m): the body's centre on the beam's side "
+                         "of the clamped root")
 
 
 def _store_floats(instance) -> None:

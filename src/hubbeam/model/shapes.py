@@ -3,8 +3,9 @@ cases, and its first transverse mode shapes at rest and at speed (:func:`beam_da
 :mod:`hubbeam.plotting.beam_properties` and :mod:`hubbeam.plotting.mode_shapes`).
 
 At a constant hub speed ``Omega`` the free transverse vibrations obey ``K22(Omega) v = omega^2 M2 v``
-(Eq. 31, :mod:`hubbeam.model.eigen`); mode ``i`` has the shape ``w_i(x) = f2(x) v_i`` (Eq. 8), scaled so
-that its largest deflection is 1 in magnitude and its tip deflection is positive. A direction in
+(Eq. 31, :mod:`hubbeam.model.eigen`; ``M2`` with a tip body's rotary inertia); mode ``i`` has the
+shape ``w_i(x) = f2(x) v_i`` (Eq. 8), scaled so that its largest deflection is 1 in magnitude and
+its tip deflection is positive. A direction in
 which ``K22`` is not positive definite (TLAM beyond its critical speed) has no vibration: its
 frequency and shape are NaN.
 """
@@ -17,6 +18,7 @@ import numpy as np
 import scipy.linalg
 import xarray as xr
 
+from hubbeam.core.system_matrices import transverse_mass
 from hubbeam.model.beam import SECTION_UNITS, beam_attributes
 from hubbeam.model.eigen import K22, MODELS
 from hubbeam.model.matrices import assemble
@@ -43,7 +45,7 @@ def mode_shapes(params, tip: TipMass, speeds, n_shapes: int, n_modes: int, n_qua
     shapes = np.full(frequencies.shape + shapes_x.shape[:1], np.nan)
     for m, model in enumerate(MODELS):
         for s, speed in enumerate(speeds):
-            omega2, vectors = scipy.linalg.eigh(K22(sm, model, speed), sm.M2)
+            omega2, vectors = scipy.linalg.eigh(K22(sm, model, speed), transverse_mass(sm))
             for i in np.flatnonzero(omega2[:n_shapes] > 0.0):
                 w = shapes_x @ vectors[:, i]
                 shapes[m, s, i] = w / np.max(np.abs(w)) * (1.0 if w[-1] >= 0.0 else -1.0)

@@ -25,6 +25,10 @@ VARIABLES = {
     "tip_transverse": (("time",), "m", "transverse tip deflection v(L) = f2(L) q2"),
     "tip_axial": (("time",), "m", "pure axial tip deformation w1(L) = f1(L) q1"),
     "tip_foreshortening": (("time",), "m", "tip foreshortening wc(L) = -q2' S(L) q2 / 2"),
+    "body_transverse": (("time",), "m", "transverse displacement of the tip body's centre "
+                        "(f2(l) + e f2'(l)) q2 (the beam tip's without a tip mass)"),
+    "body_axial": (("time",), "m", "axial displacement of the tip body's centre "
+                   "f1(l) q1 - q2' (S(l) + e f2'(l)' f2'(l)) q2 / 2"),
     "energy": (("time",), "J", "total mechanical energy T + U"),
     "angular_momentum": (("time",), "kg m2 s-1", "angular momentum about the hub axis"),
 }

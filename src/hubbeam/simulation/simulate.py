@@ -306,6 +306,8 @@ def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: Sy
         "initial": recorded.get("initial", {}),
         "tip_mass_kg": case.tip_mass.mass,
         "tip_position_m": case.tip_mass.position,
+        **({} if case.tip_mass.is_point else {"tip_inertia_kg_m2": case.tip_mass.inertia,
+                                               "tip_offset_m": case.tip_mass.offset}),
         "n_modes": int(n),
         **beam_attributes(params),
         **found,

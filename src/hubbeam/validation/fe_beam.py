@@ -1,35 +1,45 @@
 """Finite-element model of the rotating beam: an independent check of the Ritz (assumed-mode) model.
 
 Euler-Bernoulli beam of cubic Hermite elements (nodal deflection and slope), clamped at the hub
-radius ``rA`` of a hub spinning at constant ``Omega``, with a point mass ``m_t`` at ``0 <= l <= L``.
-The deflection ``w`` is either in the plane of rotation (in-plane, lag) or perpendicular to it
-(flapwise). The free vibrations obey ``M a'' + K(Omega) a = 0`` with
+radius ``rA`` of a hub spinning at constant ``Omega``, with a tip body attached at ``0 <= l <= L``:
+its mass ``m_t`` at its centre ``e`` beyond the attachment along the beam's tangent there, which
+moves by ``w_c = w(l) + e w'(l)``, and its rotary inertia ``J_t`` about that centre, which turns
+with the slope ``w'(l)`` (``docs/tip-body.md``; ``e = J_t = 0``: a point mass). The deflection
+``w`` is either in the plane of rotation (in-plane, lag) or perpendicular to it (flapwise). The
+free vibrations obey ``(M + R) a'' + K(Omega) a = 0`` with
 
-    M = int rhoA N^T N dx + m_t N(l)^T N(l)
-    K(Omega) = int EI N''^T N'' dx + int T N'^T N' dx - c Omega^2 M,   c = 1 in-plane, 0 flapwise,
-    T(x) = Omega^2 [ int_x^L rhoA(s) (rA + s) ds + m_t (rA + l) H(l - x) ],
+    M = int rhoA N^T N dx + m_t N_c^T N_c,          N_c = N(l) + e N'(l),    R = J_t N'(l)^T N'(l)
+    K(Omega) = int EI N''^T N'' dx + int T N'^T N' dx + m_t (rA + l + e) e N'(l)^T N'(l)
+               - c Omega^2 M,   c = 1 in-plane, 0 flapwise,
+    T(x) = Omega^2 [ int_x^L rhoA(s) (rA + s) ds + m_t (rA + l + e) H(l - x) ],
 
-``T`` the centrifugal tension of the undeformed beam and the tip mass, ``-Omega^2 M`` the softening
-of in-plane motion (the centrifugal force of a point moved sideways has a component along the
-motion). These are the continuum equations behind Eq. (31) with the tip-mass terms of the
-Appendix: ``q^T D q = int T w'^2 dx / Omega^2``, so the Ritz frequencies of ``(K2 + Omega^2 D -
-c Omega^2 M2, M2)`` (``hubbeam.model.eigen``, ``hubbeam.validation.rotating_eigen``) converge to these
-as modes are added, and these converge under mesh refinement at the rate of cubic elements.
+``T`` the centrifugal tension of the undeformed beam and the body, the body's own term the
+centrifugal pull on its centre as the slope tilts it (its centre comes in by ``e w'(l)^2 / 2``),
+``-Omega^2 M`` the softening of in-plane motion (the centrifugal force of a point moved sideways
+has a component along the motion; a rotation of the body has none). These are the continuum
+equations behind Eq. (31) with the tip-mass terms of the Appendix: ``q^T D q = int T w'^2 dx /
+Omega^2`` plus the body's term, so the Ritz frequencies of ``(K2 + Omega^2 D - c Omega^2 M2, M2 +
+J_t f2'(l)^T f2'(l))`` (``hubbeam.model.eigen``, ``hubbeam.validation.rotating_eigen``) converge to
+these as modes are added, and these converge under mesh refinement at the rate of cubic elements.
+The rotary inertia is ``J_t`` about the axis normal to the plane of rotation: only in-plane
+motion turns the body about it (flapwise, the body's inertia about other axes would enter).
 
 The mesh has a node at every station of the property tables (where the properties have kinks), at
 the tip-mass position and on a uniform grid of ``n_elements`` elements; element integrals use a
 5-point Gauss rule, exact for the piecewise-linear ``rhoA``, ``EI`` and the cubic tension on each
 element. The model shares only the beam description (``rhoA_at``, ``EI_at``, ``outboard_moment``)
-with the Ritz model: other shape functions, quadrature and assembly.
+and the check of the tip body with the Ritz model: other shape functions, quadrature and assembly.
 """
 
 from __future__ import annotations
 
 import itertools
-import math
+from typing import NamedTuple
 
 import numpy as np
 import scipy.linalg
+
+from hubbeam.model.parameters import TipMass, check_tip
 
 DIRECTIONS = ("flapwise", "inplane")
 #: coefficient of the -Omega^2 M softening per direction
@@ -65,35 +75,46 @@ def _hermite(xi, h):
     return N, dN, ddN
 
 
-def matrices(params, tip=None, n_elements: int = 160):
-    """Global ``(M, Kb, G)`` of the clamped beam: mass (with the tip mass), bending stiffness and
-    geometric stiffness per ``Omega^2`` (``int T N'^T N' / Omega^2``), root DOFs removed.
+class FeMatrices(NamedTuple):
+    """Global matrices of the clamped beam, root DOFs removed: translational mass ``M`` (beam and
+    tip body), bending stiffness ``K``, geometric stiffness per ``Omega^2`` ``G`` (tension and the
+    body's offset term) and the body's rotary inertia ``R`` (module docstring)."""
 
-    ``tip`` is a :class:`~hubbeam.model.parameters.TipMass` or ``None``.
-    """
-    mass, position = (0.0, params.L) if tip is None else (float(tip.mass), float(tip.position))
-    if not (math.isfinite(mass) and mass >= 0.0):
-        raise ValueError(f"tip_mass.mass = {mass!r}: expected a finite mass >= 0 kg")
-    if not (math.isfinite(position) and 0.0 <= position <= params.L):
-        raise ValueError(f"tip_mass.position = {position!r}: expected 0 <= position <= L")
+    M: np.ndarray
+    K: np.ndarray
+    G: np.ndarray
+    R: np.ndarray
+
+
+def matrices(params, tip=None, n_elements: int = 160) -> FeMatrices:
+    """The :class:`FeMatrices` of the beam ``params`` with the tip body ``tip`` (a
+    :class:`~hubbeam.model.parameters.TipMass` or ``None``, checked by ``check_tip``)."""
+    tip = TipMass(0.0, params.L) if tip is None else tip
+    check_tip(tip, params.L)
+    mass, position, offset = tip.mass, tip.position, tip.offset
     nodes = mesh(params, n_elements, position)
     n_dof = 2 * nodes.size
-    M, Kb, G = (np.zeros((n_dof, n_dof)) for _ in range(3))
+    M, Kb, G, R = (np.zeros((n_dof, n_dof)) for _ in range(4))
     xi = 0.5 * (_GAUSS_T + 1.0)
+    lever = params.rA + position + offset  # of the body's centre
     for e, (a, b) in enumerate(itertools.pairwise(nodes)):
         h = b - a
         x = a + h * xi
         weights = 0.5 * h * _GAUSS_W
         N, dN, ddN = _hermite(xi, h)
-        tension = params.outboard_moment(x) + mass * (params.rA + position) * (x < position)
+        tension = params.outboard_moment(x) + mass * lever * (x < position)
         dofs = slice(2 * e, 2 * e + 4)
         M[dofs, dofs] += (N.T * weights * params.rhoA_at(x)) @ N
         Kb[dofs, dofs] += (ddN.T * weights * params.EI_at(x)) @ ddN
         G[dofs, dofs] += (dN.T * weights * tension) @ dN
     tip_node = int(np.argmin(np.abs(nodes - position)))
-    M[2 * tip_node, 2 * tip_node] += mass
+    body = slice(2 * tip_node, 2 * tip_node + 2)  # (w(l), w'(l))
+    centre = np.array([1.0, offset])  # w_c = w(l) + e w'(l)
+    M[body, body] += mass * np.outer(centre, centre)
+    G[2 * tip_node + 1, 2 * tip_node + 1] += mass * lever * offset
+    R[2 * tip_node + 1, 2 * tip_node + 1] += tip.inertia
     free = slice(2, None)  # clamped root: w(0) = w'(0) = 0
-    return M[free, free], Kb[free, free], G[free, free]
+    return FeMatrices(*(A[free, free] for A in (M, Kb, G, R)))
 
 
 def frequencies(params, speeds, direction: str, tip=None, n_elements: int = 160,
@@ -107,18 +128,24 @@ def frequencies(params, speeds, direction: str, tip=None, n_elements: int = 160,
     ``K a = omega^2 M a`` lose digits in proportion to the condition number of ``K`` (about
     ``n_elements^4``, 1e-8 relative at 80 elements), the largest ``mu`` do not (1e-9 at 160).
     ``K`` is positive definite in both directions: in-plane, ``int T w'^2 >= Omega^2 int rhoA
-    w^2`` for every ``w`` with ``w(0) = 0`` when ``rA > 0`` (``hubbeam.model.eigen``: no critical speed).
+    w^2`` for every ``w`` with ``w(0) = 0`` when ``rA > 0`` (``hubbeam.model.eigen``: no critical
+    speed), for a point mass; a body's offset adds to both sides. ``tip`` as in :func:`matrices`;
+    its rotary inertia is defined in-plane only.
     """
     if direction not in _SOFTENING:
         raise ValueError(f"direction = {direction!r}: expected one of {', '.join(DIRECTIONS)}")
-    M, Kb, G = matrices(params, tip, n_elements)
-    if not 1 <= n_frequencies <= M.shape[0]:
-        raise ValueError(f"n_frequencies = {n_frequencies!r}: expected 1..{M.shape[0]} "
+    if direction == "flapwise" and tip is not None and tip.inertia != 0.0:
+        raise ValueError(f"tip_mass.inertia = {tip.inertia!r} with direction = 'flapwise': expected 0 "
+                         "(the rotary inertia about the hub axis turns with in-plane motion only)")
+    fe = matrices(params, tip, n_elements)
+    mass = fe.M + fe.R
+    if not 1 <= n_frequencies <= mass.shape[0]:
+        raise ValueError(f"n_frequencies = {n_frequencies!r}: expected 1..{mass.shape[0]} "
                          f"(the free DOFs of {n_elements} elements)")
     out = []
     for speed in np.atleast_1d(np.asarray(speeds, dtype=float)):
-        K = Kb + speed**2 * (G - _SOFTENING[direction] * M)
-        mu = scipy.linalg.eigh(M, K, eigvals_only=True,
-                               subset_by_index=[M.shape[0] - n_frequencies, M.shape[0] - 1])
+        K = fe.K + speed**2 * (fe.G - _SOFTENING[direction] * fe.M)
+        mu = scipy.linalg.eigh(mass, K, eigvals_only=True,
+                               subset_by_index=[mass.shape[0] - n_frequencies, mass.shape[0] - 1])
         out.append(mu[::-1] ** -0.5)
     return np.array(out)

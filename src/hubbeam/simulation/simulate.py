@@ -36,7 +36,7 @@ from scipy.integrate import cumulative_simpson
 from hubbeam.configuration.checks import INITIAL_MODAL_KEYS
 from hubbeam.configuration.settings import simulation_settings
 from hubbeam.core import radau
-from hubbeam.core.inputs import IntegratorSettings, SimulationInputs, State
+from hubbeam.core.inputs import NO_DRIVE, IntegratorSettings, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.model import linearised, validity
 from hubbeam.model.beam import beam_attributes
@@ -183,9 +183,9 @@ def quadrature_points(sm: SystemMatrices) -> int:
 
 
 def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices,
-               feedback=None):
+               feedback=None, drive: np.ndarray = NO_DRIVE):
     """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`
-    (``feedback`` as in :func:`simulate`)."""
+    (``feedback`` as in :func:`simulate`; ``drive``: the hub's packed drive, ``hubbeam.core.drive``)."""
     law = None
     if case["maneuver"]["kind"] == "state_feedback":
         if feedback is None:
@@ -199,7 +199,7 @@ def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: Sys
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
     C = damping_matrices(case.get("damping"), sm)
     start = time.perf_counter()
-    inputs = SimulationInputs(model(case["model"]).traits, kind, mp, C, sm)
+    inputs = SimulationInputs(model(case["model"]).traits, kind, mp, C, sm, drive)
     status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
                                      integrator_settings(numerics, params.L), out, stats)
     wall = time.perf_counter() - start

@@ -18,7 +18,7 @@ from types import CodeType
 import pytest
 
 from hubbeam.configuration.load import load_config
-from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.parameters import FLEXIBLE_LINK, BeamParameters
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 CONFIG_FILE = REPO_ROOT / "config" / "config.yaml"
@@ -82,10 +82,6 @@ def study_config(_study_config) -> dict:
 
 @pytest.fixture(scope="session")
 def flexible_link() -> BeamParameters:
-    """A steel ruler on a servo hub, close to a Quanser rotary flexible link: 0.419 m long,
-    21.6 mm x 0.79 mm (0.056 kg, first clamped bending mode 3.7 Hz), the SRV02's hub inertia
-    without load (0.00208 kg m2) and a 2 cm clamp. The rig's tests run on it: the drive's torque
-    (0.13 N m per volt) turns it at a few rad/s."""
-    width, thickness = 0.0216, 0.00079
-    return BeamParameters(L=0.419, rho=7850.0, A=width * thickness, E=200e9, I=width * thickness**3 / 12.0,
-                          Jh=0.00208, rA=0.02)
+    """The flexible link of a servo rig (``hubbeam.model.parameters.FLEXIBLE_LINK``), which the
+    rig's tests turn with the SRV02's drive."""
+    return FLEXIBLE_LINK

@@ -80,6 +80,7 @@ JACOBIAN_REFRESH = 0.03    # recompute J after a step whose Newton contraction r
 KEEP_STEP_LOW = 1.0        # keep h (and the LU factors) when the proposed ratio is in [low, high]
 KEEP_STEP_HIGH = 1.2
 SAFETY = 0.9
+SAME_STEP = 1e-12          # relative difference of a restart's step from the LU factors' step they reuse
 
 
 def _radau_constants():
@@ -761,7 +762,9 @@ def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
             jac_current = True
             need_jac = False
             h_lu = 0.0
-        if h != h_lu:
+        # after a restart the interval to the next stop is the previous one's length to rounding:
+        # the factors of that length serve (simplified Newton), not refactored for an ulp
+        if h != h_lu and not (fresh and abs(h - h_lu) <= SAME_STEP * h):
             _factorize(h, w, stats)
             h_lu = h
         if fresh:

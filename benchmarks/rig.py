@@ -13,7 +13,7 @@ python-control (``ct.dlqr``, ``ct.dlqe``) on the ZOH model of SFOAM with :data:`
 modes at rest (its input the voltage: the drive's torque gain and damping added).
 
 Rows: ``hubbeam sampled loop`` (:func:`hubbeam.simulation.sampled.simulate_rig`, the whole run
-and its outputs); ``python loop`` (per sample, the same sensors and controller in numpy and
+and its outputs), also on exact sensors; ``python loop`` (per sample, the same sensors and controller in numpy and
 ``scipy.integrate.solve_ivp`` (Radau) over the sample interval with hubbeam's jitted first-order
 right-hand side and Jacobian, :mod:`hubbeam.core.first_order`, on the same plant); ``hubbeam
 continuous`` (the same plant under continuous LQR state feedback, a ``state_feedback`` maneuver,
@@ -70,6 +70,8 @@ REFERENCE = {"kind": "angle_table", "time": [0.0, 1.0, 2.5, 6.0, 7.5, 11.0, 12.5
 ENCODER = 2.0 * math.pi / 4096
 #: strain gauge on the deflection angle v(L) / L: noise and a 12-bit converter over +-0.2 rad
 GAUGE_NOISE, GAUGE_QUANTUM = 2e-4, 0.4 / 4096
+#: the integrator's counters reported
+STATS = ("n_steps", "n_rejected", "n_rhs", "n_jacobian", "n_lu")
 NUMERICS = {"rtol": RTOL, "atol": ATOL, "output_step": 0.01, "max_steps": 10**7, "step_warning": 10**7,
             "divergence_limit": 0.5, "quadrature_points": QUADRATURE}
 
@@ -189,6 +191,10 @@ def rig_rows(repeats: int, budget: float, log=print) -> list[dict]:
     wall, count = median_time(sampled_run, repeats, budget)
     sampled = runs[-1].integrator
     log(f"rig: hubbeam sampled loop {wall:.3f} s ({sampled['n_steps']} steps)")
+    # the same loop on exact sensors: its commands step smoothly and excite no high modes
+    exact = replace(loop, sensors=tuple(replace(sensor, quantum=0.0, noise=0.0) for sensor in loop.sensors))
+    exact_wall, exact_count = median_time(lambda: sampled_run(exact), repeats, budget)
+    exact_stats = runs[-1].integrator
     _, _, _, _, gains = design(Ts)
     continuous_case = rig_case({"kind": "state_feedback", "reference": REFERENCE, "gains": gains})
     continuous = []
@@ -219,17 +225,18 @@ def rig_rows(repeats: int, budget: float, log=print) -> list[dict]:
               "rtol": RTOL, "atol": ATOL}
     rows = [
         {"measurement": "hubbeam sampled loop (simulate_rig)", "wall_s": wall, "repeats": count,
-         **{name: sampled[name] for name in ("n_steps", "n_rejected", "n_rhs", "n_jacobian", "n_lu")}, **common},
+         **{name: sampled[name] for name in STATS}, **common},
+        {"measurement": "hubbeam sampled loop, exact sensors (no noise, no quantisation)", "wall_s": exact_wall,
+         "repeats": exact_count, **{name: exact_stats[name] for name in STATS}, **common},
         {"measurement": "python loop (solve_ivp Radau per sample, jitted rhs and jacobian)",
          "wall_s": python_wall, "repeats": 1, **common},
         {"measurement": "hubbeam continuous state feedback (simulate_rig)", "wall_s": continuous_wall,
-         "repeats": continuous_count, **{name: continuous[-1].integrator[name] for name in
-                                         ("n_steps", "n_rejected", "n_rhs", "n_jacobian", "n_lu")}, **common},
+         "repeats": continuous_count, **{name: continuous[-1].integrator[name] for name in STATS}, **common},
         {"measurement": "speed-up over the python loop", "value": python_wall / wall, **common},
         {"measurement": "cost of sampling (sampled / continuous)", "value": wall / continuous_wall, **common},
         *({"measurement": f"agreement: {name}", "value": float(value), **common} for name, value in agreement.items()),
     ]
-    for row in rows[3:]:
+    for row in rows[4:]:
         log(f"rig: {row['measurement']}: {row['value']:.4g}")
     return rows
 

@@ -431,6 +431,8 @@ def _good():
     ("F", np.zeros((3, 3)), r"SampledLoop.F: shape .*\(ns, p\) = \(3, 2\)"),
     ("R_m", np.full((2, 3), np.nan), "SampledLoop.R_m: .*finite"),
     ("Ac", np.zeros((1, 2)), "SampledLoop.Ac: shape"),
+    ("Ac", np.zeros(2), r"SampledLoop.Ac: shape \(2,\); allowed: a square matrix"),
+    ("E", [["a"], ["b"], ["c"]], "SampledLoop.E: .*finite values"),
     ("Ts", 0.0, "SampledLoop.Ts = 0.0; allowed: a finite sample time > 0"),
     ("D", -1.0, "SampledLoop.D = -1.0; allowed: a finite delay >= 0"),
     ("D", 1.0 + 1e-9, "SampledLoop.D = .*fractional part"),
@@ -446,6 +448,8 @@ def test_a_bad_loop_is_refused_naming_the_argument(key, value, message):
 @pytest.mark.parametrize("settings, message", [
     ({"name": ""}, "Sensor.name = ''"),
     ({"row": np.ones(3)}, "Sensor 'a'.row = .*2 N of them"),
+    ({"row": ["x", "y"]}, "Sensor 'a'.row = .*2 N of them"),
+    ({"row": np.ones((2, 2))}, "Sensor 'a'.row = .*2 N of them"),
     ({"noise": -1.0}, "Sensor 'a'.noise = -1.0; allowed: a finite number >= 0"),
     ({"lowpass": np.nan}, "Sensor 'a'.lowpass = nan"),
     ({"mode": "floor"}, "Sensor 'a'.mode = 'floor'; allowed: one of round, edges"),

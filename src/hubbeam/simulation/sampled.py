@@ -77,6 +77,14 @@ def _number(where: str, value, test, allowed: str) -> float:
     return number
 
 
+def _array(value) -> np.ndarray:
+    """``value`` as a float array (NaN, which no check accepts, where it holds no numbers)."""
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return np.full(np.shape(value) or 1, np.nan)
+
+
 def _finite(x: float) -> bool:
     return math.isfinite(x)
 
@@ -108,10 +116,10 @@ class Sensor:
         if not isinstance(self.name, str) or not self.name:
             raise SimulationError(f"Sensor.name = {self.name!r}; allowed: a non-empty string")
         where = f"Sensor {self.name!r}"
-        row = np.asarray(self.row, dtype=float) if np.ndim(self.row) == 1 else np.empty(0)
-        if row.size < 2 or row.size % 2 or not np.all(np.isfinite(row)):
-            raise SimulationError(f"{where}.row = {self.row!r}; allowed: finite values on the state "
-                                  "(y, y'), 2 N of them")
+        row = _array(self.row)
+        if row.ndim != 1 or row.size < 2 or row.size % 2 or not np.all(np.isfinite(row)):
+            raise SimulationError(f"{where}.row = {np.asarray(self.row).tolist()!r}; allowed: finite values on "
+                                  "the state (y, y'), 2 N of them")
         object.__setattr__(self, "row", row)
         object.__setattr__(self, "gain", _number(f"{where}.gain", self.gain, _finite, "a finite number"))
         object.__setattr__(self, "offset", _number(f"{where}.offset", self.offset, _finite,
@@ -174,10 +182,14 @@ class SampledLoop:
             raise SimulationError(f"SampledLoop.sensors: rows of lengths {sorted(lengths)}; allowed: "
                                   "rows of one length, 2 N of the simulated model")
         object.__setattr__(self, "sensors", sensors)
-        sizes = {"p": len(sensors), "nc": np.shape(self.Ac)[0] if np.ndim(self.Ac) == 2 else -1,
-                 "ns": np.size(self.K) if np.ndim(self.K) == 1 else -1}
+        matrices = {name: _array(getattr(self, name)) for name in MATRIX_SHAPES}
+        if matrices["Ac"].ndim != 2 or matrices["K"].ndim != 1:
+            name = "Ac" if matrices["Ac"].ndim != 2 else "K"
+            raise SimulationError(f"SampledLoop.{name}: shape {matrices[name].shape}; allowed: "
+                                  f"{'a square matrix (nc, nc)' if name == 'Ac' else 'a vector of ns gains'}")
+        sizes = {"p": len(sensors), "nc": matrices["Ac"].shape[0], "ns": matrices["K"].size}
         for name, shape in MATRIX_SHAPES.items():
-            value = np.asarray(getattr(self, name), dtype=float)
+            value = matrices[name]
             expected = tuple(sizes.get(size, size) for size in shape)
             if value.shape != expected or not np.all(np.isfinite(value)):
                 dims = ", ".join(str(size) for size in shape)

@@ -52,8 +52,7 @@ from hubbeam.model.drive import QUANSER_SRV02
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import model
 from hubbeam.model.parameters import FLEXIBLE_LINK
-from hubbeam.simulation.sampled import MODES as QUANTISATION
-from hubbeam.simulation.sampled import SampledLoop, Sensor, reference_array, simulate_rig
+from hubbeam.simulation.sampled import QUANTISATION_MODES, SampledLoop, Sensor, reference_array, simulate_rig
 from hubbeam.simulation.simulate import case_matrices, initial_state
 
 MODEL, MODES = "CFOAM", 5
@@ -149,7 +148,7 @@ def python_loop(loop: SampledLoop) -> dict:
     gains = np.array([sensor.gain for sensor in loop.sensors])
     offsets = np.array([sensor.offset for sensor in loop.sensors])
     sigma = np.array([sensor.noise for sensor in loop.sensors])
-    quanta = [(sensor.quantum, QUANTISATION[sensor.mode]) for sensor in loop.sensors]
+    quanta = [(sensor.quantum, QUANTISATION_MODES[sensor.mode]) for sensor in loop.sensors]
     reference = reference_array(case["maneuver"])
     times = loop.sample_times(T_END)
     noise = loop.noise(times.size)

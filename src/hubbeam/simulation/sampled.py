@@ -60,7 +60,7 @@ from hubbeam.simulation.simulate import (
 LOG = logging.getLogger(__name__)
 
 #: quantisation modes of a sensor: the kernel's codes (``hubbeam.core.sampled``)
-MODES = {"round": ROUND, "edges": EDGES}
+QUANTISATION_MODES = {"round": ROUND, "edges": EDGES}
 #: a fractional delay must keep its switches this fraction of a sample time away from the samples
 #: (closer, the integrator would take slivers of steps between them)
 MIN_DELAY_FRACTION = 1e-6
@@ -127,8 +127,9 @@ class Sensor:
         for key in ("noise", "lowpass", "quantum"):
             object.__setattr__(self, key, _number(f"{where}.{key}", getattr(self, key), _not_negative,
                                                   "a finite number >= 0 (0: none)"))
-        if self.mode not in MODES:
-            raise SimulationError(f"{where}.mode = {self.mode!r}; allowed: one of {', '.join(MODES)}")
+        if self.mode not in QUANTISATION_MODES:
+            raise SimulationError(f"{where}.mode = {self.mode!r}; allowed: one of "
+                                  f"{', '.join(QUANTISATION_MODES)}")
 
     def to_dict(self) -> dict:
         """The sensor as plain values (for a dataset's attributes)."""
@@ -294,7 +295,7 @@ def loop_arrays(loop: SampledLoop, free: np.ndarray, t_end: float,
         np.ascontiguousarray([sensor.row[columns] for sensor in loop.sensors]),
         *(np.array([getattr(sensor, key) for sensor in loop.sensors], dtype=float)
           for key in ("gain", "offset", "noise", "lowpass", "quantum")),
-        np.array([MODES[sensor.mode] for sensor in loop.sensors], dtype=np.int64), noise)
+        np.array([QUANTISATION_MODES[sensor.mode] for sensor in loop.sensors], dtype=np.int64), noise)
     switches = loop.switch_times(n)
     timing = LoopTiming(samples, switches, loop.u_max)
     records = SampleRecords(np.full(n, np.nan), np.full((n, p), np.nan), np.full((n, p), np.nan),

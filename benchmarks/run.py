@@ -42,7 +42,8 @@ Also written: ``compilation.csv`` (a fresh process's first ``simulate`` call wit
 cold and warm, and the cold compile time of each kernel), ``scaling.csv`` (``simulate`` against
 the number of modes and the simulated time), ``eigen.csv`` (``K22`` eigen-analyses per second),
 ``linear_modes.csv`` (a tracked, damped Campbell diagram over 200 speeds with 10 + 10 modes,
-:mod:`benchmarks.linear_modes`),
+:mod:`benchmarks.linear_modes`), ``rig.csv`` (a sampled LQG loop on a servo rig against a Python
+loop over the samples and against continuous feedback, :mod:`benchmarks.rig`),
 ``sweeps.csv`` (throughput and accuracy of the parameter-sweep kernel) and ``machine.json``.
 """
 
@@ -65,6 +66,7 @@ from benchmarks.extras import eigen_rows, scaling_rows, sweep_rows
 from benchmarks.linear import linear_rows
 from benchmarks.linear_modes import campbell_rows
 from benchmarks.machine import load_average, machine_info
+from benchmarks.rig import rig_rows
 from benchmarks.search import benchmark_case, case_methods, python_rhs_row
 from benchmarks.settings import BENCHMARK_CONFIG, STUDY_CONFIG, load_settings
 from hubbeam.configuration.settings import case_from_config
@@ -137,6 +139,7 @@ def run(config_files: Sequence[str], benchmark_file: os.PathLike | str, output: 
                                        output / "linear.csv")
         written["linear_modes"] = _write_csv(campbell_rows(cfg, params, repeats, budget),
                                              output / "linear_modes.csv")
+        written["rig"] = _write_csv(rig_rows(repeats, budget, log), output / "rig.csv")
         if "sweeps" in cfg:
             check = settings["sweep_check"]
             written["sweeps"] = _write_csv(sweep_rows(cfg, params, check["points"], check["rtol"]),
@@ -179,7 +182,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--skip-compilation", action="store_true",
                         help="do not time cold and warm compilation in fresh processes")
     parser.add_argument("--skip-extras", action="store_true",
-                        help="skip the scaling, eigen, linear-modes and sweep tables")
+                        help="skip the scaling, eigen, linear-modes, rig and sweep tables")
     args = parser.parse_args(argv)
     if args.repeats < 1 or args.run_cap <= 0 or args.timing_budget <= 0:
         parser.error(f"--repeats = {args.repeats}, --run-cap = {args.run_cap}, --timing-budget "

@@ -18,6 +18,7 @@ from types import CodeType
 import pytest
 
 from hubbeam.configuration.load import load_config
+from hubbeam.model.parameters import FLEXIBLE_LINK, BeamParameters
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 CONFIG_FILE = REPO_ROOT / "config" / "config.yaml"
@@ -77,3 +78,10 @@ def _study_config() -> dict:
 def study_config(_study_config) -> dict:
     """The validated config/config.yaml, as a private copy each test may modify."""
     return copy.deepcopy(_study_config)
+
+
+@pytest.fixture(scope="session")
+def flexible_link() -> BeamParameters:
+    """The flexible link of a servo rig (``hubbeam.model.parameters.FLEXIBLE_LINK``), which the
+    rig's tests turn with the SRV02's drive."""
+    return FLEXIBLE_LINK

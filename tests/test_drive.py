@@ -61,3 +61,16 @@ def test_coulomb_friction_holds_the_hub_below_the_breakaway_voltage():
     expected = (motor.torque_gain * above - motor.coulomb_friction) / motor.hub_damping
     assert steady(above) == pytest.approx(expected, rel=1e-6)
     assert math.tanh(expected / eps) == pytest.approx(1.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("key, value", [("resistance", 0.0), ("gear_ratio", -70.0), ("motor_efficiency", 1.2),
+                                        ("coulomb_smoothing", 0.0), ("voltage_limit", math.nan),
+                                        ("viscous_friction", math.inf), ("torque_constant", "7e-3 N m/A")])
+def test_a_motor_out_of_range_is_refused_naming_the_parameter(key, value):
+    with pytest.raises(ValueError, match=f"DcMotor.{key} = .*allowed"):
+        DcMotor(**{"resistance": 2.6, "torque_constant": 7.68e-3, "back_emf_constant": 7.68e-3, key: value})
+
+
+def test_the_packed_drive_holds_the_law_s_constants():
+    packed = QUANSER_SRV02.packed()
+    assert packed.tolist() == [QUANSER_SRV02.torque_gain, 70.0 * 7.68e-3, 0.015, 0.0, 0.01, 10.0]

@@ -6,7 +6,8 @@ with :func:`hubbeam.core.cfoam_tensors.cfoam_system`, which contracts the state 
 summed over the point cloud once per simulation instead of summing over the cloud at every
 call -- and solves Eq. (24) for the free accelerations by a Cholesky factorisation: the elastic
 block with the prescribed ``theta_ddot`` moved to the right-hand side (Eq. 43, a speed table),
-or the whole system for a free hub (Eq. 44, a torque table, PD or state feedback); the damping forces of
+or the whole system for a free hub (Eq. 44, a torque table, PD, state feedback or a held input,
+through the hub's drive if it has one); the damping forces of
 the elastic coordinates (``C``, :func:`hubbeam.core.eom.add_damping`) join the force. These are
 the equations :func:`hubbeam.core.eom.accelerations` solves with the point-cloud kernel; the tests
 hold the two to rounding error.
@@ -17,6 +18,7 @@ from collections import namedtuple
 import numpy as np
 
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
+from hubbeam.core.drive import drive_torque
 from hubbeam.core.eom import add_damping, solve_spd
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import hub_torque, prescribed_motion
@@ -24,18 +26,18 @@ from hubbeam.core.radau import register_rhs
 
 #: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, damping matrices ``C``,
 #: the tensors ``ct``, and work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F``
-#: of Eq. (24).
-CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F")
+#: of Eq. (24); ``drive`` the hub's packed drive (``hubbeam.core.drive``; empty: none).
+CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F drive")
 
 
 @kernel
 def cfoam_problem(inputs):
     """The :data:`CfoamProblem` of CFOAM for the :class:`~hubbeam.core.inputs.SimulationInputs`
     ``inputs`` (maneuver, damping matrices ``C`` and ``SystemMatrices`` ``sm``)."""
-    _, kind, mp, C, sm = inputs
+    sm = inputs.sm
     N = 1 + 2 * sm.M1.shape[0]
-    return CfoamProblem(kind, mp, C, cfoam_tensors(sm), np.zeros(N), np.zeros(N), np.empty((N, N)),
-                        np.empty(N))
+    return CfoamProblem(inputs.kind, inputs.mp, inputs.C, cfoam_tensors(sm), np.zeros(N), np.zeros(N),
+                        np.empty((N, N)), np.empty(N), inputs.drive)
 
 
 @borrowing_kernel
@@ -50,7 +52,7 @@ def cfoam_rhs(t, yf, vf, af, problem):
         y[0], thd, thdd = prescribed_motion(problem.kind, t, problem.mp)
         v[0] = thd
     else:
-        tau = hub_torque(problem.kind, t, yf, vf, problem.mp)
+        tau = drive_torque(problem.drive, hub_torque(problem.kind, t, yf, vf, problem.mp), vf[0])
     for i in range(nf):
         y[o + i] = yf[i]
         v[o + i] = vf[i]

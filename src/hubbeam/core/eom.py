@@ -36,6 +36,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from hubbeam.core.drive import drive_torque
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
 
@@ -294,7 +295,8 @@ def impose_constraints(inputs, t, y, v, a):
     A prescribed maneuver (Eq. 43, a speed table) sets theta and its rates and applies no torque
     of its own (the torque it needs is an output); a free hub gets the torque of its maneuver
     (Eq. 44, a torque table, PD feedback on theta and theta', state feedback on the whole
-    state, evaluated after a model that does not keep q1 (SFOAM) has it held at zero).
+    state, evaluated after a model that does not keep q1 (SFOAM) has it held at zero, a held
+    input), through the hub's drive when it has one (``inputs.drive``, ``hubbeam.core.drive``).
     ``inputs``: :class:`~hubbeam.core.inputs.SimulationInputs`.
     """
     n = (y.shape[0] - 1) // 2
@@ -311,7 +313,7 @@ def impose_constraints(inputs, t, y, v, a):
             v[1 + i] = 0.0
             a[1 + i] = 0.0
     if not prescribed(kind):
-        tau = hub_torque(kind, t, y, v, inputs.mp)
+        tau = drive_torque(inputs.drive, hub_torque(kind, t, y, v, inputs.mp), v[0])
     return tau
 
 

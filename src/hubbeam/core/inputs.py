@@ -7,7 +7,10 @@
 * :class:`IntegratorSettings`: tolerances, the watched tip limit and the step budget of
   :func:`hubbeam.core.radau.radau5`;
 * :class:`State` and :class:`Trajectory`: a state of ``y = (theta, q1, q2)`` and the dense
-  output of the integrated coordinates on a time grid.
+  output of the integrated coordinates on a time grid;
+* :class:`LoopArrays` (:class:`LoopMatrices`, :class:`LoopSensors`, :class:`LoopTiming`,
+  :class:`SampleRecords`): a sampled digital controller around the hub
+  (:mod:`hubbeam.core.sampled`).
 
 Grouping them keeps every kernel entry point at a handful of arguments, where numba would not
 notice two swapped floats among a dozen.
@@ -18,6 +21,10 @@ from typing import NamedTuple
 import numpy as np
 
 from hubbeam.core.system_matrices import SystemMatrices
+
+#: the hub without a drive, an ideal torque actuator (``hubbeam.core.drive``): the maneuver's output
+#: is the hub torque
+NO_DRIVE = np.zeros(0)
 
 
 class ModelTraits(NamedTuple):
@@ -40,13 +47,15 @@ def family(traits: ModelTraits) -> str:
 
 class SimulationInputs(NamedTuple):
     """The problem of one simulation: model, maneuver (``hubbeam.core.maneuver``), damping
-    matrices ``C = [C1, C2]`` (``eom.add_damping``) and system matrices."""
+    matrices ``C = [C1, C2]`` (``eom.add_damping``) and system matrices; ``drive`` is the hub's
+    packed DC drive (``hubbeam.core.drive``; empty, the default: an ideal torque actuator)."""
 
     traits: ModelTraits
     kind: int
     mp: np.ndarray
     C: np.ndarray
     sm: SystemMatrices
+    drive: np.ndarray = NO_DRIVE
 
 
 class IntegratorSettings(NamedTuple):
@@ -79,3 +88,73 @@ class Trajectory(NamedTuple):
     t: np.ndarray
     y: np.ndarray
     v: np.ndarray
+
+
+class LoopMatrices(NamedTuple):
+    """The controller of a sampled loop (``docs/sampled-control.md``): ``xhat_k = E xc_k + F e_k``,
+    ``u_cmd_k = U_r . rho_k - K . xhat_k``, ``xc_{k+1} = Ac xc_k + Bc e_k + Bu (u_k - U_r .
+    rho_k)`` with ``e_k = m_k - R_m rho_k``; shapes ``Ac (nc, nc)``, ``Bc (nc, p)``, ``Bu (nc,)``,
+    ``E (ns, nc)``, ``F (ns, p)``, ``K (ns,)``, ``R_m (p, 3)``, ``U_r (3,)``, ``xc0 (nc,)``."""
+
+    Ac: np.ndarray
+    Bc: np.ndarray
+    Bu: np.ndarray
+    E: np.ndarray
+    F: np.ndarray
+    K: np.ndarray
+    R_m: np.ndarray
+    U_r: np.ndarray
+    xc0: np.ndarray
+
+
+class LoopSensors(NamedTuple):
+    """The ``p`` sensors of a sampled loop: ``s_j = gain_j (rows_j . (y_f, v_f)) + offset_j`` on
+    the integrated coordinates and rates, an analog low-pass of time constant ``tau_j`` (0: none),
+    the noise ``sigma_j noise[k, j]`` (``noise``: standard normal, ``(n_samples, p)``), the
+    quantum ``quantum_j`` (0: none) and the quantisation ``mode_j`` (``sampled.ROUND`` or
+    ``sampled.EDGES``)."""
+
+    rows: np.ndarray
+    gain: np.ndarray
+    offset: np.ndarray
+    sigma: np.ndarray
+    tau: np.ndarray
+    quantum: np.ndarray
+    mode: np.ndarray
+    noise: np.ndarray
+
+
+class LoopTiming(NamedTuple):
+    """When a sampled loop acts: the sample times ``t_k = k Ts``, the times ``(k + D) Ts`` at which
+    the command of sample ``k`` reaches the plant (both ``(n_samples,)``) and the saturation
+    ``u_max`` of the command."""
+
+    sample_times: np.ndarray
+    switch_times: np.ndarray
+    u_max: float
+
+
+class SampleRecords(NamedTuple):
+    """What a sampled loop records per sample (caller-allocated, NaN where not reached): the time
+    ``t`` (n,), the measurements ``measured`` (n, p), the noise-free sensor values ``sensed``
+    (n, p), the estimate ``estimate`` (n, ns), the law's command ``command`` and the applied,
+    saturated ``applied`` (n,)."""
+
+    t: np.ndarray
+    measured: np.ndarray
+    sensed: np.ndarray
+    estimate: np.ndarray
+    command: np.ndarray
+    applied: np.ndarray
+
+
+class LoopArrays(NamedTuple):
+    """A sampled digital controller around the hub: :class:`LoopMatrices`, :class:`LoopSensors`,
+    :class:`LoopTiming`, the reference packed as ``[kind, parameters...]`` (a ``PD`` maneuver's
+    reference, ``hubbeam.core.maneuver``) and the :class:`SampleRecords` it writes."""
+
+    matrices: LoopMatrices
+    sensors: LoopSensors
+    timing: LoopTiming
+    reference: np.ndarray
+    records: SampleRecords

@@ -27,6 +27,7 @@ import numpy as np
 
 from hubbeam.core.cfoam_rhs import cfoam_problem
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
+from hubbeam.core.drive import friction_torque, motor_torque, required_voltage, terminal_voltage
 from hubbeam.core.eom import (
     add_damping,
     body_outputs,
@@ -42,17 +43,24 @@ from hubbeam.core.eom import (
 from hubbeam.core.foam_rhs import foam_outputs, foam_problem
 from hubbeam.core.inputs import FAMILIES, Trajectory, family
 from hubbeam.core.jit import borrowing_kernel, inline_kernel, kernel
+from hubbeam.core.maneuver import hub_torque, prescribed
 from hubbeam.core.radau import radau5
 
 #: Columns of the output array: these, then ``q1[0..n-1]``, ``q2[0..n-1]``, then the CFOAM
 #: high-order terms ``dM_thth``, ``dQ_theta``, ``dQ_q1[0..n-1]``, ``dQ_q2[0..n-1]`` (NaN for the
 #: other models); see :func:`output_columns`. ``dissipation_rate`` is the power of the damping
 #: forces (:func:`hubbeam.core.eom.dissipation_rate`); ``body_transverse`` and ``body_axial`` the
-#: displacement of the tip body's centre (:func:`hubbeam.core.eom.body_outputs`).
+#: displacement of the tip body's centre (:func:`hubbeam.core.eom.body_outputs`). With a drive
+#: (``hubbeam.core.drive``) ``hub_torque`` is the torque the drive delivers to the hub, ``hub_voltage``
+#: the voltage across the motor (a free hub's command clipped to the limit, or what a prescribed
+#: motion needs, not clipped) and ``motor_torque`` the gearbox's torque before the hub's friction;
+#: both are NaN without a drive.
 SCALAR_OUTPUTS = ("theta", "theta_dot", "theta_ddot", "hub_torque", "Q_theta", "tip_transverse",
                   "tip_axial", "tip_foreshortening", "energy", "angular_momentum",
-                  "dissipation_rate", "body_transverse", "body_axial")
+                  "dissipation_rate", "body_transverse", "body_axial", "hub_voltage", "motor_torque")
 N_SCALAR = len(SCALAR_OUTPUTS)
+HUB_VOLTAGE = SCALAR_OUTPUTS.index("hub_voltage")
+MOTOR_TORQUE = SCALAR_OUTPUTS.index("motor_torque")
 
 
 def output_columns(n):
@@ -133,6 +141,23 @@ def _write_row(out_row, y, v, a, hub, ends, dissipation):
         out_row[N_SCALAR + i] = y[1 + i]
 
 
+@borrowing_kernel
+def _drive_columns(out_row, inputs, t, y, v, torque):
+    """``hub_voltage`` and ``motor_torque`` of one output time (see :data:`SCALAR_OUTPUTS`) from
+    the state ``(y, v)`` (full length, constraints imposed) and the hub torque ``torque``."""
+    drive = inputs.drive
+    if drive.shape[0] == 0:
+        out_row[HUB_VOLTAGE] = np.nan
+        out_row[MOTOR_TORQUE] = np.nan
+    elif prescribed(inputs.kind):
+        out_row[HUB_VOLTAGE] = required_voltage(drive, torque, v[0])
+        out_row[MOTOR_TORQUE] = torque + friction_torque(drive, v[0])
+    else:
+        command = hub_torque(inputs.kind, t, y, v, inputs.mp)
+        out_row[HUB_VOLTAGE] = terminal_voltage(drive, command)
+        out_row[MOTOR_TORQUE] = motor_torque(drive, command, v[0])
+
+
 # Outputs of an undamped run (C = 0) have a dissipation rate of exactly zero, not summed.
 # TLAM, FOAM and SFOAM fill their rows in a loop compiled without numba's reference counting
 # (``jit.borrowing_kernel``; its work arrays are rows of ``work``): with the counts the loop took
@@ -155,6 +180,7 @@ def _foam_rows(problem, inputs, damped, free, states, out, work):
         _write_row(out[k], y, v, a, (torque, q_theta, kinetic + strain_energy(y, sm.K1, sm.K2), p),
                    (tip_outputs(y, sm), body_outputs(y, sm)),
                    dissipation_rate(inputs.C, v) if damped else 0.0)
+        _drive_columns(out[k], inputs, t_out[k], y, v, torque)
 
 
 @kernel
@@ -192,6 +218,7 @@ def _fill_rows_cfoam(ct, inputs, free, states, out):
         hub = outputs(inputs.kind, tau, y, v, sm, free, a, ws)
         _write_row(out[k], y, v, a, hub, (tip_outputs(y, sm), body_outputs(y, sm)),
                    dissipation_rate(C, v) if damped else 0.0)
+        _drive_columns(out[k], inputs, t_out[k], y, v, hub[0])
         out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, (y, v, a), inputs, Mf, Ff, dQ)
         for i in range(N):
             out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]

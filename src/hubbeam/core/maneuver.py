@@ -3,8 +3,8 @@
 A maneuver is an integer ``kind`` and a float array ``mp`` of its parameters (tables packed into
 it by ``hubbeam.model.maneuvers``). The hub is *prescribed* (``PRESCRIBED``, ``SPEED_TABLE``: theta and
 its rates are known functions of time, the torque that drives them is an output) or *free*
-(``TORQUE``, ``TORQUE_TABLE``, ``PD``, ``STATE_FEEDBACK``: the applied torque enters the hub row
-of Eq. 24).
+(``TORQUE``, ``TORQUE_TABLE``, ``PD``, ``STATE_FEEDBACK``, ``HELD``: the applied torque enters the
+hub row of Eq. 24, or, with a drive, the command from which the drive makes it).
 
 ``PRESCRIBED``: the spin-up of Eq. (43) with the factor ``t`` the transcription lost (reproduction
 note 1); ``mp = [wf, tf]``. The hub angle, rate and acceleration are
@@ -41,6 +41,11 @@ only ``PRESCRIBED`` gives). The torque may be evaluated on the free coordinates 
 integrates no ``q1`` (SFOAM, Eq. 40): the ``q1`` entries of ``K`` are then skipped (they are zero
 for such a model). ``PD`` is the case ``K = (kp, 0.., kd, 0..)``, ``J = 0``.
 
+``HELD``: a free hub under a zero-order hold, the input a sampled controller writes as it runs
+(``hubbeam.core.sampled``); ``mp = [c, s_0..s_{m-1}, u_0..u_{m-1}]`` holds ``c <= m`` switches,
+``u_i`` from ``s_i`` (non-decreasing) to the next switch, right-continuous (at a switch, its new
+value), ``u_0`` also before ``s_0`` and ``u_{c-1}`` after ``s_{c-1}``.
+
 Packed table at offset ``o`` of ``mp`` (``m >= 2`` rows, times ``t_k`` increasing): ``mp[o] = m``,
 then ``t_0..t_{m-1}``, the integrals ``I_k`` of the interpolant from 0 to ``t_k``, the cubic
 coefficients ``c0..c3`` of every interval (value ``c0 + c1 s + c2 s^2 + c3 s^3``, ``s = t - t_k``),
@@ -63,6 +68,7 @@ PD_REFERENCE = 3
 STATE_FEEDBACK = 6
 #: offset of the gains in a ``STATE_FEEDBACK`` maneuver's ``mp``
 FEEDBACK_GAINS = 2
+HELD = 7
 
 
 @borrowing_kernel
@@ -102,6 +108,21 @@ def applied_torque(t, mp):
 
 
 @borrowing_kernel
+def _interval(t, mp, ts, m):
+    """The index ``lo`` with ``mp[ts + lo] <= t < mp[ts + lo + 1]`` among the ``m`` increasing
+    times at ``mp[ts]`` (``mp[ts] <= t < mp[ts + m - 1]``), by bisection."""
+    lo = 0
+    hi = m - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if mp[ts + mid] <= t:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@borrowing_kernel
 def table(t, mp, o):
     """``(integral from 0, value, derivative)`` at ``t`` of the table packed at ``mp[o]``."""
     m = int(mp[o])
@@ -114,14 +135,7 @@ def table(t, mp, o):
     if t >= mp[ts + m - 1]:
         y1 = mp[cs + 4 * (m - 1)]
         return mp[integrals + m - 1] + y1 * (t - mp[ts + m - 1]), y1, 0.0
-    lo = 0
-    hi = m - 1
-    while hi - lo > 1:  # bisection: mp[ts + lo] <= t < mp[ts + hi]
-        mid = (lo + hi) // 2
-        if mp[ts + mid] <= t:
-            lo = mid
-        else:
-            hi = mid
+    lo = _interval(t, mp, ts, m)
     s = t - mp[ts + lo]
     c = cs + 4 * lo
     c0 = mp[c]
@@ -175,8 +189,56 @@ def feedback_torque(t, y, v, mp):
 
 
 @borrowing_kernel
+def held_input(t, mp):
+    """The value a ``HELD`` maneuver holds at ``t``: that of its last switch at or before ``t``
+    (the first value before the first switch); see the module docstring."""
+    count = int(mp[0])
+    cap = (mp.shape[0] - 1) // 2
+    values = 1 + cap
+    if t >= mp[count]:  # the integrator asks beyond the last switch
+        return mp[values + count - 1]
+    if t < mp[1]:
+        return mp[values]
+    return mp[values + _interval(t, mp, 1, count)]
+
+
+@borrowing_kernel
+def table_motion(t, mp, o):
+    """Value, derivative and second derivative at ``t`` of the table packed at ``mp[o]`` (zero
+    rates where a value is held, before and after the table)."""
+    m = int(mp[o])
+    ts = o + 1
+    cs = ts + 2 * m
+    if t < mp[ts]:
+        return mp[cs], 0.0, 0.0
+    if t >= mp[ts + m - 1]:
+        return mp[cs + 4 * (m - 1)], 0.0, 0.0
+    lo = _interval(t, mp, ts, m)
+    s = t - mp[ts + lo]
+    c = cs + 4 * lo
+    c1 = mp[c + 1]
+    c2 = mp[c + 2]
+    c3 = mp[c + 3]
+    value = mp[c] + s * (c1 + s * (c2 + s * c3))
+    return value, c1 + s * (2.0 * c2 + s * 3.0 * c3), 2.0 * c2 + 6.0 * c3 * s
+
+
+@borrowing_kernel
+def reference_motion(t, mp, o):
+    """``(theta_r, theta_r', theta_r'')`` at ``t`` of the reference of a ``PD``-like maneuver whose
+    parameters start at ``mp[o]`` (its kind, ``PRESCRIBED`` or ``ANGLE_TABLE``, at ``mp[o - 1]``):
+    Eq. (43) or the clamped cubic spline of an angle table."""
+    if int(mp[o - 1]) == ANGLE_TABLE:
+        return table_motion(t, mp, o)
+    return _spin_up(t, mp[o], mp[o + 1])
+
+
+@borrowing_kernel
 def hub_torque(kind, t, y, v, mp):
-    """Torque applied to a free hub at ``t`` in the state ``(y, y')`` (theta first)."""
+    """Torque applied to a free hub at ``t`` in the state ``(y, y')`` (theta first); with a drive,
+    the drive's command (``hubbeam.core.drive``)."""
+    if kind == HELD:
+        return held_input(t, mp)
     if kind == TORQUE_TABLE:
         return table(t, mp, 0)[1]
     if kind == PD:

@@ -39,6 +39,9 @@ The right-hand side is attached to a problem type: :func:`register_rhs` declares
 ``rhs(t, y, v, a, problem)`` (a jitted function writing the accelerations ``a``) for every
 ``problem`` of a given namedtuple class; the kernels below are specialised on that class at
 compile time (a direct call, no function pointer, so that the compiled kernels can be cached).
+A problem class may also declare hooks (:func:`register_hooks`): one at each stop, which may
+switch the problem's forcing there (the integration then restarts as at its start), and one after
+every accepted step; a class without hooks compiles to the plain integrator.
 """
 
 import math
@@ -77,6 +80,7 @@ JACOBIAN_REFRESH = 0.03    # recompute J after a step whose Newton contraction r
 KEEP_STEP_LOW = 1.0        # keep h (and the LU factors) when the proposed ratio is in [low, high]
 KEEP_STEP_HIGH = 1.2
 SAFETY = 0.9
+SAME_STEP = 1e-12          # relative difference of a restart's step from the LU factors' step they reuse
 
 
 def _radau_constants():
@@ -158,6 +162,70 @@ def _problem_rhs_overload(t, y, v, a, problem):
 
     def impl(t, y, v, a, problem):
         rhs(t, y, v, a, problem)
+
+    return impl
+
+
+# --------------------------------------------------------------------------- hooks
+_HOOK_REGISTRY = {}
+
+
+def register_hooks(problem_class, at_stop, after_step):
+    """Declare the jitted hooks of the namedtuple class ``problem_class`` (after its ``rhs``).
+
+    ``at_stop(t, y, v, problem)`` runs at the start and at every stop of ``t_stops`` that an
+    accepted step lands on (the state is there); it returns True when the problem's forcing jumps
+    at ``t`` (a sampled controller's new input), and :func:`radau5` then restarts from ``(t, y,
+    v)``: the accelerations are evaluated anew, the next step starts from zero stage values, its
+    error estimate is refined as at a start and the step-size controller forgets the previous
+    step (the Jacobian and the LU factors are kept: the forcing does not enter them).
+    ``after_step(t, h, start, end, problem)`` runs after every accepted step from ``t`` to ``t +
+    h`` with ``start = (y0, v0, a0)`` and ``end = (y1, v1, a1)``, the data of the dense output
+    (quantities integrated along the solution). Problems of other classes have no hooks.
+    """
+    registered_rhs(problem_class)
+    _HOOK_REGISTRY[problem_class] = (at_stop, after_step)
+
+
+def at_stop(t, y, v, problem):
+    """The ``at_stop`` hook of ``problem`` (:func:`register_hooks`); False without one."""
+    hooks = _HOOK_REGISTRY.get(type(problem))
+    return hooks is not None and hooks[0](t, y, v, problem)
+
+
+def after_step(t, h, start, end, problem):
+    """The ``after_step`` hook of ``problem`` (:func:`register_hooks`); nothing without one."""
+    hooks = _HOOK_REGISTRY.get(type(problem))
+    if hooks is not None:
+        hooks[1](t, h, start, end, problem)
+
+
+@overload(at_stop, jit_options=JIT_OPTIONS, inline="always")
+def _at_stop_overload(t, y, v, problem):
+    hooks = _HOOK_REGISTRY.get(getattr(problem, "instance_class", None))
+    if hooks is None:
+        def impl(t, y, v, problem):
+            return False
+        return impl
+    hook = hooks[0]
+
+    def impl(t, y, v, problem):
+        return hook(t, y, v, problem)
+
+    return impl
+
+
+@overload(after_step, jit_options=JIT_OPTIONS, inline="always")
+def _after_step_overload(t, h, start, end, problem):
+    hooks = _HOOK_REGISTRY.get(getattr(problem, "instance_class", None))
+    if hooks is None:
+        def impl(t, h, start, end, problem):
+            return None
+        return impl
+    hook = hooks[1]
+
+    def impl(t, h, start, end, problem):
+        hook(t, h, start, end, problem)
 
     return impl
 
@@ -604,7 +672,9 @@ def radau5(problem, start, t_stops, settings, watch, trajectory, stats):
     problem : namedtuple of a class registered with :func:`register_rhs`.
     start : ``(y0, v0)``, (N,) positions and velocities at ``t_out[0]``.
     t_stops : sorted times that no step may cross (discontinuities of the forcing, such as the
-        end of a maneuver); times outside ``(t_out[0], t_out[-1])`` are ignored.
+        end of a maneuver, or a sampled controller's samples and input switches, where the
+        problem's hooks run, :func:`register_hooks`); times outside ``(t_out[0], t_out[-1]]`` are
+        ignored.
     settings : :class:`~hubbeam.core.inputs.IntegratorSettings`: ``rtol`` and ``atol`` of every
         component of ``(y, v)`` (every accepted step has an error estimate of weighted RMS
         norm <= 1, see the module docstring); ``tip_limit``: the run stops with status
@@ -649,6 +719,7 @@ def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
             v_out[k, m] = np.nan
     a, y1, v1, a1, sc = w.a, w.y1, w.v1, w.a1, w.sc
     Zy, Zv, Zy_acc, Zv_acc = w.Zy, w.Zv, w.Zy_acc, w.Zv_acc
+    at_stop(t, y, v, problem)
     problem_rhs(t, y, v, a, problem)
     stats[RHS_CALLS] += 1
     if not (_all_finite(y) and _all_finite(v) and _all_finite(a)):
@@ -669,6 +740,7 @@ def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
     need_jac = True      # evaluate J at the current point before the next attempt
     jac_current = False  # J was evaluated at the current point
     h_lu = 0.0           # step size of the current LU factors (0: none)
+    fresh = True         # no step accepted since the start or a restart (register_hooks)
     attempts = 0
     while t < t_end:
         # land exactly on the next stop or the end, without leaving a sliver of a step
@@ -690,10 +762,12 @@ def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
             jac_current = True
             need_jac = False
             h_lu = 0.0
-        if h != h_lu:
+        # after a restart the interval to the next stop is the previous one's length to rounding:
+        # the factors of that length serve (simplified Newton), not refactored for an ulp
+        if h != h_lu and not (fresh and abs(h - h_lu) <= SAME_STEP * h):
             _factorize(h, w, stats)
             h_lu = h
-        if stats[ACCEPTED] == 0:
+        if fresh:
             for i in range(3):
                 for m in range(n):
                     Zy[i, m] = 0.0
@@ -717,7 +791,7 @@ def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
         err = 0.0
         if not fixed_step:
             _scale(y, v, y1, v1, rtol, atol, sc)
-            err = _error_estimate(problem, t, h, y, v, w, stats[ACCEPTED] == 0 or rejected, stats)
+            err = _error_estimate(problem, t, h, y, v, w, fresh or rejected, stats)
         fac = SAFETY * (2 * NEWTON_MAX_ITER + 1) / (2 * NEWTON_MAX_ITER + nit)
         if not (err <= 1.0):
             stats[REJECTED] += 1
@@ -733,6 +807,7 @@ def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
         stats[ACCEPTED] += 1
         if not (_all_finite(y1) and _all_finite(v1) and _all_finite(a1)):
             return NON_FINITE, t1
+        after_step(t, h, (y, v, a), (y1, v1, a1), problem)
         while i_out < n_out and t_out[i_out] <= t1 * (1.0 + 4.0 * UROUND):
             s = min(1.0, (t_out[i_out] - t) / h)
             hermite_interpolate(s, h, (y, v, a), (y1, v1, a1), y_out[i_out], v_out[i_out])
@@ -742,7 +817,7 @@ def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
         else:
             e = max(err, 1e-10)
             factor = fac * e ** -0.25
-            if stats[ACCEPTED] > 1:
+            if not fresh:
                 factor = min(factor, factor * (h / h_acc) * (err_acc / e) ** 0.25)
             factor = max(MIN_FACTOR, min(MAX_FACTOR, factor))
             if KEEP_STEP_LOW <= factor <= KEEP_STEP_HIGH:
@@ -757,8 +832,10 @@ def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
                 Zy_acc[i, m] = Zy[i, m]
                 Zv_acc[i, m] = Zv[i, m]
         t = t1
+        landed = False
         while i_stop < t_stops.shape[0] and t_stops[i_stop] <= t:
             i_stop += 1
+            landed = True
         watched = 0.0
         for m in range(n):
             y[m] = y1[m]
@@ -771,4 +848,12 @@ def _march(problem, state, w, t_stops, settings, watch, trajectory, stats):
         jac_current = False
         need_jac = fixed_step or theta > JACOBIAN_REFRESH
         h = h_new
+        fresh = False
+        if landed and at_stop(t, y, v, problem):
+            # the forcing jumped: restart from (t, y, v) with the new accelerations
+            problem_rhs(t, y, v, a, problem)
+            stats[RHS_CALLS] += 1
+            if not _all_finite(a):
+                return NON_FINITE, t
+            fresh = True
     return SUCCESS, t

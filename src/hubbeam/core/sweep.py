@@ -208,10 +208,11 @@ def sweep_tip_extrema(first, stride, points, stack, output_step, settings, found
     results = found.results
     n = stack.K1.shape[1]
     undamped = np.zeros((2, n, n))
+    no_drive = np.zeros(0)
     for p in range(first, points.traits.shape[0], stride):
         sm = matrices_at(stack, points.matrix_index[p])
         inputs = SimulationInputs(traits_at(points.traits, p), points.kind, points.mp[p], undamped,
-                                  sm)
+                                  sm, no_drive)
         code, t_stop, peak, peak_time, residual = tip_extrema(
             inputs, points.t_end[p], points.t_mark[p], output_step, settings, found.stats[p])
         found.status[p] = code

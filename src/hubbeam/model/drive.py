@@ -32,6 +32,33 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from hubbeam.core import drive as kernel_drive
+
+#: the ranges of the parameters: name -> (test, what is allowed)
+_RANGES = {
+    "positive": (lambda x: 0.0 < x < math.inf, "a finite value > 0"),
+    "non-negative": (lambda x: 0.0 <= x < math.inf, "a finite value >= 0"),
+    "efficiency": (lambda x: 0.0 < x <= 1.0, "an efficiency in (0, 1]"),
+    "limit": (lambda x: x > 0.0, "a voltage > 0 (inf: no limit)"),
+}
+#: the range of every field of :class:`DcMotor`
+_FIELD_RANGES = {"resistance": "positive", "torque_constant": "positive", "back_emf_constant": "non-negative",
+                 "gear_ratio": "positive", "motor_efficiency": "efficiency", "gearbox_efficiency": "efficiency",
+                 "rotor_inertia": "non-negative", "viscous_friction": "non-negative",
+                 "coulomb_friction": "non-negative", "coulomb_smoothing": "positive", "voltage_limit": "limit"}
+
+
+def _checked(name: str, value) -> float:
+    """``value`` as a float in the range of the field ``name``; ``ValueError`` naming both."""
+    test, allowed = _RANGES[_FIELD_RANGES[name]]
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if not test(number):
+        raise ValueError(f"DcMotor.{name} = {value!r}; allowed: {allowed}")
+    return number
+
 
 @dataclass(frozen=True)
 class DcMotor:
@@ -55,7 +82,7 @@ class DcMotor:
 
     def __post_init__(self) -> None:
         for item in fields(self):
-            object.__setattr__(self, item.name, float(getattr(self, item.name)))
+            object.__setattr__(self, item.name, _checked(item.name, getattr(self, item.name)))
 
     @property
     def torque_gain(self) -> float:
@@ -82,6 +109,18 @@ class DcMotor:
     def breakaway_voltage(self) -> float:
         """``Fc / torque_gain``: the voltage whose torque at rest equals the Coulomb friction, V."""
         return self.coulomb_friction / self.torque_gain
+
+    def packed(self) -> np.ndarray:
+        """The drive as the kernels read it (``hubbeam.core.drive``: ``[torque_gain, Kg km, B, Fc,
+        eps, V_max]``), so that the kernel evaluates :meth:`torque` with the same operations."""
+        packed = np.empty(kernel_drive.DRIVE_SIZE)
+        packed[kernel_drive.TORQUE_GAIN] = self.torque_gain
+        packed[kernel_drive.BACK_EMF] = self.gear_ratio * self.back_emf_constant
+        packed[kernel_drive.VISCOUS] = self.viscous_friction
+        packed[kernel_drive.COULOMB] = self.coulomb_friction
+        packed[kernel_drive.SMOOTHING] = self.coulomb_smoothing
+        packed[kernel_drive.VOLTAGE_LIMIT] = self.voltage_limit
+        return packed
 
     def saturate(self, voltage):
         """``voltage`` clipped to the amplifier's limit."""

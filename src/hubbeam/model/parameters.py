@@ -191,3 +191,11 @@ def check_tip(tip: TipMass, length: float) -> None:
 def _store_floats(instance) -> None:
     for field in fields(instance):
         object.__setattr__(instance, field.name, float(getattr(instance, field.name)))
+
+
+#: a steel ruler on a servo hub, close to the link of a Quanser rotary flexible link: 0.419 m
+#: long, 21.6 mm x 0.79 mm (0.056 kg, first clamped bending mode 3.7 Hz), on the SRV02's hub
+#: (its inertia without load, 0.00208 kg m2, ``hubbeam.model.drive.QUANSER_SRV02``) with a 2 cm
+#: clamp; the drive's torque of 0.13 N m per volt turns it at a few rad/s
+FLEXIBLE_LINK = BeamParameters(L=0.419, rho=7850.0, A=0.0216 * 0.00079, E=200e9, I=0.0216 * 0.00079**3 / 12.0,
+                               Jh=0.00208, rA=0.02)

@@ -36,7 +36,7 @@ from scipy.integrate import cumulative_simpson
 
 from hubbeam.configuration.settings import Case, ConvergenceCheck, Numerics, simulation_settings
 from hubbeam.core import radau
-from hubbeam.core.inputs import IntegratorSettings, SimulationInputs, State
+from hubbeam.core.inputs import NO_DRIVE, IntegratorSettings, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.model import linearised, validity
 from hubbeam.model.beam import beam_attributes
@@ -173,15 +173,16 @@ def _feedback_law(case: Case, sm: SystemMatrices, feedback) -> FeedbackLaw | Non
     return feedback(case, sm)[0]
 
 
-def _integrate(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices, feedback=None):
+def _integrate(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices, feedback=None,
+               drive: np.ndarray = NO_DRIVE):
     """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`
-    (``feedback`` as in :func:`simulate`)."""
+    (``feedback`` as in :func:`simulate`; ``drive``: the hub's packed drive, ``hubbeam.core.drive``)."""
     kind, mp = case.maneuver.kernel_parameters(_feedback_law(case, sm, feedback))
     t = output_times(case.t_end, numerics.output_step)
     out = np.empty((t.size, n_output_columns(case.modes)))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
     start = time.perf_counter()
-    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm)
+    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm, drive)
     status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
                                      integrator_settings(numerics, params.L), out, stats)
     wall = time.perf_counter() - start

@@ -19,23 +19,23 @@ import numpy as np
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
 from hubbeam.core.eom import add_damping, solve_spd
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import hub_torque, prescribed_motion
 from hubbeam.core.radau import register_rhs
+from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 #: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, damping matrices ``C``,
 #: the tensors ``ct``, and work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F``
-#: of Eq. (24).
-CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F")
+#: of Eq. (24); ``shaper`` the command shaper (``hubbeam.core.shaping``).
+CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F shaper")
 
 
 @kernel
 def cfoam_problem(inputs):
     """The :data:`CfoamProblem` of CFOAM for the :class:`~hubbeam.core.inputs.SimulationInputs`
     ``inputs`` (maneuver, damping matrices ``C`` and ``SystemMatrices`` ``sm``)."""
-    _, kind, mp, C, sm = inputs
+    sm = inputs.sm
     N = 1 + 2 * sm.M1.shape[0]
-    return CfoamProblem(kind, mp, C, cfoam_tensors(sm), np.zeros(N), np.zeros(N), np.empty((N, N)),
-                        np.empty(N))
+    return CfoamProblem(inputs.kind, inputs.mp, inputs.C, cfoam_tensors(sm), np.zeros(N), np.zeros(N),
+                        np.empty((N, N)), np.empty(N), inputs.shaper)
 
 
 @borrowing_kernel
@@ -47,10 +47,10 @@ def cfoam_rhs(t, yf, vf, af, problem):
     thdd = 0.0
     tau = 0.0
     if o == 1:
-        y[0], thd, thdd = prescribed_motion(problem.kind, t, problem.mp)
+        y[0], thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)
         v[0] = thd
     else:
-        tau = hub_torque(problem.kind, t, yf, vf, problem.mp)
+        tau = shaped_torque(problem.kind, t, yf, vf, problem.mp, problem.shaper)
     for i in range(nf):
         y[o + i] = yf[i]
         v[o + i] = vf[i]

@@ -33,7 +33,8 @@ from collections import namedtuple
 import numpy as np
 
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
+from hubbeam.core.maneuver import prescribed
+from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 
 @kernel
@@ -269,14 +270,15 @@ def impose_constraints(inputs, t, y, v, a):
     A prescribed maneuver (Eq. 43, a speed table) sets theta and its rates and applies no torque
     of its own (the torque it needs is an output); a free hub gets the torque of its maneuver
     (Eq. 44, a torque table, PD feedback on theta and theta', state feedback on the whole
-    state, evaluated after a model that does not keep q1 (SFOAM) has it held at zero).
+    state, evaluated after a model that does not keep q1 (SFOAM) has it held at zero). Both
+    follow the command shaped by ``inputs.shaper`` (``hubbeam.core.shaping``).
     ``inputs``: :class:`~hubbeam.core.inputs.SimulationInputs`.
     """
     n = (y.shape[0] - 1) // 2
     tau = 0.0
     kind = inputs.kind
     if prescribed(kind):
-        th, thd, thdd = prescribed_motion(kind, t, inputs.mp)
+        th, thd, thdd = shaped_motion(kind, t, inputs.mp, inputs.shaper)
         y[0] = th
         v[0] = thd
         a[0] = thdd
@@ -286,7 +288,7 @@ def impose_constraints(inputs, t, y, v, a):
             v[1 + i] = 0.0
             a[1 + i] = 0.0
     if not prescribed(kind):
-        tau = hub_torque(kind, t, y, v, inputs.mp)
+        tau = shaped_torque(kind, t, y, v, inputs.mp, inputs.shaper)
     return tau
 
 

@@ -15,7 +15,8 @@ affine in the hub rate and acceleration:
 all restricted to the free elastic coordinates, so that an evaluation costs a few ``n x n``
 products instead of assembling and factoring ``M(y)``; ``C1, C2`` are the damping matrices of
 the elastic coordinates (``hubbeam.model.damping``; zero by default, when ``P3 = 0`` adds exact zeros).
-For a prescribed hub (Eq. 43, a speed table) theta_ddot is known. For a free hub (Eq. 44, a
+For a prescribed hub (Eq. 43, a speed table) theta_ddot is known (shaped by the command shaper,
+``hubbeam.core.shaping``, as is the torque of a free hub). For a free hub (Eq. 44, a
 torque table, PD or state feedback) the hub row ``m00 theta_ddot + c . e'' = tau + Q_theta``
 (Eqs. 25-27, 32) with ``c = C0 + C1 e = (-R q2, V2 + R^T q1)`` is solved by eliminating ``e''``
 (a Schur complement of the constant block):
@@ -38,13 +39,15 @@ import numpy as np
 
 from hubbeam.core.eom import cholesky_factor, cholesky_solve, free_dofs
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
+from hubbeam.core.maneuver import prescribed
 from hubbeam.core.radau import register_rhs
+from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 #: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1, P3, Me`` and ``b``
 #: stacks ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
-#: ``scalars = (J0, q_theta_factor)``; ``kind`` and ``mp`` the maneuver; ``work`` holds ``u, r``.
-FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work")
+#: ``scalars = (J0, q_theta_factor)``; ``kind`` and ``mp`` the maneuver; ``work`` holds ``u, r``;
+#: ``shaper`` the command shaper (``hubbeam.core.shaping``).
+FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work shaper")
 
 P0, P1, P2, G, C1, P3, ME = range(7)
 B0, B1, G_VEC, C0 = range(4)
@@ -59,7 +62,7 @@ def foam_problem(inputs):
 
     Assembled with plain loops and the Cholesky factor of ``Me`` (numpy's stacking and inverse
     would cost seconds of compilation in every process that builds the kernel)."""
-    traits, kind, mp, C, sm = inputs
+    traits, kind, mp, C, sm = inputs.traits, inputs.kind, inputs.mp, inputs.C, inputs.sm
     n = sm.M1.shape[0]
     m = 2 * n
     cD = 1.0 if traits.softening_terms else 0.0
@@ -119,7 +122,7 @@ def foam_problem(inputs):
             P[ME, i, j] = A[4, r, c]
     q_theta_factor = 1.0 if traits.hub_velocity_force else 0.0
     scalars = np.array([sm.Jh + sm.Jb, q_theta_factor])
-    return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)))
+    return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)), inputs.shaper)
 
 
 @borrowing_kernel
@@ -157,7 +160,7 @@ def foam_rhs(t, y, v, a, problem):
     o = 0 if prescribed(problem.kind) else 1
     ne = y.shape[0] - o
     if o == 0:
-        thd, thdd = prescribed_motion(problem.kind, t, problem.mp)[1:]
+        thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)[1:]
     else:
         thd = v[0]
         thdd = 0.0
@@ -175,7 +178,7 @@ def foam_rhs(t, y, v, a, problem):
     if o == 1:
         # hub row (Eqs. 25-27, 32) with e'' eliminated
         m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, r, 0, problem)
-        tau = hub_torque(problem.kind, t, y, v, problem.mp)
+        tau = shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper)
         thdd = (tau + q_theta - c_u) / (m00 + c_r)
         a[0] = thdd
     for i in range(ne):
@@ -194,12 +197,12 @@ def foam_outputs(t, y, v, a, problem):
     o = 0 if prescribed(problem.kind) else 1
     ne = y.shape[0] - o
     if o == 0:
-        thd, thdd = prescribed_motion(problem.kind, t, problem.mp)[1:]
+        thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)[1:]
         tau = 0.0
     else:
         thd = v[0]
         thdd = a[0]
-        tau = hub_torque(problem.kind, t, y, v, problem.mp)
+        tau = shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper)
     m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, a, o, problem)
     eMe = 0.0  # e'^T Me e'
     for i in range(ne):

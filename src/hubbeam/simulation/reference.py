@@ -34,6 +34,7 @@ from hubbeam.model.damping import damping_matrices
 from hubbeam.model.matrices import SystemMatrices
 from hubbeam.model.models import model
 from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.shapers import Shaper
 from hubbeam.simulation.simulate import (
     build_dataset,
     case_matrices,
@@ -72,7 +73,7 @@ def pure_python(func, _done=None):
 def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mapping,
                          matrices: SystemMatrices | None = None, *, method: str = "Radau",
                          rtol: float = 1e-12, atol: float = 1e-14,
-                         pure_python_rhs: bool = True) -> xr.Dataset:
+                         pure_python_rhs: bool = True, shaper: Shaper | None = None) -> xr.Dataset:
     """The simulation dataset of ``case`` computed with ``scipy.integrate.solve_ivp``.
 
     Arguments as :func:`hubbeam.simulation.simulate.simulate` (``numerics`` gives the output grid and the
@@ -80,7 +81,8 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     every free position and velocity). The run is split at the end of the maneuver, as in the fast
     path (and at every row of a maneuver's table). Integrator attributes name scipy, the method and
     its counts (``n_steps`` is not known to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
-    The run starts from the case's initial state (:func:`hubbeam.simulation.simulate.initial_state`).
+    The run starts from the case's initial state (:func:`hubbeam.simulation.simulate.initial_state`);
+    ``shaper`` shapes the maneuver's command as in :func:`hubbeam.simulation.simulate.simulate`.
     """
     case, numerics = (item.to_dict() for item in simulation_settings(case, numerics, params.L))
     if method not in METHODS:
@@ -89,6 +91,8 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     kind, mp = maneuver_parameters(case["maneuver"])
     inputs = SimulationInputs(model(case["model"]).traits, kind, mp,
                               damping_matrices(case.get("damping"), sm), sm)
+    if shaper is not None:
+        inputs = inputs._replace(shaper=shaper.kernel_array())
     n = case["modes"]
     free = eom.free_dofs(inputs.traits, kind, n)
     nf = free.size
@@ -111,7 +115,7 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     tip_event.terminal = True
 
     t = output_times(case["t_end"], numerics["output_step"])
-    edges = [t[0], *step_stops(case, t), t[-1]]
+    edges = [t[0], *step_stops(case, t, shaper), t[-1]]
     start = initial_state(case, sm)
     z = np.concatenate([start.y[free], start.v[free]])
     states = np.full((t.size, 2 * nf), np.nan)

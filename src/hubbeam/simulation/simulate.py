@@ -52,6 +52,7 @@ from hubbeam.model.maneuvers import maneuver_parameters, maneuver_stops
 from hubbeam.model.matrices import SystemMatrices, assemble
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.shapers import Shaper, shaped_stops
 from hubbeam.results.provenance import global_attributes
 from hubbeam.results.variables import (
     CUMULATIVE_VARIABLES,
@@ -135,7 +136,8 @@ def case_matrices(case: Mapping, params: BeamParameters, numerics: Mapping,
 
 def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
              matrices: SystemMatrices | None = None, *,
-             convergence_check: Mapping | None = None, feedback=None) -> xr.Dataset:
+             convergence_check: Mapping | None = None, feedback=None,
+             shaper: Shaper | None = None) -> xr.Dataset:
     """Simulate one case from its initial state and return the labelled simulation dataset.
 
     Parameters
@@ -155,6 +157,10 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
         attributes)`` that resolves its :class:`~hubbeam.model.maneuvers.FeedbackLaw` for the case's
         matrices (every rerun its own) and the dataset attributes that record it
         (``hubbeam.control.feedback.simulate_case`` passes it).
+    shaper : a command shaper (:class:`hubbeam.model.shapers.Shaper`) convolved with the
+        maneuver's command (``hubbeam.core.shaping``: the hub motion, the torque, or a
+        controller's reference); None leaves it unshaped. Recorded as the attribute ``shaper``
+        (JSON), present only when given.
 
     The attribute ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so
     that :func:`hubbeam.results.reader.simulation_inputs` can rebuild them. ``case`` and ``numerics`` may
@@ -165,12 +171,14 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     convergence_check = numerics.convergence_check and numerics.convergence_check.to_dict()
     case, numerics = case.to_dict(), numerics.to_dict()  # what the integration below reads
     sm = case_matrices(case, params, numerics, matrices)
-    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback))
+    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback, shaper))
     ds.attrs["quadrature_points"] = quadrature_points(sm)
     if case["maneuver"]["kind"] == "state_feedback":
         ds.attrs.update(feedback(case, sm)[1])
+    if shaper is not None:
+        ds.attrs["shaper"] = json.dumps(shaper.to_dict())
     if convergence_check is not None:
-        found = convergence(ds, case, params, numerics, sm, convergence_check, feedback)
+        found = convergence(ds, case, params, numerics, sm, convergence_check, feedback, shaper)
         notes = found.pop("warnings")
         ds.attrs.update(found)
         ds.attrs["warnings"] = "; ".join(filter(None, [ds.attrs["warnings"], *notes]))
@@ -183,9 +191,9 @@ def quadrature_points(sm: SystemMatrices) -> int:
 
 
 def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: SystemMatrices,
-               feedback=None):
+               feedback=None, shaper: Shaper | None = None):
     """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`
-    (``feedback`` as in :func:`simulate`)."""
+    (``feedback`` and ``shaper`` as in :func:`simulate`)."""
     law = None
     if case["maneuver"]["kind"] == "state_feedback":
         if feedback is None:
@@ -200,7 +208,9 @@ def _integrate(case: Mapping, params: BeamParameters, numerics: Mapping, sm: Sys
     C = damping_matrices(case.get("damping"), sm)
     start = time.perf_counter()
     inputs = SimulationInputs(model(case["model"]).traits, kind, mp, C, sm)
-    status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
+    if shaper is not None:
+        inputs = inputs._replace(shaper=shaper.kernel_array())
+    status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t, shaper),
                                      integrator_settings(numerics, params.L), out, stats)
     wall = time.perf_counter() - start
     LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
@@ -223,7 +233,7 @@ def integrator_settings(numerics: Mapping, length: float) -> IntegratorSettings:
 
 
 def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics: Mapping,
-                sm: SystemMatrices, settings: Mapping, feedback=None) -> dict:
+                sm: SystemMatrices, settings: Mapping, feedback=None, shaper: Shaper | None = None) -> dict:
     """Check the run ``ds`` of ``case`` (made with matrices ``sm``) against two reruns.
 
     The reruns change one setting each: the tolerances ``rtol`` and ``atol`` multiplied by
@@ -261,7 +271,8 @@ def convergence(ds: xr.Dataset, case: Mapping, params: BeamParameters, numerics:
         warnings.append(f"convergence in the modes not checked: the case already has the "
                         f"maximum of {MAX_MODES} modes")
     for label, (rerun_case, rerun_numerics, rerun_sm, what) in reruns.items():
-        _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm, feedback)
+        _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm, feedback,
+                                                   shaper)
         rerun_tip = out[:, output_columns(rerun_case["modes"])["tip_transverse"]]
         both = np.isfinite(tip) & np.isfinite(rerun_tip)
         difference = float(np.max(np.abs(tip - rerun_tip)[both])) if both.any() else math.nan
@@ -376,10 +387,13 @@ def compile_kernels(family: str | None = None) -> float:
     return time.perf_counter() - start
 
 
-def step_stops(case: Mapping, t: np.ndarray) -> np.ndarray:
+def step_stops(case: Mapping, t: np.ndarray, shaper: Shaper | None = None) -> np.ndarray:
     """Times no step may cross: where the maneuver is not smooth (the end of Eq. 43/44, where they
-    are only C^1 or C^3; table rows), inside the output span."""
+    are only C^1 or C^3; table rows), each shifted by every impulse of the ``shaper`` (and the
+    shifted starts, :func:`hubbeam.model.shapers.shaped_stops`), inside the output span."""
     stops = maneuver_stops(case["maneuver"])
+    if shaper is not None:
+        stops = shaped_stops(stops, shaper)
     return np.ascontiguousarray(stops[(stops > 0.0) & (stops < t[-1])])
 
 

@@ -1,0 +1,84 @@
+"""Jitted shaped commands: a maneuver's command convolved with a sequence of impulses.
+
+A command shaper (Singer & Seering 1990) is ``k`` impulses of amplitudes ``A_i`` (summing to 1)
+at times ``t_i >= 0``; the kernels receive it as the array ``shaper`` of shape ``(2, k)``, times
+in the first row and amplitudes in the second (``SimulationInputs.shaper``, built by
+``hubbeam.model.shapers``). The shaped command is
+
+    r_s(t) = sum_i A_i r(t - t_i),
+
+with ``r`` at negative times the maneuver's own value before it starts (rest for Eqs. 43-44, the
+held first row of a table). What ``r`` is depends on the maneuver (:mod:`hubbeam.core.maneuver`):
+
+* a prescribed hub (Eq. 43, a speed table): the hub angle, rate and acceleration
+  (:func:`shaped_motion`); a speed table that starts spinning at ``w0`` gives the angle
+  ``-w0 sum_i A_i t_i`` at ``t = 0`` (the shaper's mean delay), which enters no equation;
+* a free hub under a torque (Eq. 44, a torque table): the torque (:func:`shaped_torque`);
+* a controller (``PD``, ``STATE_FEEDBACK``): its reference ``(theta_r, theta_r', theta_r'')``
+  (:func:`shaped_reference`); the control law then acts on the shaped reference and the present
+  state, so the feedback itself is not delayed.
+
+The sum starts with the first impulse's product, ``A_0 r(t - t_0)``: the identity shaper (one
+impulse of amplitude 1 at ``t = 0``, the default) then performs ``1 * r(t - 0)``, which is
+``r(t)`` to the bit, and every unshaped run is unchanged.
+"""
+
+from hubbeam.core.jit import borrowing_kernel
+from hubbeam.core.maneuver import (
+    hub_torque,
+    prescribed_motion,
+    reference_motion,
+    reference_offset,
+    tracking_torque,
+    tracks_reference,
+)
+
+
+@borrowing_kernel
+def shaped_motion(kind, t, mp, shaper):
+    """Shaped angle, rate and acceleration of a prescribed hub at ``t``: ``sum_i A_i
+    prescribed_motion(kind, t - t_i, mp)``."""
+    a = shaper[1, 0]
+    theta, rate, acceleration = prescribed_motion(kind, t - shaper[0, 0], mp)
+    theta *= a
+    rate *= a
+    acceleration *= a
+    for i in range(1, shaper.shape[1]):
+        a = shaper[1, i]
+        theta_i, rate_i, acceleration_i = prescribed_motion(kind, t - shaper[0, i], mp)
+        theta += a * theta_i
+        rate += a * rate_i
+        acceleration += a * acceleration_i
+    return theta, rate, acceleration
+
+
+@borrowing_kernel
+def shaped_reference(t, mp, o, shaper):
+    """Shaped reference ``(theta_r, theta_r', theta_r'')`` at ``t`` of a tracking maneuver whose
+    reference parameters start at ``mp[o]`` (:func:`hubbeam.core.maneuver.reference_motion`)."""
+    a = shaper[1, 0]
+    theta, rate, acceleration = reference_motion(t - shaper[0, 0], mp, o)
+    theta *= a
+    rate *= a
+    acceleration *= a
+    for i in range(1, shaper.shape[1]):
+        a = shaper[1, i]
+        theta_i, rate_i, acceleration_i = reference_motion(t - shaper[0, i], mp, o)
+        theta += a * theta_i
+        rate += a * rate_i
+        acceleration += a * acceleration_i
+    return theta, rate, acceleration
+
+
+@borrowing_kernel
+def shaped_torque(kind, t, y, v, mp, shaper):
+    """Torque applied to a free hub at ``t`` in the state ``(y, y')`` under the shaped command: a
+    controller's law towards its shaped reference, or the shaped open-loop torque ``sum_i A_i
+    tau(t - t_i)`` (Eq. 44, a torque table)."""
+    if tracks_reference(kind):
+        reference = shaped_reference(t, mp, reference_offset(kind, mp), shaper)
+        return tracking_torque(kind, reference, y, v, mp)
+    tau = shaper[1, 0] * hub_torque(kind, t - shaper[0, 0], y, v, mp)
+    for i in range(1, shaper.shape[1]):
+        tau += shaper[1, i] * hub_torque(kind, t - shaper[0, i], y, v, mp)
+    return tau

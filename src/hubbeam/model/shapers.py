@@ -309,13 +309,19 @@ def insensitive_band(shaper: Shaper, omega: float, zeta: float = 0.0, tolerance:
                      step: float = 1e-3) -> tuple[float, float]:
     """The frequency ratios ``(low, high)`` around 1 between which the residual stays within
     ``tolerance``: walking out from the design frequency in ``step`` of the ratio to the first
-    excess, then Brent's root of ``V - tolerance`` in that step. The residual at the design
-    frequency must be within ``tolerance`` (an EI shaper's equals its ``V_tol`` up to
-    :data:`EI_SOLVED`, which the comparison allows)."""
+    excess, then Brent's root of ``V - tolerance`` in that step. ``high`` is infinite when the
+    residual can no longer exceed the tolerance: a damped mode's ``V`` at ratio ``r`` and above is
+    at most ``sum_i A_i exp(zeta r omega (t_i - t_n))``. The residual at the design frequency
+    must be within ``tolerance`` (an EI shaper's equals its ``V_tol`` up to :data:`EI_SOLVED`,
+    which the comparison allows)."""
     omega, zeta = checked_mode(omega, zeta, "insensitive_band")
 
     def excess(ratio):
         return residual_vibration(shaper, ratio * omega, zeta) - tolerance - EI_SOLVED
+
+    def bounded(ratio):
+        return np.sum(shaper.amplitudes * np.exp(zeta * ratio * omega * (shaper.times - shaper.duration))) \
+            <= tolerance
 
     if excess(1.0) > 0.0:
         raise ValueError(f"tolerance = {tolerance!r}: the residual at the design frequency is "
@@ -325,13 +331,17 @@ def insensitive_band(shaper: Shaper, omega: float, zeta: float = 0.0, tolerance:
     for direction in (-1.0, 1.0):
         k = 1
         while excess(1.0 + direction * k * step) <= 0.0:
-            k += 1
-            if k * step >= 1.0:
+            ratio = 1.0 + direction * k * step
+            if direction > 0.0 and bounded(ratio):
+                break
+            if ratio <= step or ratio >= 1.0 / step:
                 raise ValueError(f"tolerance = {tolerance!r}: the residual of {shaper.name} stays "
-                                 "within it from the design frequency to a ratio of 0 or 2; "
+                                 f"within it from the design frequency to a ratio of {ratio:g}; "
                                  "allowed: a tolerance it exceeds on both sides")
+            k += 1
         inner, outer = 1.0 + direction * (k - 1) * step, 1.0 + direction * k * step
-        edges.append(scipy.optimize.brentq(excess, inner, outer, xtol=1e-14))
+        edges.append(scipy.optimize.brentq(excess, inner, outer, xtol=1e-14) if excess(outer) > 0.0
+                     else math.inf)
     return edges[0], edges[1]
 
 

@@ -123,12 +123,16 @@ def reference_simulation(case: Mapping, params: BeamParameters, numerics: Mappin
     start = time.perf_counter()
     for t0, t1 in zip(edges[:-1], edges[1:]):
         inside = (t >= t0) & (t <= t1)
-        result = solve_ivp(rhs, (t0, t1), z, method=method, t_eval=t[inside], rtol=rtol,
+        grid = t[inside]
+        # the state at t1 starts the next piece: evaluate it there too when t1 is off the grid
+        evaluate = grid if grid.size and grid[-1] == t1 else np.append(grid, t1)
+        result = solve_ivp(rhs, (t0, t1), z, method=method, t_eval=evaluate, rtol=rtol,
                            atol=atol, events=tip_event)
         nfev += result.nfev
         njev += result.njev
         nlu += result.nlu
-        states[np.flatnonzero(inside)[:result.t.size]] = result.y.T
+        count = min(result.t.size, grid.size)
+        states[np.flatnonzero(inside)[:count]] = result.y.T[:count]
         if result.status == 1:
             status, t_stop = LEFT_RANGE, float(result.t_events[0][0])
             break

@@ -167,6 +167,8 @@ def simulate(case: Mapping, params: BeamParameters, numerics: Mapping,
     be the objects of :mod:`hubbeam.configuration.settings`; mappings are checked there once
     (``hubbeam.configuration.load.ConfigError``).
     """
+    if shaper is not None and not isinstance(shaper, Shaper):
+        raise SimulationError(f"shaper = {shaper!r}; allowed: a hubbeam.model.shapers.Shaper, or None")
     case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
     convergence_check = numerics.convergence_check and numerics.convergence_check.to_dict()
     case, numerics = case.to_dict(), numerics.to_dict()  # what the integration below reads

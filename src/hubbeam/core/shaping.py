@@ -35,39 +35,43 @@ from hubbeam.core.maneuver import (
 
 
 @borrowing_kernel
-def shaped_motion(kind, t, mp, shaper):
-    """Shaped angle, rate and acceleration of a prescribed hub at ``t``: ``sum_i A_i
-    prescribed_motion(kind, t - t_i, mp)``."""
-    a = shaper[1, 0]
-    theta, rate, acceleration = prescribed_motion(kind, t - shaper[0, 0], mp)
-    theta *= a
-    rate *= a
-    acceleration *= a
-    for i in range(1, shaper.shape[1]):
-        a = shaper[1, i]
-        theta_i, rate_i, acceleration_i = prescribed_motion(kind, t - shaper[0, i], mp)
-        theta += a * theta_i
-        rate += a * rate_i
-        acceleration += a * acceleration_i
-    return theta, rate, acceleration
+def _command(kind, t, mp, o):
+    """The command triple at ``t``: a prescribed hub's angle, rate and acceleration (``o < 0``),
+    or a controller's reference whose parameters start at ``mp[o]``."""
+    if o < 0:
+        return prescribed_motion(kind, t, mp)
+    return reference_motion(t, mp, o)
 
 
 @borrowing_kernel
-def shaped_reference(t, mp, o, shaper):
-    """Shaped reference ``(theta_r, theta_r', theta_r'')`` at ``t`` of a tracking maneuver whose
-    reference parameters start at ``mp[o]`` (:func:`hubbeam.core.maneuver.reference_motion`)."""
+def _shaped_command(kind, t, mp, o, shaper):
+    """``sum_i A_i`` times the command triple (:func:`_command`) at ``t - t_i``."""
     a = shaper[1, 0]
-    theta, rate, acceleration = reference_motion(t - shaper[0, 0], mp, o)
-    theta *= a
-    rate *= a
-    acceleration *= a
+    first, second, third = _command(kind, t - shaper[0, 0], mp, o)
+    first *= a
+    second *= a
+    third *= a
     for i in range(1, shaper.shape[1]):
         a = shaper[1, i]
-        theta_i, rate_i, acceleration_i = reference_motion(t - shaper[0, i], mp, o)
-        theta += a * theta_i
-        rate += a * rate_i
-        acceleration += a * acceleration_i
-    return theta, rate, acceleration
+        first_i, second_i, third_i = _command(kind, t - shaper[0, i], mp, o)
+        first += a * first_i
+        second += a * second_i
+        third += a * third_i
+    return first, second, third
+
+
+@borrowing_kernel
+def shaped_motion(kind, t, mp, shaper):
+    """Shaped angle, rate and acceleration of a prescribed hub at ``t``: ``sum_i A_i
+    prescribed_motion(kind, t - t_i, mp)``."""
+    return _shaped_command(kind, t, mp, -1, shaper)
+
+
+@borrowing_kernel
+def shaped_reference(kind, t, mp, shaper):
+    """Shaped reference ``(theta_r, theta_r', theta_r'')`` at ``t`` of a tracking maneuver
+    (:func:`hubbeam.core.maneuver.reference_motion`)."""
+    return _shaped_command(kind, t, mp, reference_offset(kind, mp), shaper)
 
 
 @borrowing_kernel
@@ -76,8 +80,7 @@ def shaped_torque(kind, t, y, v, mp, shaper):
     controller's law towards its shaped reference, or the shaped open-loop torque ``sum_i A_i
     tau(t - t_i)`` (Eq. 44, a torque table)."""
     if tracks_reference(kind):
-        reference = shaped_reference(t, mp, reference_offset(kind, mp), shaper)
-        return tracking_torque(kind, reference, y, v, mp)
+        return tracking_torque(kind, shaped_reference(kind, t, mp, shaper), y, v, mp)
     tau = shaper[1, 0] * hub_torque(kind, t - shaper[0, 0], y, v, mp)
     for i in range(1, shaper.shape[1]):
         tau += shaper[1, i] * hub_torque(kind, t - shaper[0, i], y, v, mp)

@@ -296,7 +296,8 @@ def _eq43_speed(t, wf, tf):
 
 def test_shaping_commutes_with_the_kernel(setup, matrices):
     """A shaped Eq. 43 run against speed-table runs of the shaped speed, sampled every ``h`` with
-    rows at every joint ``t_i``, ``tf + t_i``. The clamped cubic spline of the speed (zero slope
+    rows at every joint ``t_i``, ``tf + t_i`` (where the speed's third derivative jumps: between
+    rows it is as smooth as the bounds assume). The clamped cubic spline of the speed (zero slope
     at both ends, as the shaped speed has) is off by at most ``5/384 h^4 max|f''''|`` in the speed
     and ``1/24 h^3 max|f''''|`` in its derivative, the hub acceleration (Hall & Meyer 1976),
     ``f'''' = wf (2 pi / tf)^3 / tf`` at most; the tip deflection, driven by the acceleration,

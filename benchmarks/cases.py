@@ -118,7 +118,7 @@ def prepare_case(name: str, case: Mapping, params: BeamParameters, numerics: Map
     free = free_dofs(inputs.traits, kind, case.modes)
     t = output_times(case.t_end, output_step)
     return BenchmarkCase(name, case, inputs, initial_state(case, sm), free, t,
-                         step_stops(case, t), tip_watch(free, sm),
+                         step_stops(case.maneuver, t), tip_watch(free, sm),
                          float(numerics.divergence_limit) * params.L)
 
 

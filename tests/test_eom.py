@@ -356,14 +356,20 @@ def _damping(sm):
     return np.ascontiguousarray(0.05 * np.einsum("bij,bkj->bik", B, B))
 
 
+#: a command shaper (hubbeam.core.shaping) whose delayed copies fall on both sides of the knots
+SHAPER = np.array([[0.0, 1.3, 3.1], [0.3, 0.5, 0.2]])
+
+
 @pytest.mark.parametrize("maneuver", MANEUVERS, ids=_label)
 @pytest.mark.parametrize("model", TRAITS.values(), ids=TRAITS)
 @pytest.mark.parametrize("amplitude", [0.05, 2.0])
 @pytest.mark.parametrize("damped", [False, True])
-def test_integrator_rhs_equals_the_general_solve(sm, state, maneuver, model, amplitude, damped):
+@pytest.mark.parametrize("shaped", [False, True])
+def test_integrator_rhs_equals_the_general_solve(sm, state, maneuver, model, amplitude, damped, shaped):
     """The integrator's right-hand side -- foam_rhs (modal mass inverted once, hub row by a Schur
     complement) or cfoam_rhs (pre-contracted tensors) -- equals accelerations (full mass matrix
-    from the point cloud, Cholesky), also far outside the small-deformation range."""
+    from the point cloud, Cholesky), also far outside the small-deformation range, unshaped and
+    under a shaped command."""
     n = sm.M1.shape[0]
     kind, mp = maneuver_from_dict(maneuver).kernel_parameters()
     C = _damping(sm) if damped else _undamped(sm)
@@ -373,6 +379,8 @@ def test_integrator_rhs_equals_the_general_solve(sm, state, maneuver, model, amp
     a_ref = np.zeros_like(y)
     yy, vv = y.copy(), v.copy()  # constrained entries overwritten by the maneuver
     inputs = SimulationInputs(model, kind, mp, C, sm)
+    if shaped:
+        inputs = inputs._replace(shaper=SHAPER)
     eom.accelerations(inputs, 4.0, yy, vv, free, a_ref)
     a = np.full(free.size, np.nan)
     problem_rhs(4.0, yy[free], vv[free], a, integration_problem(inputs))

@@ -12,12 +12,15 @@ from hubbeam.results.measures import (
     fit_decaying_sinusoid,
     fit_sinusoid,
     late_share,
+    move_time_penalty,
     peak,
     peak_time,
     phase_lead,
     relative_difference,
     residual_amplitude,
+    settled_after,
     settling_time,
+    shaped_residual_amplitude,
     wrap_phase,
 )
 
@@ -106,3 +109,27 @@ def test_settling_time_is_the_last_exit_from_the_band_after_t0():
     assert abs(decay[(t > 1.0) & (t <= 1.0 + settled)]).max() > 0.05
     assert settling_time(t, decay, 5.0, 0.05) == 0.0  # inside the band at t0 already
     assert math.isnan(settling_time(t, np.cos(t), 1.0, 0.05))  # never settles
+
+
+def test_residual_after_a_shaped_command_starts_at_its_delayed_end():
+    t = np.arange(0.0, 10.0, 0.5)
+    x = np.where(t > 5.0, 0.1, 3.0) * np.cos(np.pi * t)  # cos(pi t) = +-1 on this grid
+    assert shaped_residual_amplitude(t, x, 4.0, 1.0) == pytest.approx(0.1)
+    assert shaped_residual_amplitude(t, x, 4.0, 0.0) == pytest.approx(3.0)
+
+
+def test_move_time_penalty_of_two_decaying_responses():
+    """Two envelopes ``a exp(-t)`` on a fast carrier: each settles into the tolerance ``band *
+    peak(unshaped)`` about when its envelope reaches it, at ``ln(a / tolerance)``."""
+    t = np.linspace(0.0, 10.0, 100001)
+    carrier = np.cos(200.0 * t)
+    unshaped = np.exp(-t) * carrier
+    shaped = 0.1 * np.exp(-(t - 1.0)) * carrier * (t >= 1.0)  # ten times less, one second later
+    penalty = move_time_penalty(t, shaped, unshaped, 1.0, band=0.05)
+    assert penalty.shaper_duration == 1.0
+    # the last exit lies within one carrier period (pi / 100 s) before the envelope's crossing
+    assert penalty.settling_unshaped == pytest.approx(math.log(20.0), abs=math.pi / 100)
+    assert penalty.settling_shaped == pytest.approx(1.0 + math.log(0.1 * 20.0), abs=math.pi / 100)
+    assert penalty.settling_difference == pytest.approx(1.0 + math.log(0.1), abs=2 * math.pi / 100)
+    assert penalty.settling_difference < 0.0  # the shaped move settles sooner despite its delay
+    assert settled_after(t, unshaped, 0.0, 0.05) == settling_time(t, unshaped, 0.0, 0.05)

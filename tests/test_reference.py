@@ -7,6 +7,7 @@
   test: the global error of either run is well below its rtol);
 * so do CFOAM with a tip mass and the torque-driven FOAM and SFOAM (whose right-hand sides in the
   fast path are built differently from the reference's general mass-matrix solve);
+* so do shaped commands (a torque, a hub motion, a controller's reference);
 * both paths record the divergence of TLAM at w_f = 3.5 rad/s at the same time.
 
 The 50 s reference uses the jitted accelerations (the pure-Python ones take ~50 s there); the
@@ -24,6 +25,7 @@ from hubbeam.model.maneuvers import maneuver_from_dict
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import MODELS
 from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.shapers import Shaper
 from hubbeam.simulation.reference import pure_python, reference_simulation
 from hubbeam.simulation.simulate import kernel_matrices, simulate
 
@@ -122,6 +124,33 @@ def test_fast_right_hand_sides_agree_with_the_reference(setup, name, changes):
     reference = reference_simulation(case, params, numerics, rtol=1e-10, atol=1e-12,
                                      pure_python_rhs=False)
     fast = simulate(case, params, numerics)
+    assert reference.attrs["integrator_status"] == fast.attrs["integrator_status"] == "success"
+    rtol = max(numerics["rtol"], 1e-10)
+    _assert_close_runs(fast, reference, rtol, "tip_transverse")
+    _assert_close_runs(fast, reference, rtol, "theta")
+    assert float(abs(reference.tip_transverse).max()) > 0.01  # a real deflection was compared
+
+
+#: a command shaper whose delayed copies overlap the commands (hubbeam.model.shapers)
+SHAPER = Shaper([0.0, 0.7, 1.9], [0.3, 0.5, 0.2], "three impulses")
+
+
+@pytest.mark.parametrize("name,changes", [
+    ("tab3_foam_tau200", {"t_end": 12.0}),  # the shaped torque on a free hub
+    ("fig04_cfoam", {"maneuver": {"kind": "prescribed", "wf": 3.0, "tf": 10.0}, "t_end": 15.0,
+                     "tip_mass": {"mass": 0.5, "position": 8.0}}),  # the shaped hub motion
+    ("tab3_foam_tau200", {"t_end": 8.0, "maneuver": {"kind": "pd", "kp": 2000.0, "kd": 800.0,
+                                                     "reference": {"kind": "angle_table", "time": [0.0, 4.0],
+                                                                   "angle": [0.0, 1.0]}}}),  # shaped reference
+])
+def test_shaped_runs_agree_with_the_reference(setup, name, changes):
+    """A shaped command (hubbeam.core.shaping) in the integrator's right-hand sides and the stops
+    against scipy on the general equations under the same shaper, over whole runs."""
+    params, numerics, config = setup
+    case = case_of(config, name).to_dict() | changes
+    reference = reference_simulation(case, params, numerics, rtol=1e-10, atol=1e-12,
+                                     pure_python_rhs=False, shaper=SHAPER)
+    fast = simulate(case, params, numerics, shaper=SHAPER)
     assert reference.attrs["integrator_status"] == fast.attrs["integrator_status"] == "success"
     rtol = max(numerics["rtol"], 1e-10)
     _assert_close_runs(fast, reference, rtol, "tip_transverse")

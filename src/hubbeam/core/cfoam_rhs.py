@@ -21,13 +21,14 @@ from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
 from hubbeam.core.drive import drive_torque
 from hubbeam.core.eom import add_damping, solve_spd
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import hub_torque, prescribed_motion
 from hubbeam.core.radau import register_rhs
+from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 #: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, damping matrices ``C``,
 #: the tensors ``ct``, and work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F``
-#: of Eq. (24); ``drive`` the hub's packed drive (``hubbeam.core.drive``; empty: none).
-CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F drive")
+#: of Eq. (24); ``drive`` the hub's packed drive (``hubbeam.core.drive``; empty: none); ``shaper``
+#: the command shaper (``hubbeam.core.shaping``).
+CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F drive shaper")
 
 
 @kernel
@@ -37,7 +38,7 @@ def cfoam_problem(inputs):
     sm = inputs.sm
     N = 1 + 2 * sm.M1.shape[0]
     return CfoamProblem(inputs.kind, inputs.mp, inputs.C, cfoam_tensors(sm), np.zeros(N), np.zeros(N),
-                        np.empty((N, N)), np.empty(N), inputs.drive)
+                        np.empty((N, N)), np.empty(N), inputs.drive, inputs.shaper)
 
 
 @borrowing_kernel
@@ -49,10 +50,10 @@ def cfoam_rhs(t, yf, vf, af, problem):
     thdd = 0.0
     tau = 0.0
     if o == 1:
-        y[0], thd, thdd = prescribed_motion(problem.kind, t, problem.mp)
+        y[0], thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)
         v[0] = thd
     else:
-        tau = drive_torque(problem.drive, hub_torque(problem.kind, t, yf, vf, problem.mp), vf[0])
+        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, yf, vf, problem.mp, problem.shaper), vf[0])
     for i in range(nf):
         y[o + i] = yf[i]
         v[o + i] = vf[i]

@@ -38,7 +38,8 @@ import numpy as np
 
 from hubbeam.core.drive import drive_torque
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
+from hubbeam.core.maneuver import prescribed
+from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 
 @kernel
@@ -296,14 +297,15 @@ def impose_constraints(inputs, t, y, v, a):
     of its own (the torque it needs is an output); a free hub gets the torque of its maneuver
     (Eq. 44, a torque table, PD feedback on theta and theta', state feedback on the whole
     state, evaluated after a model that does not keep q1 (SFOAM) has it held at zero, a held
-    input), through the hub's drive when it has one (``inputs.drive``, ``hubbeam.core.drive``).
+    input), through the hub's drive when it has one (``inputs.drive``, ``hubbeam.core.drive``). Both
+    follow the command shaped by ``inputs.shaper`` (``hubbeam.core.shaping``).
     ``inputs``: :class:`~hubbeam.core.inputs.SimulationInputs`.
     """
     n = (y.shape[0] - 1) // 2
     tau = 0.0
     kind = inputs.kind
     if prescribed(kind):
-        th, thd, thdd = prescribed_motion(kind, t, inputs.mp)
+        th, thd, thdd = shaped_motion(kind, t, inputs.mp, inputs.shaper)
         y[0] = th
         v[0] = thd
         a[0] = thdd
@@ -313,7 +315,7 @@ def impose_constraints(inputs, t, y, v, a):
             v[1 + i] = 0.0
             a[1 + i] = 0.0
     if not prescribed(kind):
-        tau = drive_torque(inputs.drive, hub_torque(kind, t, y, v, inputs.mp), v[0])
+        tau = drive_torque(inputs.drive, shaped_torque(kind, t, y, v, inputs.mp, inputs.shaper), v[0])
     return tau
 
 

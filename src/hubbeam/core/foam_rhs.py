@@ -18,7 +18,8 @@ the elastic coordinates (``hubbeam.model.damping``; zero by default, when ``P3 =
 A tip body's rotary inertia ``Jt`` (``docs/tip-body.md``, ``g = f2'(l)``) joins the constant mass:
 ``Me = diag(M1, M2 + Jt g^T g)``, ``V2t = V2 + Jt g`` and ``J0`` below; ``G`` keeps ``M2`` (the
 centrifugal terms of the translating masses).
-For a prescribed hub (Eq. 43, a speed table) theta_ddot is known. For a free hub (Eq. 44, a
+For a prescribed hub (Eq. 43, a speed table) theta_ddot is known (shaped by the command shaper,
+``hubbeam.core.shaping``, as is the torque of a free hub). For a free hub (Eq. 44, a
 torque table, PD, state feedback or a sampled controller's held input, through the hub's drive
 if it has one, ``hubbeam.core.drive``) the hub row ``m00 theta_ddot + c . e'' = tau + Q_theta``
 (Eqs. 25-27, 32) with ``c = C0 + C1 e = (-R q2, V2t + R^T q1)`` is solved by eliminating ``e''``
@@ -43,14 +44,16 @@ import numpy as np
 from hubbeam.core.drive import drive_torque
 from hubbeam.core.eom import cholesky_factor, cholesky_solve, free_dofs
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import hub_torque, prescribed, prescribed_motion
+from hubbeam.core.maneuver import prescribed
 from hubbeam.core.radau import register_rhs
+from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 #: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1, P3, Me`` and ``b``
 #: stacks ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
 #: ``scalars = (J0, q_theta_factor)``; ``kind`` and ``mp`` the maneuver; ``work`` holds ``u, r``;
-#: ``drive`` the hub's packed drive (``hubbeam.core.drive``; empty: the maneuver gives the torque).
-FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work drive")
+#: ``drive`` the hub's packed drive (``hubbeam.core.drive``; empty: the maneuver gives the torque);
+#: ``shaper`` the command shaper (``hubbeam.core.shaping``).
+FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work drive shaper")
 
 P0, P1, P2, G, C1, P3, ME = range(7)
 B0, B1, G_VEC, C0 = range(4)
@@ -130,7 +133,7 @@ def foam_problem(inputs):
             P[ME, i, j] = A[4, r, c]
     q_theta_factor = 1.0 if traits.hub_velocity_force else 0.0
     scalars = np.array([sm.Jh + sm.Jb + sm.Jt, q_theta_factor])
-    return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)), inputs.drive)
+    return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)), inputs.drive, inputs.shaper)
 
 
 @borrowing_kernel
@@ -168,7 +171,7 @@ def foam_rhs(t, y, v, a, problem):
     o = 0 if prescribed(problem.kind) else 1
     ne = y.shape[0] - o
     if o == 0:
-        thd, thdd = prescribed_motion(problem.kind, t, problem.mp)[1:]
+        thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)[1:]
     else:
         thd = v[0]
         thdd = 0.0
@@ -186,7 +189,7 @@ def foam_rhs(t, y, v, a, problem):
     if o == 1:
         # hub row (Eqs. 25-27, 32) with e'' eliminated
         m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, r, 0, problem)
-        tau = drive_torque(problem.drive, hub_torque(problem.kind, t, y, v, problem.mp), thd)
+        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper), thd)
         thdd = (tau + q_theta - c_u) / (m00 + c_r)
         a[0] = thdd
     for i in range(ne):
@@ -205,12 +208,12 @@ def foam_outputs(t, y, v, a, problem):
     o = 0 if prescribed(problem.kind) else 1
     ne = y.shape[0] - o
     if o == 0:
-        thd, thdd = prescribed_motion(problem.kind, t, problem.mp)[1:]
+        thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)[1:]
         tau = 0.0
     else:
         thd = v[0]
         thdd = a[0]
-        tau = drive_torque(problem.drive, hub_torque(problem.kind, t, y, v, problem.mp), thd)
+        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper), thd)
     m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, a, o, problem)
     eMe = 0.0  # e'^T Me e'
     for i in range(ne):

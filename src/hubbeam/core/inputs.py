@@ -3,7 +3,7 @@
 * :class:`ModelTraits`: what a model computes, as flags the kernels branch on (built from the one
   table of models, ``hubbeam.model.models``, which the core does not import);
 * :class:`SimulationInputs`: the problem of one simulation (model traits, maneuver, damping,
-  system matrices);
+  system matrices, command shaper);
 * :class:`IntegratorSettings`: tolerances, the watched tip limit and the step budget of
   :func:`hubbeam.core.radau.radau5`;
 * :class:`State` and :class:`Trajectory`: a state of ``y = (theta, q1, q2)`` and the dense
@@ -45,10 +45,18 @@ def family(traits: ModelTraits) -> str:
     return FAMILIES[int(traits.exact_kinetic_energy)]
 
 
+#: the identity command shaper: one impulse of amplitude 1 at t = 0 (``hubbeam.core.shaping``;
+#: writable, as every shaper the kernels receive, so that numba compiles one kernel for all; never
+#: written)
+IDENTITY_SHAPER = np.array([[0.0], [1.0]])
+
+
 class SimulationInputs(NamedTuple):
     """The problem of one simulation: model, maneuver (``hubbeam.core.maneuver``), damping
-    matrices ``C = [C1, C2]`` (``eom.add_damping``) and system matrices; ``drive`` is the hub's
-    packed DC drive (``hubbeam.core.drive``; empty, the default: an ideal torque actuator)."""
+    matrices ``C = [C1, C2]`` (``eom.add_damping``), system matrices, the hub's packed DC drive
+    ``drive`` (``hubbeam.core.drive``; empty, the default: an ideal torque actuator) and the command
+    shaper (``hubbeam.core.shaping``: impulse times in row 0, amplitudes in row 1; default the
+    identity, which leaves the maneuver unshaped)."""
 
     traits: ModelTraits
     kind: int
@@ -56,6 +64,7 @@ class SimulationInputs(NamedTuple):
     C: np.ndarray
     sm: SystemMatrices
     drive: np.ndarray = NO_DRIVE
+    shaper: np.ndarray = IDENTITY_SHAPER
 
 
 class IntegratorSettings(NamedTuple):

@@ -43,8 +43,9 @@ from hubbeam.core.eom import (
 from hubbeam.core.foam_rhs import foam_outputs, foam_problem
 from hubbeam.core.inputs import FAMILIES, Trajectory, family
 from hubbeam.core.jit import borrowing_kernel, inline_kernel, kernel
-from hubbeam.core.maneuver import hub_torque, prescribed
+from hubbeam.core.maneuver import prescribed
 from hubbeam.core.radau import radau5
+from hubbeam.core.shaping import shaped_torque
 
 #: Columns of the output array: these, then ``q1[0..n-1]``, ``q2[0..n-1]``, then the CFOAM
 #: high-order terms ``dM_thth``, ``dQ_theta``, ``dQ_q1[0..n-1]``, ``dQ_q2[0..n-1]`` (NaN for the
@@ -153,7 +154,7 @@ def _drive_columns(out_row, inputs, t, y, v, torque):
         out_row[HUB_VOLTAGE] = required_voltage(drive, torque, v[0])
         out_row[MOTOR_TORQUE] = torque + friction_torque(drive, v[0])
     else:
-        command = hub_torque(inputs.kind, t, y, v, inputs.mp)
+        command = shaped_torque(inputs.kind, t, y, v, inputs.mp, inputs.shaper)
         out_row[HUB_VOLTAGE] = terminal_voltage(drive, command)
         out_row[MOTOR_TORQUE] = motor_torque(drive, command, v[0])
 

@@ -157,34 +157,41 @@ def prescribed_motion(kind, t, mp):
 
 
 @borrowing_kernel
-def _reference(t, mp, o):
-    """Reference angle and rate of a ``PD`` or ``STATE_FEEDBACK`` maneuver whose reference
-    parameters start at ``mp[o]`` (its kind at ``mp[o - 1]``)."""
-    if int(mp[o - 1]) == ANGLE_TABLE:
-        return table(t, mp, o)[1:]
-    return _spin_up(t, mp[o], mp[o + 1])[:2]
+def tracks_reference(kind):
+    """True if ``kind`` is a controller tracking a reference motion (``PD``, ``STATE_FEEDBACK``)."""
+    return kind == PD or kind == STATE_FEEDBACK
 
 
 @borrowing_kernel
-def feedback_torque(t, y, v, mp):
-    """``tau = J theta_r'' - K (x - x_r)`` of a ``STATE_FEEDBACK`` maneuver at ``(y, y')``: the
-    full coordinates, or those of a model without ``q1`` (module docstring)."""
+def reference_offset(kind, mp):
+    """Offset in ``mp`` of the reference parameters of a ``PD`` or ``STATE_FEEDBACK`` maneuver
+    (its reference kind sits just before them)."""
+    if kind == PD:
+        return PD_REFERENCE
+    N = int(mp[0])
+    return FEEDBACK_GAINS + 2 * N + (N - 1) // 2 + 1  # after the gains, the stretch and the kind
+
+
+@borrowing_kernel
+def feedback_torque(reference, y, v, mp):
+    """``tau = J theta_r'' - K (x - x_r)`` of a ``STATE_FEEDBACK`` maneuver at ``(y, y')`` (the
+    full coordinates, or those of a model without ``q1``; module docstring) towards the
+    ``reference`` ``(theta_r, theta_r', theta_r'')`` (:func:`reference_motion`)."""
     N = int(mp[0])
     n = (N - 1) // 2
     k = FEEDBACK_GAINS
     s = k + 2 * N
-    o = s + n + 1  # after the reference's kind
-    theta_r, theta_r_dot = _reference(t, mp, o)
+    theta_r, theta_r_dot, theta_r_ddot = reference
     tau = 0.0
     if mp[1] != 0.0:
-        tau = mp[1] * _spin_up(t, mp[o], mp[o + 1])[2]
+        tau = mp[1] * theta_r_ddot
     tau -= mp[k] * (y[0] - theta_r) + mp[k + N] * (v[0] - theta_r_dot)
     skip = N - y.shape[0]
     stretch = theta_r_dot * theta_r_dot
     for i in range(1, y.shape[0]):
         j = i + skip
-        reference = stretch * mp[s + j - 1] if j <= n else 0.0
-        tau -= mp[k + j] * (y[i] - reference) + mp[k + N + j] * v[i]
+        target = stretch * mp[s + j - 1] if j <= n else 0.0
+        tau -= mp[k + j] * (y[i] - target) + mp[k + N + j] * v[i]
     return tau
 
 
@@ -234,16 +241,22 @@ def reference_motion(t, mp, o):
 
 
 @borrowing_kernel
-def hub_torque(kind, t, y, v, mp):
-    """Torque applied to a free hub at ``t`` in the state ``(y, y')`` (theta first); with a drive,
-    the drive's command (``hubbeam.core.drive``)."""
+def tracking_torque(kind, reference, y, v, mp):
+    """Torque of a ``PD`` or ``STATE_FEEDBACK`` controller in the state ``(y, y')`` towards the
+    ``reference`` ``(theta_r, theta_r', theta_r'')``."""
+    if kind == PD:
+        return mp[0] * (reference[0] - y[0]) + mp[1] * (reference[1] - v[0])
+    return feedback_torque(reference, y, v, mp)
+
+
+@borrowing_kernel
+def open_loop_torque(kind, t, mp):
+    """The command of a free hub that no controller closes at ``t``: Eq. (44), a torque table or a
+    sampled controller's held input (with a drive, volts, ``hubbeam.core.drive``). A controller's
+    command is its law towards its reference (:func:`tracking_torque`,
+    ``hubbeam.core.shaping.shaped_torque``)."""
     if kind == HELD:
         return held_input(t, mp)
     if kind == TORQUE_TABLE:
         return table(t, mp, 0)[1]
-    if kind == PD:
-        theta_r, theta_r_dot = _reference(t, mp, PD_REFERENCE)
-        return mp[0] * (theta_r - y[0]) + mp[1] * (theta_r_dot - v[0])
-    if kind == STATE_FEEDBACK:
-        return feedback_torque(t, y, v, mp)
     return applied_torque(t, mp)

@@ -209,10 +209,12 @@ def sweep_tip_extrema(first, stride, points, stack, output_step, settings, found
     n = stack.K1.shape[1]
     undamped = np.zeros((2, n, n))
     no_drive = np.zeros(0)
+    unshaped = np.zeros((2, 1))  # the identity shaper (numba does not fill a NamedTuple's defaults)
+    unshaped[1, 0] = 1.0
     for p in range(first, points.traits.shape[0], stride):
         sm = matrices_at(stack, points.matrix_index[p])
         inputs = SimulationInputs(traits_at(points.traits, p), points.kind, points.mp[p], undamped,
-                                  sm, no_drive)
+                                  sm, no_drive, unshaped)
         code, t_stop, peak, peak_time, residual = tip_extrema(
             inputs, points.t_end[p], points.t_mark[p], output_step, settings, found.stats[p])
         found.status[p] = code

@@ -5,7 +5,8 @@ definitions; they are documented in the report:
 
 - peak: ``max |x(t)|`` over the run, NaN samples (after a divergence) ignored;
 - residual vibration: the response for ``t > t_f``, after the spin-up of Eq. 43 or the torque
-  pulse of Eq. 44; its amplitude is ``max |x(t)|`` over ``t > t_f``;
+  pulse of Eq. 44; its amplitude is ``max |x(t)|`` over ``t > t_f``; after a shaped command
+  (``hubbeam.model.shapers``), which ends the shaper's duration later, over ``t > t_f + D``;
 - fitted sinusoid: least-squares fit of ``c + A cos(omega (t - t_0) + phi)``; ``omega`` starts at
   the peak of the Hann-windowed, zero-padded spectrum and is refined by minimising the fit
   residual within one spectral bin; ``phi`` is the phase at ``t = t_0``;
@@ -14,8 +15,12 @@ definitions; they are documented in the report:
   linear prediction ``y_{k+2} = a_1 y_{k+1} + a_2 y_k`` (Prony's method, exact for one such mode)
   and are refined by minimising the residual with ``A`` and ``phi`` eliminated (variable
   projection);
-- settling time: from ``t_0`` until ``|x|`` stays within a band (a fraction of its peak) to the
-  end of the record; 0 when it already does at ``t_0``, NaN when it never does before the end;
+- settling time: from ``t_0`` until ``|x|`` stays within a band (a fraction of its peak, or a
+  given tolerance) to the end of the record; 0 when it already does at ``t_0``, NaN when it never
+  does before the end;
+- move-time penalty of a shaped command: the shaper's duration ``D`` (the command ends that much
+  later) and the change of the settling time from the start of the move, both responses held to
+  the same tolerance (a fraction of the unshaped response's peak);
 - phase lead of ``a`` over ``b``: ``phi_a - phi_b`` wrapped to (-pi, pi] (positive: ``a`` leads);
 - relative difference of two curves: ``max |x_a - x_b| / max |x_b|`` on a common time grid.
 """
@@ -55,15 +60,51 @@ def residual_amplitude(time, values, t0: float) -> float:
     return peak(window) if window.size else math.nan
 
 
-def settling_time(time, values, t0: float, band: float) -> float:
-    """Time after ``t0`` from which ``|x|`` stays within ``band`` times its peak to the end of the
-    record (module docstring): 0 when it is inside at ``t0`` already, NaN when its last sample is
-    outside."""
+def shaped_residual_amplitude(time, values, command_end: float, shaper_duration: float) -> float:
+    """Residual vibration amplitude after a shaped command: ``max |x(t)|`` over ``t > command_end
+    + shaper_duration`` (the unshaped command's end delayed by the shaper's last impulse)."""
+    return residual_amplitude(time, values, command_end + shaper_duration)
+
+
+def settled_after(time, values, t0: float, tolerance: float) -> float:
+    """Time after ``t0`` from which ``|x| <= tolerance`` to the end of the record: 0 when it is
+    inside at ``t0`` already, NaN when its last sample is outside."""
     time = np.asarray(time)
     magnitude = np.abs(np.asarray(values, dtype=float))
-    outside = np.flatnonzero(magnitude > band * peak(values))
+    outside = np.flatnonzero(magnitude > tolerance)
     last = time[outside[-1]] if outside.size else t0
     return max(float(last) - t0, 0.0) if last < time[-1] else math.nan
+
+
+def settling_time(time, values, t0: float, band: float) -> float:
+    """Time after ``t0`` from which ``|x|`` stays within ``band`` times its peak to the end of the
+    record (module docstring, :func:`settled_after`)."""
+    return settled_after(time, values, t0, band * peak(values))
+
+
+@dataclass(frozen=True)
+class MoveTimePenalty:
+    """What shaping a command costs in time: the shaper's duration (s) and the settling times
+    (s, from the start of the move) of the shaped and the unshaped response."""
+
+    shaper_duration: float
+    settling_shaped: float
+    settling_unshaped: float
+
+    @property
+    def settling_difference(self) -> float:
+        """Settling time of the shaped response minus the unshaped one's (s; negative: the shaped
+        move settles sooner despite its longer command)."""
+        return self.settling_shaped - self.settling_unshaped
+
+
+def move_time_penalty(time, shaped, unshaped, shaper_duration: float, band: float = 0.05) -> MoveTimePenalty:
+    """The :class:`MoveTimePenalty` of a shaped response against the unshaped one (same time
+    grid, the move starting at ``t = 0``): each settles once ``|x|`` stays within ``band`` times
+    the unshaped response's peak."""
+    tolerance = band * peak(unshaped)
+    return MoveTimePenalty(float(shaper_duration), settled_after(time, shaped, 0.0, tolerance),
+                           settled_after(time, unshaped, 0.0, tolerance))
 
 
 def late_share(time, values, t0: float) -> float:

@@ -34,6 +34,7 @@ from hubbeam.model.damping import damping_matrices
 from hubbeam.model.matrices import SystemMatrices
 from hubbeam.model.models import model
 from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.shapers import Shaper
 from hubbeam.simulation.simulate import (
     build_dataset,
     case_matrices,
@@ -71,7 +72,7 @@ def pure_python(func, _done=None):
 def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics: Numerics | Mapping,
                          matrices: SystemMatrices | None = None, *, method: str = "Radau",
                          rtol: float = 1e-12, atol: float = 1e-14,
-                         pure_python_rhs: bool = True) -> xr.Dataset:
+                         pure_python_rhs: bool = True, shaper: Shaper | None = None) -> xr.Dataset:
     """The simulation dataset of ``case`` computed with ``scipy.integrate.solve_ivp``.
 
     Arguments as :func:`hubbeam.simulation.simulate.simulate` (``numerics`` gives the output grid and the
@@ -79,7 +80,8 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
     every free position and velocity). The run is split at the end of the maneuver, as in the fast
     path (and at every row of a maneuver's table). Integrator attributes name scipy, the method and
     its counts (``n_steps`` is not known to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
-    The run starts from the case's initial state (:func:`hubbeam.simulation.simulate.initial_state`).
+    The run starts from the case's initial state (:func:`hubbeam.simulation.simulate.initial_state`);
+    ``shaper`` shapes the maneuver's command as in :func:`hubbeam.simulation.simulate.simulate`.
     """
     case, numerics = simulation_settings(case, numerics, params.L)
     if method not in METHODS:
@@ -87,6 +89,8 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
     sm = case_matrices(case, params, numerics, matrices)
     kind, mp = case.maneuver.kernel_parameters()
     inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm)
+    if shaper is not None:
+        inputs = inputs._replace(shaper=shaper.kernel_array())
     n = case.modes
     free = eom.free_dofs(inputs.traits, kind, n)
     nf = free.size
@@ -109,7 +113,7 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
     tip_event.terminal = True
 
     t = output_times(case.t_end, numerics.output_step)
-    edges = [t[0], *step_stops(case, t), t[-1]]
+    edges = [t[0], *step_stops(case.maneuver, t, shaper), t[-1]]
     start = initial_state(case, sm)
     z = np.concatenate([start.y[free], start.v[free]])
     states = np.full((t.size, 2 * nf), np.nan)
@@ -117,12 +121,16 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
     start = time.perf_counter()
     for t0, t1 in zip(edges[:-1], edges[1:]):
         inside = (t >= t0) & (t <= t1)
-        result = solve_ivp(rhs, (t0, t1), z, method=method, t_eval=t[inside], rtol=rtol,
+        grid = t[inside]
+        # the state at t1 starts the next piece: evaluate it there too when t1 is off the grid
+        evaluate = grid if grid.size and grid[-1] == t1 else np.append(grid, t1)
+        result = solve_ivp(rhs, (t0, t1), z, method=method, t_eval=evaluate, rtol=rtol,
                            atol=atol, events=tip_event)
         nfev += result.nfev
         njev += result.njev
         nlu += result.nlu
-        states[np.flatnonzero(inside)[:result.t.size]] = result.y.T
+        count = min(result.t.size, grid.size)
+        states[np.flatnonzero(inside)[:count]] = result.y.T[:count]
         if result.status == 1:
             status, t_stop = LEFT_RANGE, float(result.t_events[0][0])
             break

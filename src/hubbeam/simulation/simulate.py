@@ -36,7 +36,7 @@ from scipy.integrate import cumulative_simpson
 
 from hubbeam.configuration.settings import Case, ConvergenceCheck, Numerics, simulation_settings
 from hubbeam.core import radau
-from hubbeam.core.inputs import NO_DRIVE, IntegratorSettings, SimulationInputs, State
+from hubbeam.core.inputs import IDENTITY_SHAPER, NO_DRIVE, IntegratorSettings, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.model import linearised, validity
 from hubbeam.model.beam import beam_attributes
@@ -47,10 +47,11 @@ from hubbeam.model.limits import (
     MIN_QUADRATURE_POINTS,
     MIN_RTOL,
 )
-from hubbeam.model.maneuvers import FeedbackLaw, SpinUp
+from hubbeam.model.maneuvers import FeedbackLaw, Maneuver, SpinUp
 from hubbeam.model.matrices import SystemMatrices, assemble
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.shapers import Shaper, shaped_stops
 from hubbeam.results.provenance import global_attributes
 from hubbeam.results.variables import (
     CUMULATIVE_VARIABLES,
@@ -118,7 +119,8 @@ def case_matrices(case: Case, params: BeamParameters, numerics: Numerics,
 
 def simulate(case: Case | Mapping, params: BeamParameters, numerics: Numerics | Mapping,
              matrices: SystemMatrices | None = None, *,
-             convergence_check: ConvergenceCheck | Mapping | None = None, feedback=None) -> xr.Dataset:
+             convergence_check: ConvergenceCheck | Mapping | None = None, feedback=None,
+             shaper: Shaper | None = None) -> xr.Dataset:
     """Simulate one case from its initial state and return the labelled simulation dataset.
 
     Parameters
@@ -137,6 +139,10 @@ def simulate(case: Case | Mapping, params: BeamParameters, numerics: Numerics | 
         attributes)`` that resolves its :class:`~hubbeam.model.maneuvers.FeedbackLaw` for the case's
         matrices (every rerun its own) and the dataset attributes that record it
         (``hubbeam.control.feedback.simulate_case`` passes it).
+    shaper : a command shaper (:class:`hubbeam.model.shapers.Shaper`) convolved with the
+        maneuver's command (``hubbeam.core.shaping``: the hub motion, the torque, or a
+        controller's reference); None leaves it unshaped. Recorded as the attribute ``shaper``
+        (JSON), present only when given.
 
     Objects are used as they are (the workflow's jobs get them from the one check of the
     configuration); mappings are checked once, by the same schema and checks
@@ -144,14 +150,18 @@ def simulate(case: Case | Mapping, params: BeamParameters, numerics: Numerics | 
     ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so that
     :func:`hubbeam.results.reader.simulation_inputs` can rebuild them.
     """
+    if shaper is not None and not isinstance(shaper, Shaper):
+        raise SimulationError(f"shaper = {shaper!r}; allowed: a hubbeam.model.shapers.Shaper, or None")
     case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
     sm = case_matrices(case, params, numerics, matrices)
-    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback))
+    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback, shaper=shaper))
     ds.attrs["quadrature_points"] = quadrature_points(sm)
     if case.maneuver.needs_law:
         ds.attrs.update(feedback(case, sm)[1])
+    if shaper is not None:
+        ds.attrs["shaper"] = json.dumps(shaper.to_dict())
     if numerics.convergence_check is not None:
-        found = convergence(ds, case, params, numerics, sm, feedback)
+        found = convergence(ds, case, params, numerics, sm, feedback, shaper)
         notes = found.pop("warnings")
         ds.attrs.update(found)
         ds.attrs["warnings"] = "; ".join(filter(None, [ds.attrs["warnings"], *notes]))
@@ -174,16 +184,18 @@ def _feedback_law(case: Case, sm: SystemMatrices, feedback) -> FeedbackLaw | Non
 
 
 def _integrate(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices, feedback=None,
-               drive: np.ndarray = NO_DRIVE):
+               drive: np.ndarray = NO_DRIVE, shaper: Shaper | None = None):
     """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`
-    (``feedback`` as in :func:`simulate`; ``drive``: the hub's packed drive, ``hubbeam.core.drive``)."""
+    (``feedback`` and ``shaper`` as in :func:`simulate`; ``drive``: the hub's packed drive,
+    ``hubbeam.core.drive``)."""
     kind, mp = case.maneuver.kernel_parameters(_feedback_law(case, sm, feedback))
     t = output_times(case.t_end, numerics.output_step)
     out = np.empty((t.size, n_output_columns(case.modes)))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
     start = time.perf_counter()
-    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm, drive)
-    status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case, t),
+    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm, drive,
+                              IDENTITY_SHAPER if shaper is None else shaper.kernel_array())
+    status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case.maneuver, t, shaper),
                                      integrator_settings(numerics, params.L), out, stats)
     wall = time.perf_counter() - start
     LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
@@ -203,9 +215,9 @@ def integrator_settings(numerics: Numerics, length: float) -> IntegratorSettings
 
 
 def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Numerics,
-                sm: SystemMatrices, feedback=None) -> dict:
-    """Check the run ``ds`` of ``case`` (made with matrices ``sm``) against two reruns, with the
-    settings ``numerics.convergence_check``.
+                sm: SystemMatrices, feedback=None, shaper: Shaper | None = None) -> dict:
+    """Check the run ``ds`` of ``case`` (made with matrices ``sm``, and ``shaper``) against two
+    reruns, with the settings ``numerics.convergence_check``.
 
     The reruns change one setting each: the tolerances ``rtol`` and ``atol`` multiplied by
     ``tolerance_factor`` (``rtol`` not below :data:`MIN_RTOL`), and the number of modes raised by
@@ -242,7 +254,8 @@ def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Nu
         warnings.append(f"convergence in the modes not checked: the case already has the "
                         f"maximum of {MAX_MODES} modes")
     for label, (rerun_case, rerun_numerics, rerun_sm, what) in reruns.items():
-        _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm, feedback)
+        _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm, feedback,
+                                                   shaper=shaper)
         rerun_tip = out[:, output_columns(rerun_case.modes)["tip_transverse"]]
         both = np.isfinite(tip) & np.isfinite(rerun_tip)
         difference = float(np.max(np.abs(tip - rerun_tip)[both])) if both.any() else math.nan
@@ -349,10 +362,13 @@ def compile_kernels(family: str | None = None) -> float:
     return time.perf_counter() - start
 
 
-def step_stops(case: Case, t: np.ndarray) -> np.ndarray:
+def step_stops(maneuver: Maneuver, t: np.ndarray, shaper: Shaper | None = None) -> np.ndarray:
     """Times no step may cross: where the maneuver is not smooth (the end of Eq. 43/44, where they
-    are only C^1 or C^3; table rows), inside the output span."""
-    stops = case.maneuver.stops()
+    are only C^1 or C^3; table rows), each shifted by every impulse of the ``shaper`` (and the
+    shifted starts, :func:`hubbeam.model.shapers.shaped_stops`), inside the output span."""
+    stops = maneuver.stops()
+    if shaper is not None:
+        stops = shaped_stops(stops, shaper)
     return np.ascontiguousarray(stops[(stops > 0.0) & (stops < t[-1])])
 
 

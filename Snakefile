@@ -17,7 +17,7 @@ from snakemake.utils import min_version
 
 from hubbeam.configuration.load import ConfigError, validate_config
 from hubbeam.configuration.settings import from_config
-from hubbeam.control.feedback import check_feedback
+from hubbeam.control.cases import check_cases
 from hubbeam.configuration.schema import CASE_NAME_PATTERN
 from hubbeam.results.paths import study_paths
 from hubbeam.reporting.products import ProductError, check_product_cases, products_for
@@ -36,12 +36,12 @@ for base_config_file in base_config_files(config):
 # Tables given as `file:` (beam sections, maneuver profiles) are read relative to the last config
 # file and inlined; then the schema (hubbeam/configuration/schemas/config.schema.yaml) and the physical checks,
 # every problem in one message; then the objects every job takes (`SETTINGS`) and the checks that need
-# the cases' matrices (feedback designs): a bad config stops here, before any rule, without a traceback.
+# the cases' matrices (designs, sampled controllers, shapers): a bad config stops here, before any rule, without a traceback.
 try:
     config.update(resolve_files(config, Path(workflow.configfiles[-1]).parent))
     validate_config(config, files=workflow.configfiles)
     SETTINGS = from_config(config)
-    check_feedback(SETTINGS, workflow.configfiles)
+    check_cases(SETTINGS, workflow.configfiles)
     claim_folder(study_paths(config), workflow.configfiles[-1])
     check_product_cases(products_for(config), config["cases"])
 except (ConfigError, ProductError, StudyError) as error:

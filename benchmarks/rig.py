@@ -12,8 +12,8 @@ noise and a 12-bit converter. The controller: LQR and a predictor Kalman filter 
 python-control (``ct.dlqr``, ``ct.dlqe``) on the ZOH model of SFOAM with :data:`DESIGN_MODES`
 modes at rest (its input the voltage: the drive's torque gain and damping added).
 
-Rows: ``hubbeam sampled loop`` (:func:`hubbeam.simulation.sampled.simulate_rig`, the whole run
-and its outputs), also on exact sensors; ``python loop`` (per sample, the same sensors and controller in numpy and
+Rows: ``hubbeam sampled loop`` (:func:`hubbeam.simulation.simulate.run`, the whole run and its
+outputs), also on exact sensors; ``python loop`` (per sample, the same sensors and controller in numpy and
 ``scipy.integrate.solve_ivp`` (Radau) over the sample interval with hubbeam's jitted first-order
 right-hand side and Jacobian, :mod:`hubbeam.core.first_order`, on the same plant); ``hubbeam
 continuous`` (the same plant under continuous LQR state feedback, a ``state_feedback`` maneuver,
@@ -53,8 +53,8 @@ from hubbeam.model.drive import QUANSER_SRV02
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import model
 from hubbeam.model.parameters import FLEXIBLE_LINK
-from hubbeam.simulation.sampled import QUANTISATION_MODES, SampledLoop, Sensor, reference_array, simulate_rig
-from hubbeam.simulation.simulate import case_matrices, initial_state
+from hubbeam.simulation.sampled import QUANTISATION_MODES, SampledLoop, Sensor, reference_array
+from hubbeam.simulation.simulate import Resolved, case_matrices, initial_state, run
 
 MODEL, MODES = "CFOAM", 5
 DESIGN_MODEL, DESIGN_MODES = "SFOAM", 2
@@ -81,6 +81,7 @@ def rig_case(maneuver: dict | None = None) -> Case:
     maneuver gives the reference (a sampled loop replaces its law; the continuous run uses its
     gains)."""
     case = {"name": "rig", "model": MODEL, "modes": MODES, "t_end": T_END, "damping": DAMPING,
+            "drive": QUANSER_SRV02.to_dict(),
             "maneuver": maneuver or {"kind": "pd", "kp": 0.0, "kd": 0.0, "reference": REFERENCE}}
     return simulation_settings(case, NUMERICS, FLEXIBLE_LINK.L)[0]
 
@@ -184,10 +185,11 @@ def rig_rows(repeats: int, budget: float, log=print) -> list[dict]:
     Ts = 1.0 / RATE
     loop = sampled_loop(Ts)
     case = rig_case()
+    sm = case_matrices(case, FLEXIBLE_LINK, NUMERICS)
     runs = []
 
     def sampled_run(loop=loop, numerics=NUMERICS):
-        runs.append(simulate_rig(case, FLEXIBLE_LINK, numerics, motor=QUANSER_SRV02, loop=loop))
+        runs.append(run(case, FLEXIBLE_LINK, numerics, sm, Resolved(loop=loop)))
 
     sampled_run()  # compilation, not timed
     wall, count = median_time(sampled_run, repeats, budget)
@@ -199,11 +201,11 @@ def rig_rows(repeats: int, budget: float, log=print) -> list[dict]:
     exact_stats = runs[-1].integrator
     _, _, _, _, gains = design(Ts)
     continuous_case = rig_case({"kind": "state_feedback", "reference": REFERENCE, "gains": gains})
+    law = feedback_law(continuous_case, sm, FLEXIBLE_LINK)[0]
     continuous = []
 
     def continuous_run():
-        continuous.append(simulate_rig(continuous_case, FLEXIBLE_LINK, NUMERICS, motor=QUANSER_SRV02,
-                                       feedback=lambda case, sm: feedback_law(case, sm, FLEXIBLE_LINK)))
+        continuous.append(run(continuous_case, FLEXIBLE_LINK, NUMERICS, sm, Resolved(law=law)))
 
     continuous_run()
     continuous_wall, continuous_count = median_time(continuous_run, repeats, budget)
@@ -226,13 +228,13 @@ def rig_rows(repeats: int, budget: float, log=print) -> list[dict]:
     common = {"model": MODEL, "modes": MODES, "t_end_s": T_END, "rate_hz": RATE, "delay_samples": DELAY,
               "rtol": RTOL, "atol": ATOL}
     rows = [
-        {"measurement": "hubbeam sampled loop (simulate_rig)", "wall_s": wall, "repeats": count,
+        {"measurement": "hubbeam sampled loop (simulate.run)", "wall_s": wall, "repeats": count,
          **{name: sampled[name] for name in STATS}, **common},
         {"measurement": "hubbeam sampled loop, exact sensors (no noise, no quantisation)", "wall_s": exact_wall,
          "repeats": exact_count, **{name: exact_stats[name] for name in STATS}, **common},
         {"measurement": "python loop (solve_ivp Radau per sample, jitted rhs and jacobian)",
          "wall_s": python_wall, "repeats": 1, **common},
-        {"measurement": "hubbeam continuous state feedback (simulate_rig)", "wall_s": continuous_wall,
+        {"measurement": "hubbeam continuous state feedback (simulate.run)", "wall_s": continuous_wall,
          "repeats": continuous_count, **{name: continuous[-1].integrator[name] for name in STATS}, **common},
         {"measurement": "speed-up over the python loop", "value": python_wall / wall, **common},
         {"measurement": "cost of sampling (sampled / continuous)", "value": wall / continuous_wall, **common},

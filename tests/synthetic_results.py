@@ -215,6 +215,25 @@ def simulation_params(cfg: dict, case, convergence_check: bool = False) -> dict:
             "convergence_check": settings.numerics.convergence_check if convergence_check else None}
 
 
+def rig_run(case, params, numerics, *, motor=None, loop=None, feedback=None):
+    """One integration (``hubbeam.simulation.simulate.run``) of the case mapping ``case`` with the
+    drive ``motor`` (a ``DcMotor``, put in the case), a given sampled ``loop`` or the continuous law
+    of ``feedback`` (``(case, sm) -> (law, attributes)``): the kernel's arrays, and its matrices as
+    ``.matrices``."""
+    from types import SimpleNamespace
+
+    from hubbeam.configuration.settings import simulation_settings
+    from hubbeam.simulation.simulate import Resolved, case_matrices, run
+
+    if motor is not None:
+        case = dict(case, drive=motor.to_dict())
+    checked, numerics = simulation_settings(case, numerics, params.L)
+    sm = case_matrices(checked, params, numerics)
+    law = None if feedback is None else feedback(checked, sm)[0]
+    result = run(checked, params, numerics, sm, Resolved(law=law, loop=loop))
+    return SimpleNamespace(**result._asdict(), matrices=sm)
+
+
 def run_script(name: str, *, input=None, output=None, params=None, log=None) -> None:
     """Execute ``workflow/scripts/<name>`` with a ``snakemake`` object as Snakemake would
     (the log goes to ``log`` or, by default, beside the first output)."""

@@ -132,8 +132,8 @@ BAD_VALUES = [
     ("cases.fig04_foam.model", "FEM", ["got 'FEM'", "one of TLAM, FOAM, SFOAM, CFOAM"]),
     ("cases.fig04_foam.maneuver.kind", "ramp", ["got 'ramp'", "one of prescribed, torque"]),
     ("cases.fig04_foam.maneuver", "spin-up", ["got 'spin-up' (text)", "a mapping with a kind (prescribed, "
-                                              "torque, speed_table, torque_table, pd, state_feedback) and "
-                                              "the keys of its kind"]),
+                                              "torque, speed_table, torque_table, voltage_table, pd, "
+                                              "state_feedback) and the keys of its kind"]),
     ("cases.fig10_foam_mt0p1.tip_mass.position", 8.5, ["got 8.5", "0 <= position <= beam.length = 8.0"]),
     ("cases.fig10_foam_mt0p1.tip_mass.position", -0.1, ["got -0.1", ">= 0"]),
     ("cases.fig10_foam_mt0p1.tip_mass.mass", -0.1, ["got -0.1", "a number >= 0"]),

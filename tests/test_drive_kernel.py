@@ -1,4 +1,4 @@
-"""The hub's DC drive in the kernels (``hubbeam.core.drive``, ``simulate_rig`` with a motor).
+"""The hub's DC drive in the kernels (``hubbeam.core.drive``, ``hubbeam.simulation.simulate.run`` with a motor).
 
 * the kernel evaluates the law of ``DcMotor`` (torque, and its inverse, the voltage) from the
   packed array;
@@ -17,11 +17,11 @@ import math
 import numpy as np
 import pytest
 from scipy.optimize import brentq
+from synthetic_results import rig_run
 
 from hubbeam.core import drive
 from hubbeam.core.integrate import output_columns
 from hubbeam.model.drive import QUANSER_SRV02, DcMotor
-from hubbeam.simulation.sampled import simulate_rig
 
 #: tight tolerances: the closed forms below hold to the integrator's error
 NUMERICS = {"rtol": 1e-10, "atol": 1e-12, "output_step": 0.01, "max_steps": 10**6, "step_warning": 10**6,
@@ -35,7 +35,7 @@ WITH_ROTOR = dataclasses.replace(QUANSER_SRV02, rotor_inertia=3.9e-7)
 
 def _constant_voltage(model, volts, t_end=12.0):
     return {"name": "drive", "model": model, "modes": 2, "t_end": t_end, "damping": DAMPED,
-            "maneuver": {"kind": "torque_table", "time": [0.0, 1.0], "torque": [volts, volts]}}
+            "maneuver": {"kind": "voltage_table", "time": [0.0, 1.0], "voltage": [volts, volts]}}
 
 
 def test_the_kernel_evaluates_the_motor_law():
@@ -62,7 +62,7 @@ def test_a_constant_voltage_spins_the_free_hub_at_the_closed_form_speed(flexible
     expected = QUANSER_SRV02.torque_gain * volts / QUANSER_SRV02.hub_damping
     columns = output_columns(2)
     for motor in (QUANSER_SRV02, WITH_ROTOR):
-        run = simulate_rig(_constant_voltage(model, volts), flexible_link, NUMERICS, motor=motor)
+        run = rig_run(_constant_voltage(model, volts), flexible_link, NUMERICS, motor=motor)
         assert run.status == 0
         end = run.out[-1]
         # the transients have decayed to 1e-12 (DAMPED); the integrator's error is of rtol
@@ -81,7 +81,7 @@ def test_coulomb_friction_holds_the_hub_below_the_breakaway_voltage(flexible_lin
     speed = output_columns(2)["theta_dot"]
     for fraction in (0.5, 0.9, 2.0):
         volts = fraction * breakaway
-        run = simulate_rig(_constant_voltage("FOAM", volts), flexible_link, NUMERICS, motor=motor)
+        run = rig_run(_constant_voltage("FOAM", volts), flexible_link, NUMERICS, motor=motor)
         final = run.out[-1, speed]
         # the hub's steady speed is the drive's zero torque, found apart by brentq
         steady = brentq(lambda w, v=volts: motor.torque(v, w), 0.0, 100.0, xtol=1e-15)
@@ -98,8 +98,8 @@ def test_a_prescribed_hub_reports_the_voltage_it_needs(flexible_link):
             "maneuver": {"kind": "prescribed", "wf": 2.0, "tf": 2.0}}
     motor = dataclasses.replace(WITH_ROTOR, coulomb_friction=0.02, coulomb_smoothing=0.05)
     columns = output_columns(2)
-    driven = simulate_rig(case, flexible_link, NUMERICS, motor=motor).out
-    bare = simulate_rig(case, flexible_link, NUMERICS).out
+    driven = rig_run(case, flexible_link, NUMERICS, motor=motor).out
+    bare = rig_run(case, flexible_link, NUMERICS).out
     torque, speed = driven[:, columns["hub_torque"]], driven[:, columns["theta_dot"]]
     np.testing.assert_allclose(driven[:, columns["hub_voltage"]], motor.voltage(torque, speed), rtol=1e-14,
                                atol=1e-14)

@@ -27,7 +27,8 @@ import scipy.linalg
 from scipy.integrate import simpson
 
 from hubbeam.configuration.settings import InitialState, simulation_settings
-from hubbeam.control.feedback import lqr_design, simulate_case
+from hubbeam.control.cases import simulate_case
+from hubbeam.control.feedback import lqr_design
 from hubbeam.linear.statespace import linear_model
 from hubbeam.model.modes import transverse_modes
 from hubbeam.model.parameters import BeamParameters

@@ -160,7 +160,8 @@ BAD = [
     ({"kind": "prescribed", "wf": 2.0},
      "maneuver.tf", ["missing (required when kind is 'prescribed')", "allowed: a number > 0"]),
     ({"kind": "ramp"},
-     "maneuver.kind", ["got 'ramp'", "allowed: one of prescribed, torque, speed_table, torque_table, pd"]),
+     "maneuver.kind", ["got 'ramp'",
+                       "allowed: one of prescribed, torque, speed_table, torque_table, voltage_table, pd"]),
     ({"kind": "torque_table", "time": [0, 1], "torque": [0, 1], "speed": [0, 1]},
      "maneuver.speed", ["got [0, 1]", "not allowed when kind is 'torque_table' (allowed keys: kind, time, torque)"]),
 ]

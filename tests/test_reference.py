@@ -27,7 +27,7 @@ from hubbeam.model.models import MODELS
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.model.shapers import Shaper
 from hubbeam.simulation.reference import pure_python, reference_simulation
-from hubbeam.simulation.simulate import kernel_matrices, simulate
+from hubbeam.simulation.simulate import Resolved, kernel_matrices, simulate
 
 
 @pytest.fixture(scope="module")
@@ -150,7 +150,7 @@ def test_shaped_runs_agree_with_the_reference(setup, name, changes):
     case = case_of(config, name).to_dict() | changes
     reference = reference_simulation(case, params, numerics, rtol=1e-10, atol=1e-12,
                                      pure_python_rhs=False, shaper=SHAPER)
-    fast = simulate(case, params, numerics, shaper=SHAPER)
+    fast = simulate(case, params, numerics, resolve=lambda case, sm: Resolved(shaper=SHAPER))
     assert reference.attrs["integrator_status"] == fast.attrs["integrator_status"] == "success"
     rtol = max(numerics["rtol"], 1e-10)
     _assert_close_runs(fast, reference, rtol, "tip_transverse")

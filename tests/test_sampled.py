@@ -1,4 +1,4 @@
-"""The sampled digital controller in the kernel (``hubbeam.core.sampled``, ``simulate_rig`` with a
+"""The sampled digital controller in the kernel (``hubbeam.core.sampled``, ``hubbeam.simulation.simulate.run`` with a
 ``SampledLoop``), on the flexible link of ``conftest.flexible_link``.
 
 * the analog low-pass, discretised exactly on the dense output, is the closed-form response of a
@@ -26,6 +26,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 from scipy.interpolate import CubicSpline
+from synthetic_results import rig_run
 
 from hubbeam.configuration.settings import simulation_settings
 from hubbeam.control.feedback import feedback_law
@@ -38,8 +39,9 @@ from hubbeam.linear.statespace import linear_model
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.drive import QUANSER_SRV02
 from hubbeam.model.maneuvers import maneuver_from_dict
-from hubbeam.simulation.sampled import SampledLoop, Sensor, drive_matrices, reference_array, simulate_rig
-from hubbeam.simulation.simulate import SimulationError, case_matrices
+from hubbeam.simulation.errors import SimulationError
+from hubbeam.simulation.sampled import SampledLoop, Sensor, reference_array
+from hubbeam.simulation.simulate import case_matrices, drive_matrices
 
 NUMERICS = {"rtol": 1e-10, "atol": 1e-12, "output_step": 0.01, "max_steps": 10**7, "step_warning": 10**7,
             "divergence_limit": 0.5, "quadrature_points": 40}
@@ -117,7 +119,7 @@ def test_the_lowpass_is_exact_on_a_steadily_spinning_hub(flexible_link):
                Sensor("raw", _unit(0))]
     loop = SampledLoop(sensors, *(np.zeros(shape) for shape in ((0, 0), (0, 3), 0, (0, 0), (0, 3), 0)),
                        np.zeros((3, 3)), np.zeros(3), np.zeros(0), Ts=0.01)
-    run = simulate_rig(_case(STEADY, t_end=1.0, initial={"hub_speed": SPEED}), flexible_link, NUMERICS,
+    run = rig_run(_case(STEADY, t_end=1.0, initial={"hub_speed": SPEED}), flexible_link, NUMERICS,
                        loop=loop)
     t = run.records.t
     sensed = run.records.sensed
@@ -210,7 +212,7 @@ def test_about_a_steady_spin_the_sampled_run_follows_the_discrete_linear_loop(fl
                        D=delay, u_init=bias)
     gaps = []
     for amplitude in (2e-4, 1e-4):
-        run = simulate_rig(dict(case, initial={"hub_speed": SPEED, "q2": [amplitude, 0.0]}), flexible_link,
+        run = rig_run(dict(case, initial={"hub_speed": SPEED, "q2": [amplitude, 0.0]}), flexible_link,
                            NUMERICS, motor=motor, loop=loop)
         x0 = np.zeros(2 * N)
         x0[lin.states.index("q2_1")] = amplitude
@@ -236,7 +238,7 @@ def test_a_vanishing_sample_time_recovers_the_continuous_state_feedback(flexible
     case = {"name": "limit", "model": "FOAM", "modes": MODES, "t_end": 2.0, "damping": DAMPED,
             "maneuver": maneuver}
     feedback = functools.partial(feedback_law, beam=flexible_link)
-    continuous = simulate_rig(case, flexible_link, NUMERICS, feedback=feedback)
+    continuous = rig_run(case, flexible_link, NUMERICS, feedback=feedback)
     tip = output_columns(MODES)["tip_transverse"]
     gains = feedback(simulation_settings(case, NUMERICS, flexible_link.L)[0], _matrices(case, flexible_link))[0].gains
     weighed = np.flatnonzero(gains)
@@ -247,7 +249,7 @@ def test_a_vanishing_sample_time_recovers_the_continuous_state_feedback(flexible
     errors = []
     for Ts in (0.004, 0.002, 0.001):
         loop = _feedback([Sensor(f"x{i}", _unit(i)) for i in weighed], gains[weighed], R_m, Ts)
-        sampled = simulate_rig(case, flexible_link, NUMERICS, loop=loop)
+        sampled = rig_run(case, flexible_link, NUMERICS, loop=loop)
         errors.append(np.abs(sampled.out[:, tip] - continuous.out[:, tip]).max())
     orders = np.log2(np.array(errors[:-1]) / errors[1:])
     np.testing.assert_allclose(orders, 1.0, atol=0.05)
@@ -271,7 +273,7 @@ def test_an_encoder_stays_within_its_model_s_bound(flexible_link):
                                                                      mode="edges"),
                Sensor("speed", _unit(N))]
     loop = _feedback(sensors, [2.0, 0.0, 0.3], [[1.0, 0, 0], [1.0, 0, 0], [0, 1.0, 0]], 0.002)
-    records = simulate_rig(_spin_up(), flexible_link, NUMERICS, loop=loop).records
+    records = rig_run(_spin_up(), flexible_link, NUMERICS, loop=loop).records
     slack = 8 * np.spacing(np.abs(records.sensed[:, :2]).max())
     rounded = records.measured[:, 0] - records.sensed[:, 0]
     counted = records.sensed[:, 1] - records.measured[:, 1]
@@ -313,7 +315,7 @@ def test_the_records_obey_the_convention_sample_by_sample(flexible_link):
     binds in the spin-up; the noise is the seed's ``sigma w``."""
     case = _spin_up()
     _, loop = _current_estimator(flexible_link, case, 0.002, (1e-3, 1e-4), seed=7, u_max=0.02)
-    run = simulate_rig(case, flexible_link, NUMERICS, loop=loop)
+    run = rig_run(case, flexible_link, NUMERICS, loop=loop)
     records = run.records
     reference = reference_array(maneuver_from_dict(case["maneuver"]))
     xc = loop.xc0.copy()
@@ -347,7 +349,7 @@ def test_noise_moves_the_estimate_off_the_state_and_is_the_seed_s(flexible_link)
     for label, noise, seed in (("exact", (0.0, 0.0), 0), ("noisy", (1e-3, 1e-4), 0), ("again", (1e-3, 1e-4), 0),
                                ("other", (1e-3, 1e-4), 1)):
         lin, loop = _current_estimator(flexible_link, case, Ts, noise, seed)
-        runs[label] = simulate_rig(case, flexible_link, dict(NUMERICS, output_step=Ts), loop=loop)
+        runs[label] = rig_run(case, flexible_link, dict(NUMERICS, output_step=Ts), loop=loop)
     columns = output_columns(MODES)
     reference = reference_array(maneuver_from_dict(case["maneuver"]))
 
@@ -384,7 +386,7 @@ def test_a_delay_of_d_samples_shifts_the_input_and_the_motion_by_d_ts(flexible_l
     for D in (0.0, 0.25, 1.0, 2.5):
         loop = _feedback([Sensor("hub_angle", _unit(0))], [0.0], [[1.0, 0.0, 0.0]], Ts, D=D,
                          U_r=np.array([0.0, 0.0, inertia]))
-        run = simulate_rig(case, flexible_link, dict(NUMERICS, output_step=step), loop=loop)
+        run = rig_run(case, flexible_link, dict(NUMERICS, output_step=step), loop=loop)
         switches = (np.arange(run.records.t.size) + D) * Ts
         last = np.searchsorted(switches, run.t, side="right") - 1
         held = np.where(last >= 0, run.records.applied[np.maximum(last, 0)], 0.0)
@@ -472,7 +474,7 @@ def test_a_bad_sensor_is_refused_naming_the_argument(settings, message):
 def test_a_loop_needs_a_tracking_case_and_rows_of_its_model(flexible_link):
     loop = SampledLoop(**_good())
     torque = dict(_case(REST), maneuver={"kind": "torque", "tau_max": 1.0, "tf": 1.0})
-    with pytest.raises(SimulationError, match="maneuver.kind = 'torque' with a sampled loop; allowed: one of pd"):
-        simulate_rig(torque, flexible_link, NUMERICS, loop=loop)
+    with pytest.raises(SimulationError, match="'torque' with a sampled loop; allowed: a maneuver that tracks"):
+        rig_run(torque, flexible_link, NUMERICS, loop=loop)
     with pytest.raises(SimulationError, match=r"rows of length 10; allowed: 2 N = 14"):
-        simulate_rig(dict(_case(REST), modes=3), flexible_link, NUMERICS, loop=loop)
+        rig_run(dict(_case(REST), modes=3), flexible_link, NUMERICS, loop=loop)

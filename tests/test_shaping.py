@@ -21,13 +21,15 @@ linear models (hubbeam.control.shaping) and the nonlinear runs.
   speed (computed here in numpy), to the interpolation error of the table's clamped cubic spline.
 """
 
+import functools
 import math
 
 import numpy as np
 import pytest
 
 from hubbeam.configuration.settings import simulation_settings
-from hubbeam.control.feedback import coordinate_names, simulate_case
+from hubbeam.control.cases import resolve
+from hubbeam.control.feedback import coordinate_names
 from hubbeam.control.shaping import case_shaping_mode, linear_shaping_mode, maneuver_loop
 from hubbeam.core.inputs import IDENTITY_SHAPER
 from hubbeam.core.maneuver import (
@@ -48,7 +50,7 @@ from hubbeam.model.matrices import assemble
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.model.shapers import DESIGNS, Shaper, residual_vibration
 from hubbeam.results.measures import residual_amplitude, shaped_residual_amplitude
-from hubbeam.simulation.simulate import output_times, simulate, step_stops
+from hubbeam.simulation.simulate import Resolved, output_times, simulate, step_stops
 
 ANGLE_TABLE = {"kind": "angle_table", "time": [0.5, 2.0, 5.0], "angle": [0.2, 1.0, 1.5]}
 #: every maneuver kind, tables that start after t = 0 and away from rest
@@ -284,7 +286,7 @@ def residual_cuts(setup, matrices):
         before = residual_amplitude(unshaped.time, unshaped.tip_transverse, SPIN_UP_TIME)
         for design in DESIGNS:
             shaper = DESIGNS[design](mode.omega, mode.zeta)
-            run = simulate(_spin_up(wf, t_end), params, numerics, shaper=shaper)
+            run = simulate(_spin_up(wf, t_end), params, numerics, resolve=shaped(shaper))
             after = shaped_residual_amplitude(run.time, run.tip_transverse, SPIN_UP_TIME, shaper.duration)
             found[wf, design] = (after / before, residual_vibration(shaper, mode.omega, mode.zeta), delta)
     return found
@@ -323,13 +325,13 @@ def test_shaping_commutes_with_the_kernel(setup, matrices):
     shaper = DESIGNS["ZV"](mode.omega, mode.zeta)
     case = {"name": "commute", "model": "FOAM", "modes": 3, "t_end": 12.0,
             "tip_mass": {"mass": 0.0, "position": 8.0}, "maneuver": {"kind": "prescribed", "wf": wf, "tf": tf}}
-    shaped = simulate(case, params, numerics, shaper=shaper)
+    commuted = simulate(case, params, numerics, resolve=shaped(shaper))
 
     def speed(t):
         return sum(a * _eq43_speed(t - ti, wf, tf) for ti, a in zip(shaper.times, shaper.amplitudes))
 
     # the kernel's shaped speed is the weighted sum of delayed Eq. 43 speeds
-    np.testing.assert_allclose(shaped.theta_dot, speed(shaped.time.values), rtol=0, atol=1e-15 * wf)
+    np.testing.assert_allclose(commuted.theta_dot, speed(commuted.time.values), rtol=0, atol=1e-15 * wf)
     fourth = wf * (2.0 * np.pi / tf) ** 3 / tf
     end = tf + shaper.duration
     tip = []
@@ -338,10 +340,15 @@ def test_shaping_commutes_with_the_kernel(setup, matrices):
         table = dict(case, maneuver={"kind": "speed_table", "time": rows.tolist(), "speed": speed(rows).tolist()})
         run = simulate(table, params, numerics)
         step = np.diff(rows).max()
-        assert np.max(np.abs(run.theta_dot.values - shaped.theta_dot.values)) <= 5.0 / 384.0 * step**4 * fourth
-        assert np.max(np.abs(run.theta_ddot.values - shaped.theta_ddot.values)) <= step**3 / 24.0 * fourth
-        tip.append(float(np.max(np.abs(run.tip_transverse.values - shaped.tip_transverse.values))))
+        assert np.max(np.abs(run.theta_dot.values - commuted.theta_dot.values)) <= 5.0 / 384.0 * step**4 * fourth
+        assert np.max(np.abs(run.theta_ddot.values - commuted.theta_ddot.values)) <= step**3 / 24.0 * fourth
+        tip.append(float(np.max(np.abs(run.tip_transverse.values - commuted.tip_transverse.values))))
     assert tip[0] / tip[1] >= 8.0
+
+
+def shaped(shaper):
+    """A resolver that shapes a case's command with ``shaper`` (``simulate``'s ``resolve``)."""
+    return lambda case, sm: Resolved(shaper=shaper)
 
 
 def test_a_shaped_run_records_its_shaper_and_a_state_feedback_takes_one(setup):
@@ -350,8 +357,9 @@ def test_a_shaped_run_records_its_shaper_and_a_state_feedback_takes_one(setup):
             "maneuver": {"kind": "state_feedback", "reference": {"kind": "prescribed", "wf": 0.5, "tf": 1.0},
                          "gains": {"theta": 300.0, "theta_dot": 90.0}}}
     pd = dict(case, maneuver={"kind": "pd", "kp": 300.0, "kd": 90.0, "reference": case["maneuver"]["reference"]})
-    shaped_feedback = simulate_case(case, params, numerics, shaper=THREE)
-    shaped_pd = simulate(pd, params, numerics, shaper=THREE)
+    resolved = functools.partial(resolve, beam=params)
+    shaped_feedback = simulate(case, params, numerics, resolve=lambda c, sm: resolved(c, sm)._replace(shaper=THREE))
+    shaped_pd = simulate(pd, params, numerics, resolve=shaped(THREE))
     assert "three impulses" in shaped_feedback.attrs["shaper"]
     assert "shaper" not in simulate(pd, params, numerics).attrs
     # PD is state feedback on the hub angle and speed: the same shaped run

@@ -87,7 +87,7 @@ def test_relative_import_resolution(toy):
 
 def test_real_script_gets_the_integrator_and_not_the_plots(repo_root):
     script = repo_root / "workflow" / "scripts" / "simulate_case.py"
-    assert "from hubbeam.control.feedback import simulate_case" in script.read_text()
+    assert "from hubbeam.control.cases import simulate_case" in script.read_text()
     root = repo_root / "src" / "hubbeam"
     files = relative(script_dependencies(script, root), root)
     for needed in ("__init__.py", "control/__init__.py", "control/feedback.py", "simulation/simulate.py",

@@ -2,7 +2,7 @@
 
 import logging
 
-from hubbeam.control.feedback import simulate_case
+from hubbeam.control.cases import simulate_case
 from hubbeam.model.matrices import from_dataset
 from hubbeam.results.io import open_result, write_netcdf
 

@@ -31,8 +31,8 @@ from hubbeam.configuration.schema import (
     type_name,
 )
 from hubbeam.model import limits
-from hubbeam.model.maneuvers import REFERENCES, maneuver_from_dict
-from hubbeam.model.models import MODELS
+from hubbeam.model.maneuvers import MANEUVERS, REFERENCES, maneuver_from_dict
+from hubbeam.model.models import DESIGN_ONLY_MODELS, MODELS
 from hubbeam.reporting.products import PAPER
 from hubbeam.results import variables
 from hubbeam.results.paths import PAPER_FOLDERS
@@ -98,6 +98,7 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
         modes = _integer(case.get("modes", numerics.get("modes")))
         problems += entry_problems + _initial_problems(f"cases.{name}", case, modes, check_speed=not entry_problems)
         problems += _feedback_problems(f"cases.{name}.maneuver", case, modes)
+        problems += _drive_problems(f"cases.{name}", case) + _shaper_problems(f"cases.{name}.shaper", case, modes)
     problems += _beam_problems(beam, length)
     if whole:
         problems += _study_problems(cfg, eigen, cases)
@@ -282,6 +283,104 @@ def _feedback_problems(where: str, case: Mapping, modes: int | None) -> list[Pro
         problems.append(Problem(f"{where}.feedforward", f"got true with reference.kind = {reference['kind']!r}; "
                                 "allowed: a reference whose acceleration is known (prescribed, Eq. 43), or "
                                 "feedforward false"))
+    return problems
+
+
+def _drive_problems(where: str, case: Mapping) -> list[Problem]:
+    """A drive turns the case's commands into volts: a voltage table needs one, an open-loop torque
+    takes none, a design weighs the voltage with one and the torque without; the lumped design
+    model needs a drive and its held-hub frequency; a sampled controller runs a design, with sensors
+    its estimator can use."""
+    maneuver = _section(case, "maneuver")
+    record = MANEUVERS.get(maneuver.get("kind"))
+    if record is None:
+        return []  # the schema reports the kind
+    driven = isinstance(case.get("drive"), dict)
+    problems = []
+    if record.needs_drive and not driven:
+        problems.append(Problem(f"{where}.maneuver.kind", f"got {record.kind!r} without a drive; allowed: a case "
+                                "with a drive section (its command is a voltage), or a torque_table"))
+    if driven and not record.takes_drive:
+        problems.append(Problem(f"{where}.drive", f"given with maneuver.kind = {record.kind!r}, an open-loop torque; "
+                                "allowed: a voltage_table (or a controller) with a drive, or no drive"))
+    design = _section(maneuver, "design")
+    if "torque_weight" in design and driven:
+        problems.append(Problem(f"{where}.maneuver.design.torque_weight", "given with a drive, whose input is the "
+                                "voltage; allowed: voltage_weight (the same cost is R_tau torque_gain^2)"))
+    if "voltage_weight" in design and not driven:
+        problems.append(Problem(f"{where}.maneuver.design.voltage_weight", "given without a drive, whose input is "
+                                "the hub torque; allowed: torque_weight, or a drive section"))
+    lumped = design.get("model") in DESIGN_ONLY_MODELS
+    if lumped and "held_frequency" not in design:
+        problems.append(Problem(f"{where}.maneuver.design.held_frequency", f"missing for the {design['model']} "
+                                "model; allowed: the link's held-hub frequency its spring is fitted to, Hz"))
+    if lumped and not driven:
+        problems.append(Problem(f"{where}.maneuver.design.model", f"got {design['model']!r} without a drive; "
+                                "allowed: a hub-beam model, or a case with a drive (the lumped model's input is the "
+                                "voltage)"))
+    if "held_frequency" in design and design.get("model") in MODELS:
+        problems.append(Problem(f"{where}.maneuver.design.held_frequency", f"given with model = "
+                                f"{design['model']!r}; allowed: only with {', '.join(DESIGN_ONLY_MODELS)}"))
+    return problems + _sampling_problems(f"{where}.maneuver", maneuver, lumped)
+
+
+def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Problem]:
+    """A sampled controller runs a design; the exact estimator reads the design's states (no sensors),
+    the filtered differences need the lumped design and its two angles, a Kalman filter sensors."""
+    sampling = _section(maneuver, "sampling")
+    if not sampling:
+        return []
+    problems = []
+    if "design" not in maneuver:
+        problems.append(Problem(f"{where}.sampling", "given without a design; allowed: a design (LQR) to sample, "
+                                "not gains or output_feedback"))
+    estimator = _section(sampling, "estimator").get("kind", "exact")
+    sensors = sampling.get("sensors") if isinstance(sampling.get("sensors"), list) else None
+    signals = [sensor.get("signal") for sensor in sensors or [] if isinstance(sensor, dict)]
+    if estimator == "exact" and sensors is not None:
+        problems.append(Problem(f"{where}.sampling.sensors", "given with the exact estimator, which reads the "
+                                "design's states; allowed: no sensors, or a kalman or filtered_differences estimator"))
+    if estimator != "exact" and sensors is None:
+        problems.append(Problem(f"{where}.sampling.sensors", f"missing for the {estimator} estimator; allowed: "
+                                "a list of sensors"))
+    if estimator == "filtered_differences":
+        if not lumped:
+            problems.append(Problem(f"{where}.sampling.estimator.kind", "got 'filtered_differences' with a design "
+                                    f"on a hub-beam model; allowed: a design on {', '.join(DESIGN_ONLY_MODELS)} "
+                                    "(its states are the measured angles and their rates), or kalman or exact"))
+        if sensors is not None and sorted(signals) != ["deflection_angle", "hub_angle"]:
+            problems.append(Problem(f"{where}.sampling.sensors", f"measure {signals}; allowed: hub_angle and "
+                                    "deflection_angle, once each, for the filtered differences"))
+    if len(set(signals)) < len(signals):
+        problems.append(Problem(f"{where}.sampling.sensors", f"measure {signals}; allowed: each signal once"))
+    return problems
+
+
+def _shaper_problems(where: str, case: Mapping, modes: int | None) -> list[Problem]:
+    """A shaper is tuned on a model or given its frequencies, not both; damping goes with given
+    frequencies, one ratio each; ``v_tol`` is EI's; the modes tuned to exist."""
+    shaper = _section(case, "shaper")
+    if not shaper:
+        return []
+    problems = []
+    frequencies = shaper.get("frequencies")
+    if frequencies is not None:
+        tuning = [key for key in ("model", "speed", "modes") if key in shaper]
+        problems += [Problem(f"{where}.{key}", "given with frequencies; allowed: either frequencies (and damping) "
+                             "or the tuning keys model, speed and modes") for key in tuning]
+        damping = shaper.get("damping")
+        if isinstance(damping, list) and isinstance(frequencies, list) and len(damping) != len(frequencies):
+            problems.append(Problem(f"{where}.damping", f"got {len(damping)} ratios; allowed: one per frequency "
+                                    f"({len(frequencies)})"))
+    elif "damping" in shaper:
+        problems.append(Problem(f"{where}.damping", "given without frequencies; allowed: damping of given "
+                                "frequencies (a tuned shaper takes the model's damping)"))
+    if "v_tol" in shaper and shaper.get("kind") != "EI":
+        problems.append(Problem(f"{where}.v_tol", f"given with kind = {shaper.get('kind')!r}; allowed: only for EI"))
+    numbers = shaper.get("modes") if isinstance(shaper.get("modes"), list) else []
+    beyond = [mode for mode in numbers if _integer(mode) is not None and modes is not None and mode > modes]
+    if beyond:
+        problems.append(Problem(f"{where}.modes", f"got {numbers}; allowed: modes 1..{modes} of the case"))
     return problems
 
 

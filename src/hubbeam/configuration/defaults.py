@@ -23,12 +23,14 @@ configuration is what the rules read and what the archive records (``config/conf
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
 
 from hubbeam.configuration.schema import SCHEMA
 from hubbeam.model import linearised
 from hubbeam.model.beam import beam_from_config
+from hubbeam.model.drive import DcMotor
 from hubbeam.model.maneuvers import maneuver_from_dict
 from hubbeam.model.matrices import assemble
 
@@ -71,9 +73,13 @@ def fill_eigen(cfg: dict) -> None:
     if missing & {"speeds", "critical_speed_search_max"}:
         params = beam_from_config(beam)
         bare = assemble(params, None, int(numerics["modes"]), int(numerics["quadrature_points"]))
-        highest = max(highest_critical_speed(bare.K2, bare.M2),
-                      *(maneuver_from_dict(case["maneuver"]).highest_speed(float(case["t_end"]), bare.Jh + bare.Jb)
-                        for case in cases.values()))
+        inertia = bare.Jh + bare.Jb
+
+        def reached(case: Mapping) -> float:
+            drive = DcMotor(**case["drive"]) if "drive" in case else None
+            return maneuver_from_dict(case["maneuver"]).highest_speed(float(case["t_end"]), inertia, drive)
+
+        highest = max(highest_critical_speed(bare.K2, bare.M2), *map(reached, cases.values()))
         top = round_up(SPEED_MARGIN * highest)
         eigen.setdefault("speeds", {"start": 0.0, "stop": top, "num": SPEED_POINTS})
         eigen.setdefault("critical_speed_search_max", top)

@@ -245,9 +245,13 @@ class _Writer:
             if name in when_forbidden:
                 allowed.append("not allowed " + _when(when_forbidden[name]))
             linked = _linked_definition(raw, self.defs)
+            items = _linked_definition(sub["items"], self.defs) if isinstance(sub.get("items"), Mapping) else None
             if linked:
                 self.link(linked)
                 allowed.insert(0, f"see [`{linked}`](#{_anchor(linked)})")
+            elif items:
+                self.link(items)
+                allowed.insert(0, f"each a [`{items}`](#{_anchor(items)}) mapping")
             elif sub.get("type") == "object":
                 allowed.insert(0, f"see `{_join(title, name)}`")
             if name in required:

@@ -24,7 +24,7 @@ import jsonschema
 import yaml
 
 from hubbeam.model import limits
-from hubbeam.model.models import MODELS
+from hubbeam.model.models import DESIGN_ONLY_MODELS, MODELS
 
 #: the schema, package data of hubbeam
 SCHEMA_RESOURCE = resources.files("hubbeam.configuration") / "schemas" / "config.schema.yaml"
@@ -54,6 +54,7 @@ _STEPS_BOUND = {"minimum": limits.MIN_STEPS}
 #: :data:`hubbeam.model.models.MODELS`, filled in at load time; the schema file states none of them itself
 SCHEMA_LIMITS = {
     ("$defs", "model"): {"enum": list(MODELS)},
+    ("$defs", "design_model"): {"enum": [*MODELS, *DESIGN_ONLY_MODELS]},
     ("$defs", "modes"): {"minimum": limits.MIN_MODES, "maximum": limits.MAX_MODES},
     ("properties", "numerics", "properties", "quadrature_points"):
         {"minimum": limits.MIN_QUADRATURE_POINTS, "maximum": limits.MAX_QUADRATURE_POINTS},
@@ -96,8 +97,8 @@ def kind_keys(definition: str) -> dict[str, tuple[str, ...]]:
 
 
 #: the measured signals a controller may feed back (``output_feedback``) or weight (an LQR design):
-#: the linear models' outputs without feedthrough, as the schema's ``output_feedback`` lists them
-MEASURED_SIGNALS = tuple(SCHEMA["$defs"]["maneuver_state_feedback"]["properties"]["output_feedback"]["properties"])
+#: the linear models' outputs without feedthrough, as the schema's ``measured_signal`` lists them
+MEASURED_SIGNALS = tuple(SCHEMA["$defs"]["measured_signal"]["enum"])
 
 
 #: Case names double as wildcards and file names (``results/simulations/<case>.nc``).

@@ -27,10 +27,12 @@ from hubbeam.configuration.load import ConfigError, validate_parts
 from hubbeam.configuration.schema import SCHEMA, Problem
 from hubbeam.model.beam import BeamSections, beam_from_config
 from hubbeam.model.damping import ModalDamping, RayleighDamping, damping_from_dict, damping_to_dict
+from hubbeam.model.drive import DcMotor
 from hubbeam.model.frozen import FrozenMap, freeze
 from hubbeam.model.limits import MEMORY_BUDGET_MB, SMALL_DEFLECTION_LIMIT
 from hubbeam.model.maneuvers import Maneuver, maneuver_from_dict
 from hubbeam.model.parameters import TipMass, UniformBeam
+from hubbeam.model.shapers import ShaperSpec
 
 
 @dataclass(frozen=True)
@@ -77,6 +79,10 @@ class Case:
     damping: ModalDamping | RayleighDamping | None = None
     #: the operating point at t = 0 (None: rest)
     initial: InitialState | None = None
+    #: the hub's DC drive (None: an ideal torque actuator)
+    drive: DcMotor | None = None
+    #: the command shaper (None: unshaped)
+    shaper: ShaperSpec | None = None
 
     @property
     def label(self) -> str:
@@ -97,6 +103,10 @@ class Case:
             settings["damping"] = damping_to_dict(self.damping)
         if self.initial is not None:
             settings["initial"] = self.initial.to_dict()
+        if self.drive is not None:
+            settings["drive"] = self.drive.to_dict()
+        if self.shaper is not None:
+            settings["shaper"] = self.shaper.to_dict()
         return settings
 
 
@@ -233,7 +243,9 @@ def case_from_config(cfg: Mapping, name: str) -> Case:
                 tip_mass=TipMass(float(tip.get("mass", 0.0)), float(tip.get("position", cfg["beam"]["length"])),
                                  float(tip.get("inertia", 0.0)), float(tip.get("offset", 0.0))),
                 damping=damping_from_dict(case.get("damping")),
-                initial=InitialState.from_dict(case["initial"]) if "initial" in case else None)
+                initial=InitialState.from_dict(case["initial"]) if "initial" in case else None,
+                drive=DcMotor(**case["drive"]) if "drive" in case else None,
+                shaper=ShaperSpec.from_dict(case["shaper"]) if "shaper" in case else None)
 
 
 #: the name a case given without one has in messages

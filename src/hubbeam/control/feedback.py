@@ -22,31 +22,35 @@ that a controller with gains on ``q1`` holds the steady spin without a torque of
 
 The names of the gains and weights, the weights' signs and the feedforward's reference are checked
 with the configuration (``hubbeam.configuration.checks``). What needs the case's matrices is
-checked here, for every case of a configuration before any job runs (:func:`feedback_problems`):
-a design speed where the design model has a steady spin (``K1 - W^2 M1`` positive definite for a
-model that keeps ``q1``; TLAM beyond its critical speed has one, unstable, and LQR may stabilise
-it), the plant's stabilisability (the PBH test on every eigenvalue with ``Re >= 0``) and a
-stabilising Riccati solution.
+checked here, for every case of a configuration before any job runs
+(``hubbeam.control.cases.case_problems``): a design speed where the design model has a steady
+spin (``K1 - W^2 M1`` positive definite for a model that keeps ``q1``; TLAM beyond its critical
+speed has one, unstable, and LQR may stabilise it), the plant's stabilisability (the PBH test on
+every eigenvalue with ``Re >= 0``) and a stabilising Riccati solution. With a drive the design's
+input is the voltage (``hubbeam.linear.voltage``), and the lumped model of the Quanser courseware
+may be designed on (``hubbeam.linear.lumped``).
 """
 
 from __future__ import annotations
 
-import functools
 import json
 
 import numpy as np
 import scipy.linalg
 
-from hubbeam.configuration.load import ConfigError
 from hubbeam.configuration.schema import MEASURED_SIGNALS, Problem
-from hubbeam.configuration.settings import Case, Settings
+from hubbeam.configuration.settings import Case
 from hubbeam.control.sampling import weight_matrix
+from hubbeam.linear.lumped import LUMPED_SIGNALS, FlexibleLinkRig, lumped_model
 from hubbeam.linear.statespace import linear_model
+from hubbeam.linear.voltage import voltage_model
 from hubbeam.model.damping import damping_matrices
-from hubbeam.model.maneuvers import FeedbackLaw, StateFeedback
+from hubbeam.model.maneuvers import FeedbackLaw
 from hubbeam.model.matrices import assemble
+from hubbeam.model.models import DESIGN_ONLY_MODELS
 from hubbeam.model.models import model as model_traits
-from hubbeam.simulation.simulate import SimulationError, simulate
+from hubbeam.simulation.errors import SimulationError
+from hubbeam.simulation.simulate import drive_matrices, quadrature_points
 
 #: relative size below which a left eigenvector's projection on the input counts as zero (PBH)
 UNCONTROLLABLE = 1e-9
@@ -100,22 +104,58 @@ def stabilisability_check(where: str, lin) -> None:
                 "modes the torque moves (add damping, or another speed or model)")
 
 
+def lumped_rig(beam, motor, held_frequency: float) -> FlexibleLinkRig:
+    """The courseware's lumped rig of ``beam`` (its mass and length, its hub inertia as the servo's
+    equivalent inertia, no separate clamp), driven by ``motor``, its spring fitted to the held-hub
+    frequency ``held_frequency`` (Hz); the section's ``E I`` as its modulus on a unit moment, and the
+    density that keeps its ``E A`` (``FlexibleLinkRig.beam`` gives ``beam`` back)."""
+    EI, EA, rhoA = (float(getattr(beam, f"{name}_at")(0.0)) for name in ("EI", "EA", "rhoA"))
+    return FlexibleLinkRig(length=beam.L, link_mass=beam.beam_mass, youngs_modulus=EI, second_moment=1.0,
+                           density=EI * rhoA / EA, hub_inertia=beam.Jh, clamp_inertia=0.0,
+                           held_frequency=held_frequency, motor=motor)
+
+
+def design_matrices(case: Case, beam, sm):
+    """The system matrices of the design model: ``sm`` (the run's, with the drive's rotor in the hub
+    inertia), or, for a design with modes of its own, those assembled with that many modes on the
+    Gauss nodes of ``sm``."""
+    modes = case.maneuver.design.modes
+    if modes is None or modes == sm.M1.shape[0]:
+        return sm
+    return drive_matrices(assemble(beam, case.tip_mass, modes, quadrature_points(sm)), case.drive)
+
+
+def design_plant(case: Case, beam, sm):
+    """The continuous linear model (free hub) a case's LQR is designed on: the design model with
+    its modes about its steady spin at the design speed, the case's damping, the voltage as input
+    with a drive (``hubbeam.linear.voltage``); or the courseware's lumped model
+    (:func:`lumped_rig`); the measured signals among its outputs."""
+    spec = case.maneuver.design
+    if spec.model in DESIGN_ONLY_MODELS:
+        return lumped_model(lumped_rig(beam, case.drive, spec.held_frequency))
+    dsm = design_matrices(case, beam, sm)
+    steady_spin_check(f"{_where(case)}.design.speed", dsm, model_traits(spec.model), spec.speed)
+    damping = damping_matrices(case.damping, dsm)
+    if case.drive is not None:
+        return voltage_model(beam, dsm, spec.model, case.drive, spec.speed, damping, outputs=list(MEASURED_SIGNALS))
+    return linear_model(beam, dsm, spec.model, spec.speed, "free", damping, outputs=list(MEASURED_SIGNALS))
+
+
 def lqr_design(case: Case, beam, sm) -> tuple[dict, dict]:
-    """The LQR gains by state name of the design model and the attributes of the design
-    (settings, closed-loop poles, the Riccati solution ``P`` as a list): module docstring."""
+    """The LQR gains by state name of the design model (:func:`design_plant`) and the attributes of
+    the design (settings, closed-loop poles, the Riccati solution ``P`` as a list): module docstring."""
     import control as ct
 
     where = f"{_where(case)}.design"
     spec = case.maneuver.design
-    design_model = model_traits(spec.model)
-    steady_spin_check(f"{where}.speed", sm, design_model, spec.speed)
-    names = design_model.state_names(sm.M1.shape[0])
-    lin = linear_model(beam, sm, spec.model, spec.speed, "free", damping_matrices(case.damping, sm),
-                       outputs=list(MEASURED_SIGNALS))
+    lin = design_plant(case, beam, sm)
     stabilisability_check(where, lin)
-    Q = weight_matrix(lin, spec.weights)
     try:
-        K, P, poles = ct.lqr(lin.A, lin.B, Q, spec.torque_weight)
+        Q = weight_matrix(lin, spec.weights)
+    except ValueError as error:
+        raise FeedbackError(f"{where}.weights", str(error)) from None
+    try:
+        K, P, poles = ct.lqr(lin.A, lin.B, Q, spec.input_weight)
     except ValueError as error:  # the Riccati solver's Hamiltonian has imaginary eigenvalues
         raise FeedbackError(
             where, f"the Riccati equation of the {spec.model} design at {spec.speed!r} rad s-1 has "
@@ -125,12 +165,12 @@ def lqr_design(case: Case, beam, sm) -> tuple[dict, dict]:
     attributes = {"feedback_design": json.dumps(spec.to_dict(), sort_keys=True),
                   "feedback_design_poles": json.dumps([[p.real, p.imag] for p in poles]),
                   "feedback_design_riccati": json.dumps(np.asarray(P).tolist())}
-    return dict(zip(names, np.asarray(K)[0].tolist(), strict=True)), attributes
+    return dict(zip(lin.states, np.asarray(K)[0].tolist(), strict=True)), attributes
 
 
-def output_gains(case: Case, beam, sm) -> dict:
-    """The state gains of ``output_feedback``: ``sum_j k_j c_j`` over the simulated model's states."""
-    signals = case.maneuver.output_feedback
+def signal_gains(case: Case, beam, sm, signals) -> dict:
+    """State gains of gains on measured signals: ``sum_j k_j c_j`` over the simulated model's
+    states (``c_j`` its linear output rows, which do not depend on the speed)."""
     lin = linear_model(beam, sm, case.model, 0.0, "free", outputs=list(signals))
     K = np.array([signals[name] for name in lin.outputs]) @ lin.C
     return dict(zip(lin.states, K.tolist(), strict=True))
@@ -145,8 +185,10 @@ def feedback_law(case: Case, sm, beam) -> tuple[FeedbackLaw, dict]:
     attributes = {}
     if maneuver.design is not None:
         by_name, attributes = lqr_design(case, beam, sm)
+        if maneuver.design.model in DESIGN_ONLY_MODELS:  # its states are measured signals
+            by_name = signal_gains(case, beam, sm, {LUMPED_SIGNALS[name]: value for name, value in by_name.items()})
     elif maneuver.output_feedback is not None:
-        by_name = output_gains(case, beam, sm)
+        by_name = signal_gains(case, beam, sm, maneuver.output_feedback)
     else:
         by_name = dict(maneuver.gains)
     kept = traits.state_names(n)
@@ -155,38 +197,19 @@ def feedback_law(case: Case, sm, beam) -> tuple[FeedbackLaw, dict]:
     speed = maneuver.reference.final_speed
     steady_spin_check(f"{_where(case)}.reference.wf", sm, traits, speed)
     stretch = np.linalg.solve(sm.K1 - speed**2 * sm.M1, sm.V1) if traits.keeps_axial else np.zeros(n)
-    inertia = float(sm.Jh + sm.Jb + sm.Jt) if maneuver.feedforward else 0.0  # the rigid inertia, a body's too
+    inertia, damping = feedforward(case, sm) if maneuver.feedforward else (0.0, 0.0)
     attributes["feedback_gains"] = json.dumps(
         {name: value for name, value in zip(coordinate_names(n), gains.tolist(), strict=True)
          if name in kept})
-    return FeedbackLaw(gains, stretch, inertia), attributes
+    return FeedbackLaw(gains, stretch, inertia, damping), attributes
 
 
-def feedback_problems(settings: Settings) -> list[Problem]:
-    """What would stop a state-feedback case of ``settings`` once its matrices are known (module
-    docstring), found by resolving its law with the matrices of the case (``numerics.quadrature_points``
-    Gauss nodes), one problem per case."""
-    problems = []
-    for case in settings.cases.values():
-        if not isinstance(case.maneuver, StateFeedback):
-            continue
-        sm = assemble(settings.beam, case.tip_mass, case.modes, settings.numerics.quadrature_points)
-        try:
-            feedback_law(case, sm, settings.beam)
-        except FeedbackError as error:
-            problems.append(error.problem)
-    return problems
-
-
-def check_feedback(settings: Settings, sources=()) -> None:
-    """:class:`~hubbeam.configuration.load.ConfigError` listing :func:`feedback_problems`, if any."""
-    problems = feedback_problems(settings)
-    if problems:
-        raise ConfigError(problems, sources)
-
-
-def simulate_case(case, params, numerics, matrices=None, **options):
-    """:func:`hubbeam.simulation.simulate.simulate` of any case, a ``state_feedback`` one with its gains
-    resolved (:func:`feedback_law`) for the matrices of every run."""
-    return simulate(case, params, numerics, matrices,
-                    feedback=functools.partial(feedback_law, beam=params), **options)
+def feedforward(case: Case, sm) -> tuple[float, float]:
+    """The rigid feedforward's coefficients on the reference's acceleration and rate: the whole
+    rigid inertia ``J`` (hub with the drive's rotor, beam, a tip body's rotary inertia) and 0 for a
+    torque; ``J / kV`` and the drive's damping ``c / kV`` for a voltage (its torque gain ``kV``,
+    ``hubbeam.model.drive``; Coulomb friction is not fed forward)."""
+    inertia = float(sm.Jh + sm.Jb + sm.Jt)
+    if case.drive is None:
+        return inertia, 0.0
+    return inertia / case.drive.torque_gain, case.drive.hub_damping / case.drive.torque_gain

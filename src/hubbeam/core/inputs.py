@@ -160,10 +160,12 @@ class SampleRecords(NamedTuple):
 class LoopArrays(NamedTuple):
     """A sampled digital controller around the hub: :class:`LoopMatrices`, :class:`LoopSensors`,
     :class:`LoopTiming`, the reference packed as ``[kind, parameters...]`` (a ``PD`` maneuver's
-    reference, ``hubbeam.core.maneuver``) and the :class:`SampleRecords` it writes."""
+    reference, ``hubbeam.core.maneuver``), the :class:`SampleRecords` it writes and the command
+    shaper of its reference (``hubbeam.core.shaping``; the identity leaves it unshaped)."""
 
     matrices: LoopMatrices
     sensors: LoopSensors
     timing: LoopTiming
     reference: np.ndarray
     records: SampleRecords
+    shaper: np.ndarray

@@ -31,13 +31,14 @@ theta')``; ``mp = [kp, kd, reference kind, reference parameters...]`` with the r
 ``PRESCRIBED`` (Eq. 43, ``[wf, tf]``; theta_r, theta_r' from :func:`hub_motion`) or ``ANGLE_TABLE``
 (a packed clamped cubic spline of the angle, zero slope at both ends, held outside the table).
 
-``STATE_FEEDBACK``: a free hub under ``tau = J theta_r'' - K (x - x_r)`` with ``x = (y, y')`` the
-whole state in the coordinates ``y = (theta, q1, q2)`` (size ``N = 1 + 2 n``) and the reference
-``x_r = (theta_r, theta_r'^2 s, 0, theta_r', 0, 0)``: the rigid reference motion for the hub, the
-centrifugal stretch ``q1s = theta_r'^2 s`` for ``q1`` and zero for ``q2``. ``mp = [N, J, K (2 N
-gains: positions then rates), s (n), reference kind, reference parameters...]`` with the reference as
-for ``PD`` (``J = 0``: no feedforward; the feedforward needs the reference's acceleration, which
-only ``PRESCRIBED`` gives). The torque may be evaluated on the free coordinates of a model that
+``STATE_FEEDBACK``: a free hub under ``tau = J theta_r'' + c theta_r' - K (x - x_r)`` with ``x =
+(y, y')`` the whole state in the coordinates ``y = (theta, q1, q2)`` (size ``N = 1 + 2 n``) and the
+reference ``x_r = (theta_r, theta_r'^2 s, 0, theta_r', 0, 0)``: the rigid reference motion for the
+hub, the centrifugal stretch ``q1s = theta_r'^2 s`` for ``q1`` and zero for ``q2``. ``mp = [N, J, c,
+K (2 N gains: positions then rates), s (n), reference kind, reference parameters...]`` with the
+reference as for ``PD`` (``J = c = 0``: no feedforward; ``J`` needs the reference's acceleration,
+which only ``PRESCRIBED`` gives; ``c``, a drive's damping over its gain, keeps a driven hub at the
+reference speed; with a drive the law gives volts). The torque may be evaluated on the free coordinates of a model that
 integrates no ``q1`` (SFOAM, Eq. 40): the ``q1`` entries of ``K`` are then skipped (they are zero
 for such a model). ``PD`` is the case ``K = (kp, 0.., kd, 0..)``, ``J = 0``.
 
@@ -67,7 +68,7 @@ ANGLE_TABLE = 5
 PD_REFERENCE = 3
 STATE_FEEDBACK = 6
 #: offset of the gains in a ``STATE_FEEDBACK`` maneuver's ``mp``
-FEEDBACK_GAINS = 2
+FEEDBACK_GAINS = 3
 HELD = 7
 
 
@@ -185,6 +186,8 @@ def feedback_torque(reference, y, v, mp):
     tau = 0.0
     if mp[1] != 0.0:
         tau = mp[1] * theta_r_ddot
+    if mp[2] != 0.0:
+        tau += mp[2] * theta_r_dot
     tau -= mp[k] * (y[0] - theta_r) + mp[k + N] * (v[0] - theta_r_dot)
     skip = N - y.shape[0]
     stretch = theta_r_dot * theta_r_dot

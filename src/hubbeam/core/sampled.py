@@ -47,8 +47,8 @@ from hubbeam.core.foam_rhs import foam_problem
 from hubbeam.core.inputs import FAMILIES, family
 from hubbeam.core.integrate import _fill_rows_cfoam, _fill_rows_foam, _states
 from hubbeam.core.jit import borrowing_kernel, kernel
-from hubbeam.core.maneuver import reference_motion
 from hubbeam.core.radau import HERMITE, problem_rhs, register_hooks, register_rhs
+from hubbeam.core.shaping import shaped_reference_motion
 
 #: quantisation modes of a sensor (``LoopSensors.mode``)
 ROUND = 0
@@ -205,7 +205,7 @@ def take_sample(k, y, v, problem):
     t = loop.timing.sample_times[k]
     records.t[k] = t
     rho = work.rho
-    rho[0], rho[1], rho[2] = reference_motion(t, loop.reference, 1)
+    rho[0], rho[1], rho[2] = shaped_reference_motion(t, loop.reference, 1, loop.shaper)
     error = work.error
     for j in range(error.shape[0]):
         s = work.filtered[j] if sensors.tau[j] > 0.0 else sensor_value(sensors, j, y, v)

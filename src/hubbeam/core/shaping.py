@@ -75,6 +75,13 @@ def shaped_reference(kind, t, mp, shaper):
 
 
 @borrowing_kernel
+def shaped_reference_motion(t, mp, o, shaper):
+    """Shaped ``(theta_r, theta_r', theta_r'')`` at ``t`` of a reference packed at ``mp[o]`` (its
+    kind at ``mp[o - 1]``): what a sampled controller samples (``hubbeam.core.sampled``)."""
+    return _shaped_command(0, t, mp, o, shaper)
+
+
+@borrowing_kernel
 def shaped_torque(kind, t, y, v, mp, shaper):
     """Torque applied to a free hub at ``t`` in the state ``(y, y')`` under the shaped command: a
     controller's law towards its shaped reference, or the shaped open-loop torque ``sum_i A_i

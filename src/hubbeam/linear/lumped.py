@@ -39,6 +39,8 @@ LUMPED_STATES = ("theta", "alpha", "theta_dot", "alpha_dot")
 #: the lumped model's outputs (``statespace.OUTPUTS`` names) and their rows on its states; the tip
 #: rows are the rigid rod's, ``v(L) = L alpha`` (small angles)
 LUMPED_OUTPUTS = ("hub_angle", "deflection_angle", "hub_speed", "deflection_rate", "tip_deflection", "tip_arc")
+#: the measured signal each state of the lumped model is (its gains act on these signals of a beam model)
+LUMPED_SIGNALS = dict(zip(LUMPED_STATES, LUMPED_OUTPUTS[:4]))
 
 
 @dataclass(frozen=True)
@@ -147,5 +149,5 @@ def lumped_model(rig: FlexibleLinkRig = QUANSER_ROTARY_FLEXIBLE_LINK, outputs=No
                        motor=rig.motor, operating_voltage=0.0, hub_damping=float(C[0, 0]))
 
 
-__all__ = ["LUMPED_OUTPUTS", "LUMPED_STATES", "QUANSER_ROTARY_FLEXIBLE_LINK", "FlexibleLinkRig", "lumped_matrices",
-           "lumped_model"]
+__all__ = ["LUMPED_OUTPUTS", "LUMPED_SIGNALS", "LUMPED_STATES", "QUANSER_ROTARY_FLEXIBLE_LINK", "FlexibleLinkRig",
+           "lumped_matrices", "lumped_model"]

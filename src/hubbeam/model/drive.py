@@ -84,6 +84,11 @@ class DcMotor:
         for item in fields(self):
             object.__setattr__(self, item.name, _checked(item.name, getattr(self, item.name)))
 
+    def to_dict(self) -> dict:
+        """The parameters as a configuration writes them (``voltage_limit`` left out when there is none)."""
+        return {item.name: getattr(self, item.name) for item in fields(self)
+                if not (item.name == "voltage_limit" and math.isinf(self.voltage_limit))}
+
     @property
     def torque_gain(self) -> float:
         """``eta_g Kg eta_m kt / Rm``: hub torque per volt at rest, N m V-1."""

@@ -58,11 +58,13 @@ class FeedbackLaw(NamedTuple):
     """The resolved gains of a ``state_feedback`` maneuver in the coordinates ``x = (y, y')``,
     ``y = (theta, q1, q2)`` of the simulated model (``2 N`` gains, positions then rates; zero on
     the ``q1`` of a model that keeps none), the ``q1`` reference per squared reference speed
-    ``stretch`` (``n`` values) and the feedforward inertia (0: no feedforward)."""
+    ``stretch`` (``n`` values), the feedforward on the reference's acceleration ``inertia`` and on
+    its rate ``damping`` (0: none; with a drive both are divided by its torque gain)."""
 
     gains: np.ndarray
     stretch: np.ndarray
     inertia: float
+    damping: float = 0.0
 
 
 def packed_table(time, values, interpolation: str) -> np.ndarray:
@@ -110,10 +112,8 @@ class Record:
 
 
 def _field_value(cls, name: str, value: Any) -> Any:
-    if name == "reference":
-        return reference_from_dict(value)
-    if name == "design":
-        return LqrDesign.from_dict(value)
+    if name in NESTED:
+        return NESTED[name](value)
     if isinstance(value, (list, tuple)):
         return tuple(float(item) for item in value)
     if isinstance(value, (bool, str)) or value is None:
@@ -124,13 +124,17 @@ def _field_value(cls, name: str, value: Any) -> Any:
 
 
 def _plain(value: Any) -> Any:
-    return value.to_dict() if isinstance(value, Record | LqrDesign) else value
+    return value.to_dict() if hasattr(value, "to_dict") else value
 
 
 class Maneuver(Record):
-    """A hub maneuver (module docstring); subclasses state ``kind`` and ``hub``."""
+    """A hub maneuver (module docstring); subclasses state ``kind`` and ``hub``; ``needs_drive``:
+    its command is a voltage, for a case with a drive only; ``takes_drive``: its command may be
+    given through a drive (a controller's output in volts); an open-loop torque may not."""
 
     hub: ClassVar[str]
+    needs_drive: ClassVar[bool] = False
+    takes_drive: ClassVar[bool] = True
 
     def kernel_parameters(self, law: FeedbackLaw | None = None) -> tuple[int, np.ndarray]:
         raise NotImplementedError
@@ -145,13 +149,21 @@ class Maneuver(Record):
         code, mp = self.kernel_parameters()
         return float(kernels.prescribed_motion(code, 0.0, mp)[1])
 
-    def highest_speed(self, t_end: float, inertia: float) -> float:
+    def highest_speed(self, t_end: float, inertia: float, drive=None) -> float:
+        """The highest hub speed (rad s-1) the maneuver reaches by ``t_end``, a free hub taken as
+        rigid of ``inertia`` (kg m2), driven through ``drive`` (a ``DcMotor``) where it has one."""
         raise NotImplementedError
 
     @property
     def end(self) -> float:
         """When the hub input stops changing, s."""
         raise NotImplementedError
+
+    @property
+    def final_speed(self) -> float:
+        """The hub speed the command ends at, rad s-1 (0: at rest, or not known beforehand, as after
+        a torque)."""
+        return 0.0
 
     @property
     def needs_law(self) -> bool:
@@ -181,7 +193,7 @@ class SpinUp(Maneuver):
     def stops(self):
         return np.array([self.tf])
 
-    def highest_speed(self, t_end, inertia):
+    def highest_speed(self, t_end, inertia, drive=None):
         return self.wf  # Eq. 43 rises monotonically to it
 
     @property
@@ -202,6 +214,7 @@ class TorquePulse(Maneuver):
     kind: ClassVar[str] = "torque"
     hub: ClassVar[str] = FREE_HUB
     code: ClassVar[int] = kernels.TORQUE
+    takes_drive: ClassVar[bool] = False
     kernel_keys: ClassVar[tuple[str, ...]] = ("tau_max", "tf")
     tau_max: float
     tf: float
@@ -212,7 +225,7 @@ class TorquePulse(Maneuver):
     def stops(self):
         return np.array([self.tf])
 
-    def highest_speed(self, t_end, inertia):
+    def highest_speed(self, t_end, inertia, drive=None):
         """A rigid hub of ``inertia`` under the pulse: ``tau_max tf / (pi J)`` at ``tf / 2``."""
         return self.tau_max * self.tf / (math.pi * inertia)
 
@@ -256,8 +269,12 @@ class SpeedTable(Table):
     interpolation: ClassVar[str] = "spline"
     speed: tuple[float, ...]
 
-    def highest_speed(self, t_end, inertia):
+    def highest_speed(self, t_end, inertia, drive=None):
         return float(np.max(np.abs(self.speed)))
+
+    @property
+    def final_speed(self):
+        return self.speed[-1]
 
 
 @dataclass(frozen=True)
@@ -267,11 +284,12 @@ class TorqueTable(Table):
     kind: ClassVar[str] = "torque_table"
     hub: ClassVar[str] = FREE_HUB
     code: ClassVar[int] = kernels.TORQUE_TABLE
+    takes_drive: ClassVar[bool] = False
     column: ClassVar[str] = "torque"
     interpolation: ClassVar[str] = "linear"
     torque: tuple[float, ...]
 
-    def highest_speed(self, t_end, inertia):
+    def highest_speed(self, t_end, inertia, drive=None):
         """A rigid hub of ``inertia`` under the table (first value held before it, last after it)
         up to ``t_end``; the torque is linear between the rows, which are nodes of the grid, so the
         trapezoidal rule is exact at every node."""
@@ -279,6 +297,36 @@ class TorqueTable(Table):
         torque = np.interp(t, self.time, self.torque)
         momentum = np.concatenate([[0.0], np.cumsum(np.diff(t) * (torque[1:] + torque[:-1]) / 2.0)])
         return float(np.max(np.abs(momentum))) / inertia
+
+
+@dataclass(frozen=True)
+class VoltageTable(Table):
+    """The voltage the amplifier applies to the hub's drive, from a table (linear between the rows,
+    the first value held before the table and the last after it): a case with a ``drive`` only
+    (``hubbeam.model.drive``; the kernel's open-loop command is then in volts)."""
+
+    kind: ClassVar[str] = "voltage_table"
+    hub: ClassVar[str] = FREE_HUB
+    code: ClassVar[int] = kernels.TORQUE_TABLE
+    column: ClassVar[str] = "voltage"
+    interpolation: ClassVar[str] = "linear"
+    needs_drive: ClassVar[bool] = True
+    voltage: tuple[float, ...]
+
+    def highest_speed(self, t_end, inertia, drive=None):
+        """A rigid hub of ``inertia`` driven by the table through ``drive``: ``J w' = kV V - c w``
+        (``torque_gain``, ``hub_damping``; Coulomb friction and the limit left out, which only slow
+        it), integrated exactly between the points of a fine grid on which ``V`` is taken linear."""
+        t = np.union1d(np.linspace(0.0, t_end, _TORQUE_TABLE_POINTS), [time for time in self.time if time < t_end])
+        volts = np.clip(np.interp(t, self.time, self.voltage), -drive.voltage_limit, drive.voltage_limit)
+        rate = drive.hub_damping / inertia
+        speed, highest = 0.0, 0.0
+        for h, v0, v1 in zip(np.diff(t), volts[:-1], volts[1:]):
+            decay = math.exp(-rate * h)
+            target = drive.torque_gain * 0.5 * (v0 + v1) / drive.hub_damping
+            speed = target + (speed - target) * decay
+            highest = max(highest, abs(speed))
+        return highest
 
 
 @dataclass(frozen=True)
@@ -294,7 +342,7 @@ class AngleTable(Table):
     gives_acceleration: ClassVar[bool] = False
     angle: tuple[float, ...]
 
-    def highest_speed(self, t_end, inertia):
+    def highest_speed(self, t_end, inertia, drive=None):
         """The steepest mean slope between the rows."""
         return float(np.max(np.abs(np.diff(self.angle) / np.diff(self.time))))
 
@@ -318,7 +366,11 @@ class Tracking(Maneuver):
     def stops(self):
         return self.reference.stops()
 
-    def highest_speed(self, t_end, inertia):
+    @property
+    def final_speed(self):
+        return self.reference.final_speed
+
+    def highest_speed(self, t_end, inertia, drive=None):
         return self.reference.highest_speed(t_end, inertia)
 
     @property
@@ -343,22 +395,122 @@ class PdControl(Tracking):
 
 @dataclass(frozen=True)
 class LqrDesign:
-    """LQR on the linear model of ``model`` at ``speed`` (schema ``lqr_design``)."""
+    """LQR on the linear model of ``model`` at ``speed`` (schema ``lqr_design``): the weights on
+    its states or measured signals, the input's weight on the torque (an ideal actuator) or on the
+    voltage (a drive), the design's own number of modes (default the case's), and for the
+    courseware's ``lumped`` model the held-hub frequency its spring is fitted to (Hz)."""
 
     model: str
     speed: float
     weights: FrozenMap
-    torque_weight: float
+    torque_weight: float | None = None
+    voltage_weight: float | None = None
+    modes: int | None = None
+    held_frequency: float | None = None
 
     @classmethod
     def from_dict(cls, entry) -> LqrDesign:
+        optional = {key: (int if key == "modes" else float)(entry[key])
+                    for key in ("torque_weight", "voltage_weight", "modes", "held_frequency") if key in entry}
         return cls(model=entry["model"], speed=float(entry["speed"]),
-                   weights=freeze({key: float(value) for key, value in entry["weights"].items()}),
-                   torque_weight=float(entry["torque_weight"]))
+                   weights=freeze({key: float(value) for key, value in entry["weights"].items()}), **optional)
+
+    @property
+    def input_weight(self) -> float:
+        """The weight ``R`` of the input: the torque's or the voltage's, whichever is given."""
+        return self.torque_weight if self.voltage_weight is None else self.voltage_weight
 
     def to_dict(self) -> dict:
-        return {"model": self.model, "speed": self.speed, "weights": thaw(self.weights),
-                "torque_weight": self.torque_weight}
+        plain = {"model": self.model, "speed": self.speed, "weights": thaw(self.weights)}
+        return plain | {item.name: getattr(self, item.name) for item in fields(self)
+                        if item.name not in plain and getattr(self, item.name) is not None}
+
+
+@dataclass(frozen=True)
+class SensorSpec:
+    """A sensor of a sampled controller (schema ``sensor``): the measured ``signal`` (a linear
+    output without feedthrough) times ``gain`` plus ``offset``, an analog first-order low-pass of
+    time constant ``lowpass`` (s; 0: none), white noise of standard deviation ``noise`` and a
+    quantisation step ``quantum`` (0: none; ``mode`` ``round`` or ``edges``), all in the sensor's
+    unit (``hubbeam.simulation.sampled.Sensor``)."""
+
+    signal: str
+    gain: float = 1.0
+    offset: float = 0.0
+    noise: float = 0.0
+    lowpass: float = 0.0
+    quantum: float = 0.0
+    mode: str = "round"
+
+    @classmethod
+    def from_dict(cls, entry) -> SensorSpec:
+        return cls(**{key: value if key in ("signal", "mode") else float(value) for key, value in entry.items()})
+
+    def to_dict(self) -> dict:
+        return {item.name: getattr(self, item.name) for item in fields(self)}
+
+
+@dataclass(frozen=True)
+class Estimator:
+    """How a sampled controller gets the state its gains act on (schema ``estimator``): ``exact``
+    (the design's states read without error: a bound), ``filtered_differences`` (the measured
+    angles and their rates from first-order filtered differences of cut-off ``cutoff``, rad s-1,
+    as the Quanser courseware does) or ``kalman`` (a steady-state Kalman filter in the ``current``
+    or ``predictor`` form, with the process noise ``input_noise`` on the input and ``state_noise``
+    on named states, the sensors' noise and quantisation as its measurement noise)."""
+
+    kind: str
+    cutoff: float | None = None
+    form: str | None = None
+    input_noise: float | None = None
+    state_noise: FrozenMap | None = None
+
+    @classmethod
+    def from_dict(cls, entry) -> Estimator:
+        values = {key: value if key in ("kind", "form") else float(value)
+                  for key, value in entry.items() if key != "state_noise"}
+        if "state_noise" in entry:
+            values["state_noise"] = freeze({key: float(value) for key, value in entry["state_noise"].items()})
+        return cls(**values)
+
+    def to_dict(self) -> dict:
+        return {item.name: thaw(getattr(self, item.name)) for item in fields(self)
+                if getattr(self, item.name) is not None}
+
+
+@dataclass(frozen=True)
+class Sampling:
+    """A state feedback run as a sampled digital controller (schema ``sampling``): the sample time
+    (s), the computation delay in samples (whole or fractional), the gain (``discrete``: LQR
+    redesigned on the zero-order-hold model; ``continuous``: the continuous LQR gain applied
+    through the hold), the estimator, the sensors and the seed of their noise."""
+
+    sample_time: float
+    delay: float = 0.0
+    gain: str = "discrete"
+    estimator: Estimator = Estimator("exact")
+    sensors: tuple[SensorSpec, ...] = ()
+    seed: int = 0
+
+    @classmethod
+    def from_dict(cls, entry) -> Sampling:
+        values = {"sample_time": float(entry["sample_time"])}
+        if "delay" in entry:
+            values["delay"] = float(entry["delay"])
+        if "gain" in entry:
+            values["gain"] = entry["gain"]
+        if "estimator" in entry:
+            values["estimator"] = Estimator.from_dict(entry["estimator"])
+        if "sensors" in entry:
+            values["sensors"] = tuple(SensorSpec.from_dict(sensor) for sensor in entry["sensors"])
+        if "seed" in entry:
+            values["seed"] = int(entry["seed"])
+        return cls(**values)
+
+    def to_dict(self) -> dict:
+        return {"sample_time": self.sample_time, "delay": self.delay, "gain": self.gain,
+                "estimator": self.estimator.to_dict(), "sensors": [sensor.to_dict() for sensor in self.sensors],
+                "seed": self.seed}
 
 
 @dataclass(frozen=True)
@@ -373,6 +525,8 @@ class StateFeedback(Tracking):
     gains: FrozenMap | None = None
     output_feedback: FrozenMap | None = None
     design: LqrDesign | None = None
+    #: the law run as a sampled digital controller (None: continuously)
+    sampling: Sampling | None = None
 
     @property
     def needs_law(self):
@@ -382,7 +536,7 @@ class StateFeedback(Tracking):
         if law is None:
             raise ValueError("maneuver.kind = 'state_feedback' without its feedback law; allowed: "
                              "hubbeam.control.feedback.simulate_case, which resolves the gains")
-        head = [float(law.gains.size // 2), float(law.inertia)]
+        head = [float(law.gains.size // 2), float(law.inertia), float(law.damping)]
         assert len(head) == kernels.FEEDBACK_GAINS
         return self.code, np.concatenate([head, law.gains, law.stretch, self.reference_parameters()])
 
@@ -395,12 +549,17 @@ class StateFeedback(Tracking):
 
 #: the maneuver kinds by name (schema ``maneuver``)
 MANEUVERS: dict[str, type[Maneuver]] = {record.kind: record for record in (
-    SpinUp, TorquePulse, SpeedTable, TorqueTable, PdControl, StateFeedback)}
+    SpinUp, TorquePulse, SpeedTable, TorqueTable, VoltageTable, PdControl, StateFeedback)}
 #: the kinds of a controller's reference motion by name (schema ``reference``)
 REFERENCES: dict[str, type[Maneuver]] = {record.kind: record for record in (SpinUp, AngleTable)}
 #: the tabulated kinds, maneuvers and references, by name: their columns (``hubbeam.configuration.tabular``)
 TABLES: dict[str, type[Table]] = {kind: record for kind, record in (MANEUVERS | REFERENCES).items()
                                   if issubclass(record, Table)}
+
+
+#: the fields that hold records of their own, and their builders
+NESTED = {"reference": lambda entry: reference_from_dict(entry), "design": LqrDesign.from_dict,
+          "sampling": Sampling.from_dict}
 
 
 def maneuver_from_dict(entry) -> Maneuver:

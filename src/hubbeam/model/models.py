@@ -87,6 +87,10 @@ MODELS: dict[str, Model] = {model.name: model for model in (
           description="complete model: the exact kinetic energy of Eqs. (8)-(9)"),
 )}
 
+#: models that controllers may be designed on but that hubbeam does not simulate: ``lumped``, the
+#: Quanser courseware's four-state model of a flexible link (``hubbeam.linear.lumped``)
+DESIGN_ONLY_MODELS: tuple[str, ...] = ("lumped",)
+
 #: the kernel families the models use, each compiled once (``hubbeam.core.integrate.FAMILY_KERNELS``)
 FAMILIES: tuple[str, ...] = tuple(dict.fromkeys(model.family for model in MODELS.values()))
 

@@ -244,6 +244,62 @@ def multi_mode(modes, design: str = "ZV", **options) -> Shaper:
     return convolve(*(DESIGNS[design](*mode, **options) for mode in modes))
 
 
+@dataclass(frozen=True)
+class ShaperSpec:
+    """A case's shaper as configured (schema ``shaper``): the design ``kind`` (:data:`DESIGNS`),
+    EI's ``v_tol``, and either given ``frequencies`` (rad s-1) and ``damping`` ratios, or the
+    ``modes`` (numbers) of ``model``'s linearisation at ``speed`` to tune to (``hubbeam.control.shaping``;
+    None: the case's model, the maneuver's final speed). :func:`shaper_of` builds the shaper of
+    given frequencies; a tuned one needs the linear models."""
+
+    kind: str
+    v_tol: float | None = None
+    modes: tuple[int, ...] = (1,)
+    model: str | None = None
+    speed: float | None = None
+    frequencies: tuple[float, ...] | None = None
+    damping: tuple[float, ...] | None = None
+
+    @classmethod
+    def from_dict(cls, entry) -> ShaperSpec:
+        values = {"kind": entry["kind"]}
+        for key in ("v_tol", "speed"):
+            if key in entry:
+                values[key] = float(entry[key])
+        if "model" in entry:
+            values["model"] = entry["model"]
+        if "modes" in entry:
+            values["modes"] = tuple(int(mode) for mode in entry["modes"])
+        for key in ("frequencies", "damping"):
+            if key in entry:
+                values[key] = tuple(float(value) for value in entry[key])
+        return cls(**values)
+
+    def to_dict(self) -> dict:
+        plain = {"kind": self.kind, "modes": list(self.modes)}
+        for key in ("v_tol", "model", "speed", "frequencies", "damping"):
+            value = getattr(self, key)
+            if value is not None:
+                plain[key] = list(value) if isinstance(value, tuple) else value
+        return plain
+
+    @property
+    def options(self) -> dict:
+        """The design's keyword arguments (EI's ``v_tol``)."""
+        return {} if self.v_tol is None else {"v_tol": self.v_tol}
+
+    def shaper(self, modes) -> Shaper:
+        """The shaper of this design for the ``(omega, zeta)`` pairs ``modes``."""
+        return multi_mode(modes, self.kind, **self.options)
+
+    def given_modes(self) -> list[tuple[float, float]] | None:
+        """The ``(omega, zeta)`` pairs of given frequencies (None when tuned on a model)."""
+        if self.frequencies is None:
+            return None
+        damping = self.damping or (0.0,) * len(self.frequencies)
+        return list(zip(self.frequencies, damping))
+
+
 def checked_sample_time(sample_time) -> float:
     """``sample_time`` as a float; ``ValueError`` unless finite and > 0 s."""
     if not (_number(sample_time) and math.isfinite(sample_time) and sample_time > 0.0):

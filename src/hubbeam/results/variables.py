@@ -38,6 +38,24 @@ CUMULATIVE_VARIABLES = {
     "work": (("hub_torque", "theta_dot"), "J", "cumulative work of the hub torque"),
     "dissipated_energy": (("dissipation_rate",), "J", "cumulative energy dissipated by damping"),
 }
+#: a case with a drive only (``hubbeam.model.drive``): its voltage and the gearbox's torque
+DRIVE_VARIABLES = {
+    "hub_voltage": (("time",), "V", "voltage across the motor (a free hub's command clipped to the limit, or "
+                    "what a prescribed motion needs)"),
+    "motor_torque": (("time",), "N m", "torque of the gearbox on the hub before the hub's friction"),
+}
+#: a sampled controller only (``hubbeam.simulation.sampled``): its records at every sample ``t_k``
+SAMPLE_VARIABLES = {
+    "measured": (("sample", "sensor"), "1", "what the controller read from each sensor (noise and "
+                 "quantisation included), in the sensor's unit (attribute sensor_units)"),
+    "sensed": (("sample", "sensor"), "1", "each sensor's noise-free signal after its analog low-pass, in "
+               "the sensor's unit"),
+    "estimate": (("sample", "estimate_state"), "1", "the controller's estimate of the design's state "
+                 "deviation from the reference, in the state's unit (attribute state_units)"),
+    "command": (("sample",), "1", "the control law's command before saturation (V with a drive, else N m)"),
+    "applied": (("sample",), "1", "the saturated command the hold applies after the delay (V with a drive, "
+                "else N m)"),
+}
 #: CFOAM only: the high-order terms FOAM drops, along the CFOAM trajectory (note 5, Fig. 3)
 HIGH_ORDER_VARIABLES = {
     "dM_thth": (("time",), "kg m2", "CFOAM minus FOAM rotary inertia M_thth (Eq. 35)"),
@@ -57,11 +75,13 @@ def output_count(t_end: float, output_step: float) -> int:
     return int(math.floor(t_end / output_step + 1e-9)) + 1
 
 
-def dataset_variables(name: str) -> dict:
-    """The variables (besides :data:`CUMULATIVE_VARIABLES`) of a simulation dataset of the model
-    ``name``: :data:`VARIABLES`, and :data:`HIGH_ORDER_VARIABLES` for a model with
-    ``high_order_outputs`` (``hubbeam.model.models``)."""
-    return VARIABLES | (HIGH_ORDER_VARIABLES if model(name).high_order_outputs else {})
+def dataset_variables(name: str, driven: bool = False) -> dict:
+    """The variables on the output grid (besides :data:`CUMULATIVE_VARIABLES`) of a simulation
+    dataset of the model ``name``: :data:`VARIABLES`, :data:`HIGH_ORDER_VARIABLES` for a model with
+    ``high_order_outputs`` (``hubbeam.model.models``) and :data:`DRIVE_VARIABLES` for a ``driven``
+    hub."""
+    return (VARIABLES | (HIGH_ORDER_VARIABLES if model(name).high_order_outputs else {})
+            | (DRIVE_VARIABLES if driven else {}))
 
 
 def values_per_time(name: str, modes: int) -> int:

@@ -27,7 +27,7 @@ from scipy.integrate import solve_ivp
 
 from hubbeam.configuration.settings import Case, Numerics, simulation_settings
 from hubbeam.core import eom
-from hubbeam.core.inputs import SimulationInputs, Trajectory
+from hubbeam.core.inputs import IDENTITY_SHAPER, NO_DRIVE, SimulationInputs, Trajectory
 from hubbeam.core.integrate import fill_outputs, n_output_columns
 from hubbeam.core.radau import LEFT_RANGE, NON_FINITE, STEP_UNDERFLOW, SUCCESS
 from hubbeam.model.damping import damping_matrices
@@ -36,6 +36,8 @@ from hubbeam.model.models import model
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.model.shapers import Shaper
 from hubbeam.simulation.simulate import (
+    Resolved,
+    Run,
     build_dataset,
     case_matrices,
     initial_state,
@@ -88,9 +90,9 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
         raise ValueError(f"method = {method!r}; allowed: one of {', '.join(METHODS)}")
     sm = case_matrices(case, params, numerics, matrices)
     kind, mp = case.maneuver.kernel_parameters()
-    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm)
-    if shaper is not None:
-        inputs = inputs._replace(shaper=shaper.kernel_array())
+    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm,
+                              NO_DRIVE if case.drive is None else case.drive.packed(),
+                              IDENTITY_SHAPER if shaper is None else shaper.kernel_array())
     n = case.modes
     free = eom.free_dofs(inputs.traits, kind, n)
     nf = free.size
@@ -148,5 +150,6 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
                   "rtol": float(rtol), "atol": float(atol), "n_rhs": int(nfev),
                   "n_jacobian": int(njev), "n_lu": int(nlu), "wall_time_s": float(wall),
                   "pure_python_rhs": int(pure_python_rhs)}
-    return build_dataset(case, params, numerics, sm, t, out, status, t_stop, integrator)
+    return build_dataset(case, params, numerics, sm, Run(t, out, status, t_stop, integrator),
+                         Resolved(shaper=shaper))
 

@@ -1,17 +1,11 @@
-"""The rig between a controller and the beam: a DC drive on the hub and a sampled digital
-controller with its sensors, run by the compiled kernels (``docs/sampled-control.md``).
+"""A sampled digital controller on the hub, as the compiled loop runs it (``docs/sampled-control.md``).
 
-* A drive (:class:`hubbeam.model.drive.DcMotor`) turns a free hub's maneuver output into the hub
-  torque (volts in), its rotor's reflected inertia joins the hub inertia
-  (:func:`drive_matrices`), and a prescribed hub reports the voltage it would need; the output
-  array gains ``hub_voltage`` and ``motor_torque`` (``hubbeam.core.integrate.SCALAR_OUTPUTS``).
-* A :class:`SampledLoop` (its :class:`Sensor` rows, the controller's matrices, the sample time
-  ``Ts``, the delay ``D``, the saturation ``u_max``, the input ``u_init`` before the first command
-  and the seed of the sensor noise) replaces the law of a tracking maneuver (``pd`` or
-  ``state_feedback``) and keeps its reference motion; :mod:`hubbeam.core.sampled` runs it.
-
-:func:`simulate_rig` runs a case with either or both and returns the arrays a dataset holds: the
-usual output array and, with a loop, the records of every sample (:class:`RigRun`).
+A :class:`SampledLoop` (its :class:`Sensor` rows, the controller's matrices, the sample time ``Ts``,
+the delay ``D``, the saturation ``u_max``, the input ``u_init`` before the first command and the
+seed of the sensor noise) replaces the law of a tracking maneuver (``pd`` or ``state_feedback``) and
+keeps its reference motion; :mod:`hubbeam.core.sampled` runs it and
+:func:`hubbeam.simulation.simulate.simulate` builds its dataset. Here: the loop and its checks, and
+its packing into the kernel's arrays (:func:`loop_arrays`, :func:`held_table`).
 """
 
 from __future__ import annotations
@@ -19,43 +13,20 @@ from __future__ import annotations
 import json
 import logging
 import math
-import time
-from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import NamedTuple
 
 import numpy as np
 
-from hubbeam.configuration.settings import Case, Numerics, simulation_settings
-from hubbeam.core import maneuver as kernel_maneuvers
-from hubbeam.core import radau
-from hubbeam.core.eom import free_dofs
 from hubbeam.core.inputs import (
-    NO_DRIVE,
     LoopArrays,
     LoopMatrices,
     LoopSensors,
     LoopTiming,
     SampleRecords,
-    SimulationInputs,
 )
-from hubbeam.core.integrate import n_output_columns
-from hubbeam.core.sampled import EDGES, ROUND, simulate_sampled_kernel
-from hubbeam.model.damping import damping_matrices
-from hubbeam.model.drive import DcMotor
-from hubbeam.model.maneuvers import MANEUVERS, Tracking
-from hubbeam.model.matrices import SystemMatrices
-from hubbeam.model.models import model
-from hubbeam.model.parameters import BeamParameters
-from hubbeam.simulation.simulate import (
-    INTEGRATOR,
-    SimulationError,
-    _integrate,
-    case_matrices,
-    initial_state,
-    integrator_settings,
-    output_times,
-)
+from hubbeam.core.sampled import EDGES, ROUND
+from hubbeam.model.maneuvers import Tracking
+from hubbeam.simulation.errors import SimulationError
 
 LOG = logging.getLogger(__name__)
 
@@ -101,7 +72,7 @@ class Sensor:
     analog first-order low-pass of time constant ``lowpass`` (s; 0: none), white noise of standard
     deviation ``noise`` (in the sensor's unit) and the quantisation step ``quantum`` (0: none),
     ``mode`` ``"round"`` (to the nearest step) or ``"edges"`` (an incremental encoder counting
-    edges: the step below)."""
+    edges: the step below). ``unit`` names the sensor's unit (UDUNITS; ``1`` when not said)."""
 
     name: str
     row: np.ndarray
@@ -111,6 +82,7 @@ class Sensor:
     lowpass: float = 0.0
     quantum: float = 0.0
     mode: str = "round"
+    unit: str = "1"
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
@@ -134,7 +106,8 @@ class Sensor:
     def to_dict(self) -> dict:
         """The sensor as plain values (for a dataset's attributes)."""
         return {"name": self.name, "row": self.row.tolist(), "gain": self.gain, "offset": self.offset,
-                "noise": self.noise, "lowpass": self.lowpass, "quantum": self.quantum, "mode": self.mode}
+                "noise": self.noise, "lowpass": self.lowpass, "quantum": self.quantum, "mode": self.mode,
+                "unit": self.unit}
 
 
 #: the controller's matrices and their shapes in the sizes ``nc`` (controller states), ``ns``
@@ -151,7 +124,9 @@ class SampledLoop:
     u_max)``, ``xc_{k+1} = Ac xc_k + Bc e_k + Bu (u_k - U_r . rho_k)``, and ``u_k`` acts from ``t_k
     + D Ts`` to ``t_(k+1) + D Ts`` (``u_init`` before the first command arrives). ``u`` is the
     hub's input: volts with a drive, N m without. ``seed`` draws the sensors' noise
-    (``numpy.random.default_rng``). Every value is checked when the loop is made."""
+    (``numpy.random.default_rng``). ``estimate_states`` and ``estimate_units`` name the estimate's
+    components and their units (default ``x_1``, ..., unit ``1``). Every value is checked when the
+    loop is made."""
 
     sensors: tuple[Sensor, ...]
     Ac: np.ndarray
@@ -168,6 +143,8 @@ class SampledLoop:
     u_max: float = math.inf
     u_init: float = 0.0
     seed: int = 0
+    estimate_states: tuple[str, ...] = ()
+    estimate_units: tuple[str, ...] = ()
     sizes: dict = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -215,6 +192,14 @@ class SampledLoop:
                                                    "a finite input"))
         if isinstance(self.seed, bool) or not isinstance(self.seed, (int, np.integer)) or self.seed < 0:
             raise SimulationError(f"SampledLoop.seed = {self.seed!r}; allowed: an integer >= 0")
+        ns = sizes["ns"]
+        names = tuple(self.estimate_states) or tuple(f"x_{i}" for i in range(1, ns + 1))
+        units = tuple(self.estimate_units) or ("1",) * ns
+        if len(names) != ns or len(units) != ns:
+            raise SimulationError(f"SampledLoop.estimate_states / estimate_units: {len(names)} and {len(units)} "
+                                  f"entries; allowed: one per estimated state, ns = {ns}")
+        object.__setattr__(self, "estimate_states", names)
+        object.__setattr__(self, "estimate_units", units)
 
     def sample_times(self, t_end: float) -> np.ndarray:
         """``t_k = k Ts`` for every ``k`` with ``t_k <= t_end``."""
@@ -239,51 +224,19 @@ class SampledLoop:
                 "controller": json.dumps({name: getattr(self, name).tolist() for name in MATRIX_SHAPES})}
 
 
-class RigRun(NamedTuple):
-    """A run of :func:`simulate_rig`: the output grid ``t``, the output array ``out`` (columns
-    ``hubbeam.core.integrate.output_columns``), radau5's ``status`` and ``t_stop``, the integrator's
-    attributes (as ``hubbeam.simulation.simulate.build_dataset`` takes them), the system
-    ``matrices`` run (the rotor's reflected inertia in ``Jh``), and with a loop its
-    :class:`~hubbeam.core.inputs.SampleRecords` ``records`` (NaN after the stop) and the sensor
-    noise ``noise`` it drew (else None)."""
-
-    t: np.ndarray
-    out: np.ndarray
-    status: int
-    t_stop: float
-    integrator: dict
-    matrices: SystemMatrices
-    records: SampleRecords | None = None
-    noise: np.ndarray | None = None
-
-
-def drive_matrices(sm: SystemMatrices, motor: DcMotor | None) -> SystemMatrices:
-    """``sm`` with the rotor's reflected inertia (``DcMotor.reflected_inertia``) added to the hub's
-    ``Jh`` (``sm`` itself without a motor)."""
-    return sm if motor is None else sm._replace(Jh=float(sm.Jh) + motor.reflected_inertia)
-
-
-def packed_drive(motor: DcMotor | None) -> np.ndarray:
-    """The kernels' drive array of ``motor`` (``hubbeam.core.drive``; none: an ideal actuator)."""
-    if motor is None:
-        return NO_DRIVE
-    if not isinstance(motor, DcMotor):
-        raise SimulationError(f"motor = {motor!r}; allowed: a hubbeam.model.drive.DcMotor or None")
-    return motor.packed()
-
-
 def reference_array(maneuver: Tracking) -> np.ndarray:
     """The reference of a tracking maneuver packed as the kernels read it, ``[kind, parameters...]``
     (``hubbeam.core.maneuver.reference_motion`` at offset 1)."""
     return np.ascontiguousarray(maneuver.reference_parameters())
 
 
-def loop_arrays(loop: SampledLoop, free: np.ndarray, t_end: float,
-                reference: np.ndarray) -> tuple[LoopArrays, np.ndarray, np.ndarray]:
+def loop_arrays(loop: SampledLoop, free: np.ndarray, t_end: float, reference: np.ndarray,
+                shaper: np.ndarray) -> tuple[LoopArrays, np.ndarray, np.ndarray]:
     """The kernel's :class:`~hubbeam.core.inputs.LoopArrays` of ``loop`` for the integrated
-    coordinates ``free`` (``hubbeam.core.eom.free_dofs``), the last output time ``t_end`` and the
-    packed ``reference`` (:func:`reference_array`), with NaN records; the stops of the
-    integration (every sample and switch time in ``(0, t_end]``); the noise drawn."""
+    coordinates ``free`` (``hubbeam.core.eom.free_dofs``), the last output time ``t_end``, the
+    packed ``reference`` (:func:`reference_array`) and the ``shaper`` array of its command shaper,
+    with NaN records; the stops of the integration (every sample and switch time in ``(0,
+    t_end]``); the noise drawn."""
     N = loop.sensors[0].row.size // 2
     columns = np.concatenate([free, N + free])
     samples = loop.sample_times(t_end)
@@ -301,7 +254,7 @@ def loop_arrays(loop: SampledLoop, free: np.ndarray, t_end: float,
     stops = np.union1d(samples, switches)
     stops = np.ascontiguousarray(stops[(stops > 0.0) & (stops <= t_end)])
     matrices = LoopMatrices(*(getattr(loop, name) for name in MATRIX_SHAPES))
-    return LoopArrays(matrices, sensors, timing, reference, records), stops, noise
+    return LoopArrays(matrices, sensors, timing, reference, records, shaper), stops, noise
 
 
 def held_table(samples: int, u_init: float) -> np.ndarray:
@@ -312,59 +265,3 @@ def held_table(samples: int, u_init: float) -> np.ndarray:
     mp[0] = 1.0
     mp[1 + capacity] = u_init
     return mp
-
-
-def _loop_case(case: Case) -> None:
-    """``SimulationError`` unless ``case``'s maneuver tracks a reference the loop can take."""
-    if not isinstance(case.maneuver, Tracking):
-        tracking = [kind for kind, record in MANEUVERS.items() if issubclass(record, Tracking)]
-        raise SimulationError(f"cases.{case.label}.maneuver.kind = {case.maneuver.kind!r} with a sampled loop; "
-                              f"allowed: one of {', '.join(tracking)} (the loop replaces its law and tracks its "
-                              "reference)")
-
-
-def simulate_rig(case: Case | Mapping, params: BeamParameters, numerics: Numerics | Mapping, *,
-                 motor: DcMotor | None = None, loop: SampledLoop | None = None, matrices: SystemMatrices | None = None,
-                 feedback=None) -> RigRun:
-    """Run ``case`` with the hub's drive ``motor`` and/or the sampled controller ``loop``.
-
-    ``case``, ``params``, ``numerics``, ``matrices`` and ``feedback`` as in
-    :func:`hubbeam.simulation.simulate.simulate` (checked the same way). Without a loop the case's
-    maneuver runs as in a simulation, its output (torque, or with a motor volts) going through the
-    drive. With a loop the case's maneuver must track a reference (``pd``, ``state_feedback``): the
-    loop replaces its law (the maneuver's gains are not used) and samples its reference; the
-    sensors' rows must have the length ``2 N`` of the case's model. The rotor's reflected inertia
-    joins the hub inertia (:func:`drive_matrices`).
-    """
-    case, numerics = simulation_settings(case, numerics, params.L)
-    if loop is not None:
-        if not isinstance(loop, SampledLoop):
-            raise SimulationError(f"loop = {loop!r}; allowed: a SampledLoop or None")
-        _loop_case(case)
-    drive = packed_drive(motor)
-    sm = drive_matrices(case_matrices(case, params, numerics, matrices), motor)
-    if loop is None:
-        return RigRun(*_integrate(case, params, numerics, sm, feedback, drive), sm)
-    n = case.modes
-    N = 1 + 2 * n
-    if loop.sensors[0].row.size != 2 * N:
-        raise SimulationError(f"SampledLoop.sensors: rows of length {loop.sensors[0].row.size}; allowed: "
-                              f"2 N = {2 * N}, the state (y, y') of {case.model} with {n} modes")
-    traits = model(case.model).traits
-    t = output_times(case.t_end, numerics.output_step)
-    free = free_dofs(traits, kernel_maneuvers.HELD, n)
-    arrays, stops, noise = loop_arrays(loop, free, t[-1], reference_array(case.maneuver))
-    inputs = SimulationInputs(traits, kernel_maneuvers.HELD, held_table(arrays.timing.sample_times.size, loop.u_init),
-                              damping_matrices(case.damping, sm), sm, drive)
-    out = np.empty((t.size, n_output_columns(n)))
-    stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
-    start = time.perf_counter()
-    status, t_stop = simulate_sampled_kernel(inputs, initial_state(case, sm), t, stops,
-                                             integrator_settings(numerics, params.L), arrays, out, stats)
-    LOG.info("case %s (%s, %d modes) under a sampled loop at %g s: %s at t = %g s, %.3f s wall, %d steps "
-             "(%d rejected)", case.label, case.model, n, loop.Ts,
-             radau.STATUS_NAMES[status], t_stop, time.perf_counter() - start, stats[radau.ACCEPTED],
-             stats[radau.REJECTED])
-    integrator = {"integrator": INTEGRATOR, "rtol": float(numerics.rtol), "atol": float(numerics.atol),
-                  **{name: int(value) for name, value in zip(radau.STAT_NAMES, stats)}}
-    return RigRun(t, out, status, t_stop, integrator, sm, arrays.records, noise)

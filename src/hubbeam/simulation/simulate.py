@@ -29,25 +29,30 @@ import logging
 import math
 import time
 from collections.abc import Mapping
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
 from scipy.integrate import cumulative_simpson
 
 from hubbeam.configuration.settings import Case, ConvergenceCheck, Numerics, simulation_settings
+from hubbeam.core import maneuver as kernel_maneuvers
 from hubbeam.core import radau
-from hubbeam.core.inputs import IDENTITY_SHAPER, NO_DRIVE, IntegratorSettings, SimulationInputs, State
+from hubbeam.core.eom import free_dofs
+from hubbeam.core.inputs import IDENTITY_SHAPER, NO_DRIVE, IntegratorSettings, SampleRecords, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
+from hubbeam.core.sampled import simulate_sampled_kernel
 from hubbeam.model import linearised, validity
 from hubbeam.model.beam import beam_attributes
 from hubbeam.model.damping import damping_matrices
+from hubbeam.model.drive import DcMotor
 from hubbeam.model.limits import (
     MAX_MODES,
     MAX_QUADRATURE_POINTS,
     MIN_QUADRATURE_POINTS,
     MIN_RTOL,
 )
-from hubbeam.model.maneuvers import FeedbackLaw, Maneuver, SpinUp
+from hubbeam.model.maneuvers import FeedbackLaw, Maneuver, PdControl, SpinUp, Tracking
 from hubbeam.model.matrices import SystemMatrices, assemble
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
@@ -55,17 +60,16 @@ from hubbeam.model.shapers import Shaper, shaped_stops
 from hubbeam.results.provenance import global_attributes
 from hubbeam.results.variables import (
     CUMULATIVE_VARIABLES,
+    SAMPLE_VARIABLES,
     dataset_variables,
     output_count,
 )
+from hubbeam.simulation.errors import SimulationError
+from hubbeam.simulation.sampled import SampledLoop, Sensor, held_table, loop_arrays, reference_array
 
 LOG = logging.getLogger(__name__)
 
 INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic Hermite interpolation"
-
-
-class SimulationError(ValueError):
-    """A case or the numerics cannot be simulated; the message names key, value and allowed."""
 
 
 def initial_state(case: Case, sm: SystemMatrices) -> State:
@@ -103,7 +107,8 @@ def kernel_matrices(sm: SystemMatrices) -> SystemMatrices:
 
 def case_matrices(case: Case, params: BeamParameters, numerics: Numerics,
                   matrices: SystemMatrices | None = None) -> SystemMatrices:
-    """The system matrices of ``case``: ``matrices`` (checked) or assembled from ``params``."""
+    """The system matrices of ``case``: ``matrices`` (checked) or assembled from ``params``, with the
+    reflected inertia of the case's drive rotor in the hub's (:func:`drive_matrices`)."""
     n = case.modes
     if matrices is None:
         if numerics.quadrature_points is None:
@@ -114,20 +119,64 @@ def case_matrices(case: Case, params: BeamParameters, numerics: Numerics,
         raise SimulationError(f"cases.{case.label}.modes = {n}, but the matrices given have "
                               f"{np.shape(matrices.K1)[0]} modes; allowed: matrices assembled with the case's "
                               "number of modes")
-    return kernel_matrices(matrices)
+    return drive_matrices(kernel_matrices(matrices), case.drive)
+
+
+def drive_matrices(sm: SystemMatrices, motor: DcMotor | None) -> SystemMatrices:
+    """``sm`` with the rotor's reflected inertia (``DcMotor.reflected_inertia``) added to the hub's
+    ``Jh`` (``sm`` itself without a motor, or with a rotor already counted in the hub's inertia)."""
+    if motor is None or motor.reflected_inertia == 0.0:
+        return sm
+    return sm._replace(Jh=float(sm.Jh) + motor.reflected_inertia)
+
+
+class Resolved(NamedTuple):
+    """What a case needs besides its settings, resolved for the matrices of one run: the feedback
+    law of a state feedback (``law``), the sampled digital controller (``loop``, which replaces the
+    law), the command shaper (``shaper``) and the dataset attributes that record them. ``resolve``
+    (:func:`simulate`) gives it; ``hubbeam.control.cases`` resolves every kind of case."""
+
+    law: FeedbackLaw | None = None
+    loop: SampledLoop | None = None
+    shaper: Shaper | None = None
+    attributes: Mapping | None = None
+
+
+#: the resolution of a case that needs none
+UNRESOLVED = Resolved()
+
+
+def needs_resolving(case: Case) -> bool:
+    """Whether ``case`` needs a resolver: a law to design or resolve, a sampled controller, a shaper."""
+    return case.maneuver.needs_law or case.shaper is not None
+
+
+class Run(NamedTuple):
+    """One integration: the output grid ``t``, the output array ``out`` (columns
+    ``hubbeam.core.integrate.output_columns``), radau5's ``status`` and ``t_stop``, the integrator's
+    attributes, and under a sampled controller its :class:`~hubbeam.core.inputs.SampleRecords`
+    ``records`` (NaN after the stop) and the sensor noise it drew (else None)."""
+
+    t: np.ndarray
+    out: np.ndarray
+    status: int
+    t_stop: float
+    integrator: dict
+    records: SampleRecords | None = None
+    noise: np.ndarray | None = None
 
 
 def simulate(case: Case | Mapping, params: BeamParameters, numerics: Numerics | Mapping,
              matrices: SystemMatrices | None = None, *,
-             convergence_check: ConvergenceCheck | Mapping | None = None, feedback=None,
-             shaper: Shaper | None = None) -> xr.Dataset:
+             convergence_check: ConvergenceCheck | Mapping | None = None, resolve=None) -> xr.Dataset:
     """Simulate one case from its initial state and return the labelled simulation dataset.
 
     Parameters
     ----------
     case : a :class:`~hubbeam.configuration.settings.Case` (its ``maneuver`` and ``damping`` the
         records of :mod:`hubbeam.model.maneuvers` and :mod:`hubbeam.model.damping`, its optional
-        ``initial`` state, :func:`initial_state`), or the mapping of a resolved case.
+        ``initial`` state, :func:`initial_state`, ``drive`` and ``shaper``), or the mapping of a
+        resolved case.
     params : the beam (Table 1 parameters, or any beam of :mod:`hubbeam.model.beam`).
     numerics : :class:`~hubbeam.configuration.settings.Numerics` or the ``numerics`` mapping of a
         configuration (``quadrature_points`` is needed when ``matrices`` is not given).
@@ -135,33 +184,26 @@ def simulate(case: Case | Mapping, params: BeamParameters, numerics: Numerics | 
     convergence_check : ``numerics.convergence_check`` (``tolerance_factor``, ``extra_modes``,
         ``threshold_m``); if given, the case is rerun at a tighter tolerance and with more modes and
         the differences are recorded (:func:`convergence`).
-    feedback : for a ``state_feedback`` maneuver, the function ``(case, sm) -> (law,
-        attributes)`` that resolves its :class:`~hubbeam.model.maneuvers.FeedbackLaw` for the case's
-        matrices (every rerun its own) and the dataset attributes that record it
-        (``hubbeam.control.feedback.simulate_case`` passes it).
-    shaper : a command shaper (:class:`hubbeam.model.shapers.Shaper`) convolved with the
-        maneuver's command (``hubbeam.core.shaping``: the hub motion, the torque, or a
-        controller's reference); None leaves it unshaped. Recorded as the attribute ``shaper``
-        (JSON), present only when given.
+    resolve : the function ``(case, sm) ->`` :class:`Resolved` for the case's matrices (every rerun
+        its own), required for a case that needs it (:func:`needs_resolving`);
+        ``hubbeam.control.cases.simulate_case`` passes it.
 
-    Objects are used as they are (the workflow's jobs get them from the one check of the
-    configuration); mappings are checked once, by the same schema and checks
+    A drive (``case.drive``) turns the hub's command into volts, its rotor joins the hub inertia and
+    the dataset gains ``hub_voltage`` and ``motor_torque``; a sampled controller (``Resolved.loop``)
+    runs in the kernel between the samples, and the dataset holds its records per sample. Objects
+    are used as they are (the workflow's jobs get them from the one check of the configuration);
+    mappings are checked once, by the same schema and checks
     (:func:`hubbeam.configuration.settings.simulation_settings`, ``ConfigError``). The attribute
     ``quadrature_points`` records the Gauss-Legendre nodes of the matrices used, so that
     :func:`hubbeam.results.reader.simulation_inputs` can rebuild them.
     """
-    if shaper is not None and not isinstance(shaper, Shaper):
-        raise SimulationError(f"shaper = {shaper!r}; allowed: a hubbeam.model.shapers.Shaper, or None")
     case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
     sm = case_matrices(case, params, numerics, matrices)
-    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback, shaper=shaper))
+    resolved = _resolved(case, sm, resolve)
+    ds = build_dataset(case, params, numerics, sm, run(case, params, numerics, sm, resolved), resolved)
     ds.attrs["quadrature_points"] = quadrature_points(sm)
-    if case.maneuver.needs_law:
-        ds.attrs.update(feedback(case, sm)[1])
-    if shaper is not None:
-        ds.attrs["shaper"] = json.dumps(shaper.to_dict())
     if numerics.convergence_check is not None:
-        found = convergence(ds, case, params, numerics, sm, feedback, shaper)
+        found = convergence(ds, case, params, numerics, sm, resolve)
         notes = found.pop("warnings")
         ds.attrs.update(found)
         ds.attrs["warnings"] = "; ".join(filter(None, [ds.attrs["warnings"], *notes]))
@@ -173,38 +215,62 @@ def quadrature_points(sm: SystemMatrices) -> int:
     return int(np.size(sm.x) - 1)
 
 
-def _feedback_law(case: Case, sm: SystemMatrices, feedback) -> FeedbackLaw | None:
-    """The resolved law of a maneuver that needs one (``feedback`` as in :func:`simulate`)."""
-    if not case.maneuver.needs_law:
-        return None
-    if feedback is None:
-        raise SimulationError(f"cases.{case.label}.maneuver.kind = {case.maneuver.kind!r}; allowed here only "
-                              "with its feedback (run it with hubbeam.control.feedback.simulate_case)")
-    return feedback(case, sm)[0]
+def _resolved(case: Case, sm: SystemMatrices, resolve) -> Resolved:
+    """What ``case`` needs for the run on ``sm`` (``resolve`` as in :func:`simulate`; given, it is
+    asked for every case)."""
+    if resolve is None and not needs_resolving(case):
+        return UNRESOLVED
+    if resolve is None:
+        raise SimulationError(f"cases.{case.label}: a {case.maneuver.kind} maneuver"
+                              f"{' with a shaper' if case.shaper is not None else ''}; allowed here only with its "
+                              "resolver (run it with hubbeam.control.cases.simulate_case)")
+    return resolve(case, sm)
 
 
-def _integrate(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices, feedback=None,
-               drive: np.ndarray = NO_DRIVE, shaper: Shaper | None = None):
-    """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`
-    (``feedback`` and ``shaper`` as in :func:`simulate`; ``drive``: the hub's packed drive,
-    ``hubbeam.core.drive``)."""
-    kind, mp = case.maneuver.kernel_parameters(_feedback_law(case, sm, feedback))
+def run(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices, resolved: Resolved) -> Run:
+    """Integrate ``case`` once on the matrices ``sm`` with what :func:`_resolved` gave: the
+    continuous kernel (the maneuver's law, through the drive), or the sampled kernel (the loop's
+    held command) (:mod:`hubbeam.core.integrate`, :mod:`hubbeam.core.sampled`)."""
+    traits = model(case.model).traits
+    n = case.modes
     t = output_times(case.t_end, numerics.output_step)
-    out = np.empty((t.size, n_output_columns(case.modes)))
+    out = np.empty((t.size, n_output_columns(n)))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
+    drive = NO_DRIVE if case.drive is None else case.drive.packed()
+    shaper = IDENTITY_SHAPER if resolved.shaper is None else resolved.shaper.kernel_array()
+    damping = damping_matrices(case.damping, sm)
+    settings = integrator_settings(numerics, params.L)
     start = time.perf_counter()
-    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm, drive,
-                              IDENTITY_SHAPER if shaper is None else shaper.kernel_array())
-    status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case.maneuver, t, shaper),
-                                     integrator_settings(numerics, params.L), out, stats)
+    loop = resolved.loop
+    if loop is None:
+        kind, mp = case.maneuver.kernel_parameters(resolved.law)
+        inputs = SimulationInputs(traits, kind, mp, damping, sm, drive, shaper)
+        status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t,
+                                         step_stops(case.maneuver, t, resolved.shaper), settings, out, stats)
+        records = noise = None
+    else:
+        if not isinstance(case.maneuver, Tracking):
+            raise SimulationError(f"cases.{case.label}.maneuver.kind = {case.maneuver.kind!r} with a sampled loop; "
+                                  "allowed: a maneuver that tracks a reference (the loop replaces its law)")
+        N = 1 + 2 * n
+        if loop.sensors[0].row.size != 2 * N:
+            raise SimulationError(f"SampledLoop.sensors: rows of length {loop.sensors[0].row.size}; allowed: "
+                                  f"2 N = {2 * N}, the state (y, y') of {case.model} with {n} modes")
+        free = free_dofs(traits, kernel_maneuvers.HELD, n)
+        arrays, stops, noise = loop_arrays(loop, free, t[-1], reference_array(case.maneuver), shaper)
+        held = held_table(arrays.timing.sample_times.size, loop.u_init)
+        inputs = SimulationInputs(traits, kernel_maneuvers.HELD, held, damping, sm, drive, IDENTITY_SHAPER)
+        status, t_stop = simulate_sampled_kernel(inputs, initial_state(case, sm), t, stops, settings, arrays, out,
+                                                 stats)
+        records = arrays.records
     wall = time.perf_counter() - start
-    LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
-             "%d rhs calls, %d Jacobians, %d LU", case.label, case.model, case.modes, radau.STATUS_NAMES[status],
-             t_stop, wall, stats[radau.ACCEPTED], stats[radau.REJECTED], stats[radau.RHS_CALLS],
-             stats[radau.JACOBIANS], stats[radau.FACTORIZATIONS])
+    LOG.info("case %s (%s, %d modes%s): %s at t = %g s, %.3f s wall, %d steps (%d rejected), %d rhs calls, "
+             "%d Jacobians, %d LU", case.label, case.model, n, "" if loop is None else f", sampled every {loop.Ts:g} s",
+             radau.STATUS_NAMES[status], t_stop, wall, stats[radau.ACCEPTED], stats[radau.REJECTED],
+             stats[radau.RHS_CALLS], stats[radau.JACOBIANS], stats[radau.FACTORIZATIONS])
     integrator = {"integrator": INTEGRATOR, "rtol": float(numerics.rtol), "atol": float(numerics.atol),
                   **{name: int(value) for name, value in zip(radau.STAT_NAMES, stats)}}
-    return t, out, status, t_stop, integrator
+    return Run(t, out, status, t_stop, integrator, records, noise)
 
 
 def integrator_settings(numerics: Numerics, length: float) -> IntegratorSettings:
@@ -215,9 +281,10 @@ def integrator_settings(numerics: Numerics, length: float) -> IntegratorSettings
 
 
 def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Numerics,
-                sm: SystemMatrices, feedback=None, shaper: Shaper | None = None) -> dict:
-    """Check the run ``ds`` of ``case`` (made with matrices ``sm``, and ``shaper``) against two
-    reruns, with the settings ``numerics.convergence_check``.
+                sm: SystemMatrices, resolve=None) -> dict:
+    """Check the run ``ds`` of ``case`` (made with matrices ``sm``) against two reruns, each with
+    what ``resolve`` (as in :func:`simulate`) gives for its own matrices, with the settings
+    ``numerics.convergence_check``.
 
     The reruns change one setting each: the tolerances ``rtol`` and ``atol`` multiplied by
     ``tolerance_factor`` (``rtol`` not below :data:`MIN_RTOL`), and the number of modes raised by
@@ -254,9 +321,9 @@ def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Nu
         warnings.append(f"convergence in the modes not checked: the case already has the "
                         f"maximum of {MAX_MODES} modes")
     for label, (rerun_case, rerun_numerics, rerun_sm, what) in reruns.items():
-        _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm, feedback,
-                                                   shaper=shaper)
-        rerun_tip = out[:, output_columns(rerun_case.modes)["tip_transverse"]]
+        rerun = run(rerun_case, params, rerun_numerics, rerun_sm, _resolved(rerun_case, rerun_sm, resolve))
+        status, rerun_stop = rerun.status, rerun.t_stop
+        rerun_tip = rerun.out[:, output_columns(rerun_case.modes)["tip_transverse"]]
         both = np.isfinite(tip) & np.isfinite(rerun_tip)
         difference = float(np.max(np.abs(tip - rerun_tip)[both])) if both.any() else math.nan
         found[f"convergence_{label}_diff_m"] = difference
@@ -275,19 +342,21 @@ def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Nu
     return found
 
 
-def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices,
-                  t: np.ndarray, out: np.ndarray, status: int, t_stop: float,
-                  integrator: Mapping) -> xr.Dataset:
-    """The simulation dataset of ``docs/architecture.md`` from the kernel's output array.
+def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices, result: Run,
+                  resolved: Resolved = UNRESOLVED) -> xr.Dataset:
+    """The simulation dataset of ``docs/architecture.md`` from a :class:`Run`.
 
     ``sm`` are the case's matrices (their ``K22`` of Eq. 31 tells a divergence from a run that
-    left the range of the models, :mod:`hubbeam.model.validity`); ``status`` and ``t_stop`` are the
-    kernel's return values; ``integrator`` holds the integrator attributes (name, tolerances and
-    statistics, including ``n_steps``).
+    left the range of the models, :mod:`hubbeam.model.validity`); ``result`` the kernel's outputs,
+    status, stop time and integrator attributes (name, tolerances and statistics, including
+    ``n_steps``), and a sampled controller's records, which become the variables of the ``sample``
+    dimension (:data:`hubbeam.results.variables.SAMPLE_VARIABLES`); ``resolved`` what the run was
+    resolved with, recorded in the attributes.
     """
+    t, out, status, t_stop, integrator = result[:5]
     n = case.modes
     columns = output_columns(n)
-    variables = dataset_variables(case.model)
+    variables = dataset_variables(case.model, driven=case.drive is not None)
     data_vars = {name: (dims, np.ascontiguousarray(out[:, columns[name]]),
                         {"units": units, "long_name": long_name})
                  for name, (dims, units, long_name) in variables.items()}
@@ -323,6 +392,7 @@ def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: Sy
         **({} if case.tip_mass.is_point else {"tip_inertia_kg_m2": case.tip_mass.inertia,
                                                "tip_offset_m": case.tip_mass.offset}),
         "n_modes": int(n),
+        **({} if case.drive is None else {"drive": case.drive.to_dict()}),
         **beam_attributes(params),
         **found,
         "integrator_status": radau.STATUS_NAMES[status],
@@ -334,16 +404,43 @@ def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: Sy
         **integrator,
         "warnings": "; ".join(warnings),
     }
+    attributes |= dict(resolved.attributes or {})
+    if resolved.shaper is not None:
+        attributes["shaper"] = resolved.shaper.to_dict()
+    if result.records is not None:
+        loop = resolved.loop
+        attributes |= loop.attributes()
+        data_vars |= sample_variables(result.records, loop)
+        coords |= {"sample_time": ("sample", result.records.t, {"units": "s", "long_name": "sample time t_k"}),
+                   "sensor": ("sensor", [sensor.name for sensor in loop.sensors], {"long_name": "sensor"}),
+                   "estimate_state": ("estimate_state", list(loop.estimate_states),
+                                      {"long_name": "state of the design model the controller estimates"})}
     maneuver = json.dumps(recorded["maneuver"], sort_keys=True)  # as in case_config
     title = f"hubbeam simulation {case.name or ''}: {case.model}, {maneuver}"
     attrs = global_attributes(title, case_config=recorded, extra=attributes)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 
-def compile_kernels(family: str | None = None) -> float:
+def sample_variables(records: SampleRecords, loop: SampledLoop) -> dict:
+    """The records of a sampled controller as the dataset's variables of the ``sample`` dimension
+    (:data:`hubbeam.results.variables.SAMPLE_VARIABLES`), with the units of its sensors, states and
+    command."""
+    units = {"measured": ("sensor_units", [sensor.unit for sensor in loop.sensors]),
+             "sensed": ("sensor_units", [sensor.unit for sensor in loop.sensors]),
+             "estimate": ("state_units", list(loop.estimate_units))}
+    found = {}
+    for name, (dims, unit, long_name) in SAMPLE_VARIABLES.items():
+        attrs = {"units": unit, "long_name": long_name}
+        if name in units:
+            attrs[units[name][0]] = json.dumps(units[name][1])
+        found[name] = (dims, np.ascontiguousarray(getattr(records, name)), attrs)
+    return found
+
+
+def compile_kernels(family: str | None = None, sampled: bool = False) -> float:
     """Compile (or load from numba's cache) the simulation kernel of ``family`` (a key of
-    :data:`hubbeam.core.integrate.FAMILY_KERNELS`; default: every family); return the seconds it
-    took.
+    :data:`hubbeam.core.integrate.FAMILY_KERNELS`; default: every family), and with ``sampled`` its
+    sampled-controller kernel (:mod:`hubbeam.core.sampled`); return the seconds it took.
 
     One kernel per family serves every model of it, maneuver and mode count, so a workflow calls
     this once per family before it starts parallel simulations (they then all load the cached
@@ -358,7 +455,15 @@ def compile_kernels(family: str | None = None) -> float:
     for name in [family] if family else FAMILIES:
         case = Case(name="compile_kernels", model=family_model(name).name, maneuver=SpinUp(wf=0.1, tf=0.05),
                     t_end=0.1, modes=1, tip_mass=TipMass(0.0, 1.0))
-        _integrate(case, params, numerics, case_matrices(case, params, numerics))
+        sm = case_matrices(case, params, numerics)
+        run(case, params, numerics, sm, UNRESOLVED)
+        if sampled:
+            tracking = dataclasses.replace(case, maneuver=PdControl(kp=1.0, kd=1.0, reference=case.maneuver))
+            N = 1 + 2 * case.modes
+            loop = SampledLoop([Sensor("hub_angle", np.eye(2 * N)[0])], np.zeros((0, 0)), np.zeros((0, 1)),
+                               np.zeros(0), np.zeros((1, 0)), np.ones((1, 1)), np.ones(1), np.zeros((1, 3)),
+                               np.zeros(3), np.zeros(0), Ts=0.02)
+            run(tracking, params, numerics, sm, Resolved(loop=loop))
     return time.perf_counter() - start
 
 

@@ -1,0 +1,179 @@
+"""Every case resolved for its run, and checked before any job: its law, its sampled controller, its shaper.
+
+What a case needs besides its configuration depends on the matrices of the run (its modes, its tip
+body, the drive's rotor), so it is resolved for each run (:func:`resolve`, the ``resolve`` of
+:func:`hubbeam.simulation.simulate.simulate`, a convergence rerun its own):
+
+* a ``state_feedback`` maneuver run continuously: its :class:`~hubbeam.model.maneuvers.FeedbackLaw`
+  (:func:`hubbeam.control.feedback.feedback_law`);
+* run as a sampled digital controller (``maneuver.sampling``): the design's continuous linear model
+  (:func:`hubbeam.control.feedback.design_plant`) sampled with its zero-order hold and delay
+  (:func:`hubbeam.linear.discrete.discretise`), the gain (discrete LQR, or the continuous LQR gain
+  through the hold, :mod:`hubbeam.control.dlqr`), the estimator (the exact states, the courseware's
+  filtered differences, or a steady-state Kalman filter, :mod:`hubbeam.control.kalman`), as the
+  matrices of the compiled loop (:func:`sampled_controller`, :mod:`hubbeam.control.sampled`) with
+  the sensors of the simulated model (:func:`sampled_loop`);
+* a ``shaper``: its impulses, tuned on given frequencies or on the linear model's modes
+  (:mod:`hubbeam.control.shaping`), rounded to the samples of a sampled controller, which must
+  sample its modes (:func:`case_shaper`).
+
+:func:`case_problems` resolves every case of a configuration on its own matrices before any job
+runs, and reports what would stop one as a problem naming its key (the workflow refuses the
+configuration with all of them, :func:`check_cases`). :func:`simulate_case` runs any case.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+from hubbeam.configuration.load import ConfigError
+from hubbeam.configuration.schema import Problem
+from hubbeam.configuration.settings import Case, Settings
+from hubbeam.control.dlqr import continuous_lqr, discrete_lqr
+from hubbeam.control.feedback import FeedbackError, design_plant, feedback_law
+from hubbeam.control.kalman import kalman_filter
+from hubbeam.control.sampled import (
+    SampledController,
+    filtered_difference_controller,
+    kalman_controller,
+    rigid_feedforward,
+    state_controller,
+)
+from hubbeam.control.sampling import Sensor as DesignSensor
+from hubbeam.control.shaping import case_shaping_mode
+from hubbeam.linear.discrete import discretise
+from hubbeam.linear.export import state_units
+from hubbeam.linear.lumped import LUMPED_SIGNALS
+from hubbeam.linear.statespace import OUTPUTS, linear_model
+from hubbeam.model.maneuvers import StateFeedback
+from hubbeam.model.shapers import Shaper, check_sampling, rounded
+from hubbeam.simulation.errors import SimulationError
+from hubbeam.simulation.sampled import SampledLoop, Sensor
+from hubbeam.simulation.simulate import Resolved, case_matrices, needs_resolving, simulate
+
+
+def sampling_of(case: Case):
+    """The case's sampled controller settings (``maneuver.sampling``), or None."""
+    return case.maneuver.sampling if isinstance(case.maneuver, StateFeedback) else None
+
+
+def sampled_controller(case: Case, beam, sm) -> SampledController:
+    """The sampled controller of ``case`` (module docstring) for the run's matrices ``sm``."""
+    maneuver, sampling = case.maneuver, case.maneuver.sampling
+    spec = maneuver.design
+    dm = discretise(design_plant(case, beam, sm), sampling.sample_time, sampling.delay)
+    design = discrete_lqr if sampling.gain == "discrete" else continuous_lqr
+    lqr = design(dm, spec.weights, spec.input_weight)
+    simulated = linear_model(beam, sm, case.model, 0.0, "free")  # the sensors' rows: the same at any speed
+    u_max = math.inf if case.drive is None else case.drive.voltage_limit
+    feedforward = rigid_feedforward(float(sm.Jh + sm.Jb + sm.Jt), case.drive) if maneuver.feedforward else None
+    estimator = sampling.estimator
+    if estimator.kind == "exact":
+        return state_controller(lqr, simulated, u_max, 0.0, feedforward)
+    sensors = [DesignSensor(sensor.signal, sensor.gain, sensor.noise, sensor.quantum) for sensor in sampling.sensors]
+    if estimator.kind == "filtered_differences":
+        return filtered_difference_controller(lqr, sensors, estimator.cutoff, simulated, u_max, 0.0, feedforward)
+    kf = kalman_filter(dm, sensors, estimator.input_noise or 0.0, dict(estimator.state_noise or {}),
+                       form=estimator.form or "current")
+    return kalman_controller(lqr, kf, simulated, u_max, 0.0, feedforward)
+
+
+def estimate_unit(name: str, inputs=()) -> str:
+    """The unit of a state the controller estimates: a measured signal's (the lumped model's
+    states) or a beam model's (``hubbeam.linear.export.state_units``)."""
+    return OUTPUTS[LUMPED_SIGNALS[name]][0] if name in LUMPED_SIGNALS else state_units(name, inputs)
+
+
+def sampled_loop(case: Case, controller: SampledController) -> SampledLoop:
+    """The compiled loop of ``controller`` with the sensors of ``case``: their gains, offsets,
+    noise, low-pass, quantisation and units (the exact estimator's readings without any), the
+    noise seeded by ``sampling.seed``."""
+    sampling = case.maneuver.sampling
+    specs = sampling.sensors or [None] * len(controller.sensors)
+    sensors = []
+    for reading, row, spec in zip(controller.sensors, controller.sensor_rows, specs):
+        settings = {} if spec is None else {key: getattr(spec, key)
+                                            for key in ("gain", "offset", "noise", "lowpass", "quantum", "mode")}
+        sensors.append(Sensor(reading.signal, row, unit=reading.sensor_unit, **settings))
+    inputs = controller.design.inputs
+    return SampledLoop(sensors, **controller.matrices(), Ts=controller.Ts, D=controller.D, u_max=controller.u_max,
+                       u_init=controller.u_init, seed=sampling.seed, estimate_states=controller.estimate_states,
+                       estimate_units=tuple(estimate_unit(name, inputs) for name in controller.estimate_states))
+
+
+def case_shaper(case: Case, beam, sm, sample_time: float | None = None) -> Shaper:
+    """The command shaper of ``case`` (``case.shaper``): on its given frequencies, or tuned on the
+    modes the command excites in the linearisation of its model (or the shaper's) at the shaper's
+    speed (default the maneuver's final speed); with a ``sample_time``, checked against it and
+    rounded to its samples (``hubbeam.model.shapers``)."""
+    spec = case.shaper
+    modes = spec.given_modes()
+    if modes is None:
+        speed = case.maneuver.final_speed if spec.speed is None else spec.speed
+        found = [case_shaping_mode(case, beam, sm, speed, mode=number, model=spec.model) for number in spec.modes]
+        modes = [(mode.omega, mode.zeta) for mode in found]
+    shaper = spec.shaper(modes)
+    if sample_time is None:
+        return shaper
+    check_sampling(shaper, sample_time)
+    return rounded(shaper, sample_time)
+
+
+def resolve(case: Case, sm, beam) -> Resolved:
+    """What ``case`` needs for a run on the matrices ``sm`` of ``beam`` (module docstring), with the
+    dataset attributes that record it; a :class:`~hubbeam.control.feedback.FeedbackError` naming the
+    key of what cannot be resolved."""
+    where = f"cases.{case.label}"
+    sampling = sampling_of(case)
+    law, loop, attributes = None, None, {}
+    if sampling is not None:
+        try:
+            controller = sampled_controller(case, beam, sm)
+            loop = sampled_loop(case, controller)
+        except (ValueError, SimulationError) as error:
+            if isinstance(error, FeedbackError):
+                raise
+            raise FeedbackError(f"{where}.maneuver.sampling", str(error)) from None
+        attributes = {"controller_kind": controller.kind,
+                      "controller_poles": [[p.real, p.imag] for p in controller.poles]}
+    elif case.maneuver.needs_law:
+        law, attributes = feedback_law(case, sm, beam)
+    shaper = None
+    if case.shaper is not None:
+        try:
+            shaper = case_shaper(case, beam, sm, None if sampling is None else sampling.sample_time)
+        except ValueError as error:
+            raise FeedbackError(f"{where}.shaper", str(error)) from None
+    return Resolved(law, loop, shaper, attributes)
+
+
+def case_problems(settings: Settings) -> list[Problem]:
+    """What would stop a case of ``settings`` once its matrices are known (module docstring), found by
+    resolving it on its own matrices (``numerics.quadrature_points`` Gauss nodes), one problem per
+    case."""
+    problems = []
+    for case in settings.cases.values():
+        if not needs_resolving(case):
+            continue
+        sm = case_matrices(case, settings.beam, settings.numerics)
+        try:
+            resolve(case, sm, settings.beam)
+        except FeedbackError as error:
+            problems.append(error.problem)
+    return problems
+
+
+def check_cases(settings: Settings, sources=()) -> None:
+    """:class:`~hubbeam.configuration.load.ConfigError` listing :func:`case_problems`, if any."""
+    problems = case_problems(settings)
+    if problems:
+        raise ConfigError(problems, sources)
+
+
+def simulate_case(case, params, numerics, matrices=None, **options):
+    """:func:`hubbeam.simulation.simulate.simulate` of any case, resolved (:func:`resolve`) for the
+    matrices of every run."""
+    return simulate(case, params, numerics, matrices, resolve=functools.partial(resolve, beam=params), **options)
+
+

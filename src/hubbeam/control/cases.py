@@ -97,7 +97,7 @@ def sampled_loop(case: Case, controller: SampledController) -> SampledLoop:
                                             for key in ("gain", "offset", "noise", "lowpass", "quantum", "mode")}
         sensors.append(Sensor(reading.signal, row, unit=reading.sensor_unit, **settings))
     inputs = controller.design.inputs
-    return SampledLoop(sensors, **controller.matrices(), Ts=controller.Ts, D=controller.D, u_max=controller.u_max,
+    return SampledLoop(sensors, **controller.matrices, Ts=controller.Ts, D=controller.D, u_max=controller.u_max,
                        u_init=controller.u_init, seed=sampling.seed, estimate_states=controller.estimate_states,
                        estimate_units=tuple(estimate_unit(name, inputs) for name in controller.estimate_states))
 

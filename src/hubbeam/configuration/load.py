@@ -35,6 +35,7 @@ import yaml
 
 from hubbeam.configuration.checks import physical_problems
 from hubbeam.configuration.defaults import fill_eigen, fill_linear, fill_numerics
+from hubbeam.configuration.grids import expand_case_grids
 from hubbeam.configuration.schema import (
     SCHEMA,
     Problem,
@@ -181,6 +182,8 @@ def _validate(cfg: Any, problems: list[Problem], sources: list, section: Section
               schema: dict | None = None) -> dict:
     whole = schema is None  # a whole configuration, not the API's bare case and numerics
     schema = schema or (SCHEMA if section is None else _with_section(section))
+    if whole and isinstance(cfg, dict):
+        problems = problems + expand_case_grids(cfg)
     coerce_numbers(cfg, schema)
     if isinstance(cfg, dict):
         fill_numerics(cfg)

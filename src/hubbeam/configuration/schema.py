@@ -184,7 +184,10 @@ def explain(error: jsonschema.ValidationError, schema: dict, root: Any = None) -
 
 #: the patterns of the schema in words
 _PATTERNS = {"^[A-Za-z0-9_-]+$": "letters, digits, '_' and '-' only",
-             "^[A-Za-z0-9_]+$": "letters, digits and '_' only"}
+             "^[A-Za-z0-9_]+$": "letters, digits and '_' only",
+             "^[A-Za-z_][A-Za-z0-9_]*$": "a name of letters, digits and '_', not starting with a digit",
+             "^[A-Za-z0-9_]+(\\.[A-Za-z0-9_]+)*$": "keys of letters, digits and '_' joined by '.' "
+                                                 "(a dotted path such as maneuver.design.speed)"}
 
 
 def _pattern_words(pattern: str) -> str:

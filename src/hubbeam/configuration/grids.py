@@ -50,8 +50,8 @@ def _set(case: dict, path: str, value: Any) -> None:
     node[last] = copy.deepcopy(value)
 
 
-#: a validator of the ``case_grids`` section alone (schema ``case_grids``)
-GRIDS_VALIDATOR = Validator({"$ref": "#/$defs/case_grids", "$defs": SCHEMA["$defs"]})
+#: a validator of the ``case_grids`` section alone
+GRIDS_VALIDATOR = Validator({**SCHEMA["properties"]["case_grids"], "$defs": SCHEMA["$defs"]})
 
 
 def _grid_problems(where: str, grid: Mapping) -> list[Problem]:

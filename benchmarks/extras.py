@@ -58,8 +58,8 @@ def eigen_rows(cfg: Mapping, params: BeamParameters, repeats: int, budget: float
         n_modes, n_quad = cfg["numerics"]["modes"], cfg["numerics"]["quadrature_points"]
         wall, count = median_time(
             partial(eigen.k22_sweep, params, masses, positions, speeds, n_modes, n_quad), repeats, budget)
-        analyses = len(eigen.MODELS) * masses.size * positions.size * speeds.size
-        rows.append({"grid": label, "models": len(eigen.MODELS), "tip_masses": masses.size,
+        analyses = len(eigen.LINEARISATIONS) * masses.size * positions.size * speeds.size
+        rows.append({"grid": label, "models": len(eigen.LINEARISATIONS), "tip_masses": masses.size,
                      "positions": positions.size, "speeds": speeds.size, "modes": n_modes,
                      "eigen_analyses": analyses, "wall_s": wall, "repeats": count,
                      "per_second": analyses / wall})

@@ -40,14 +40,15 @@ from hubbeam.model.beam import beam_attributes
 from hubbeam.model.matrices import MODE_NORMALISATION, assemble, point_mass_terms
 from hubbeam.model.parameters import TipMass, UniformBeam
 
-#: the models of the eigen-analysis (the variants of Eq. 31 with the axial coupling)
-MODELS = linearised.AXIAL_MODELS
+#: the linearisations of the eigen-analysis (the variants of Eq. 31 with the axial coupling: TLAM's
+#: and FOAM's, the latter also SFOAM's and CFOAM's, ``hubbeam.model.models``)
+LINEARISATIONS = linearised.AXIAL_MODELS
 
 
 def _check_model(model):
-    if model not in MODELS:
+    if model not in LINEARISATIONS:
         raise ValueError(
-            f"model = {model!r}: the eigen-analysis is defined for {', '.join(MODELS)}"
+            f"model = {model!r}: the eigen-analysis is defined for {', '.join(LINEARISATIONS)}"
         )
 
 
@@ -175,7 +176,7 @@ def _attributes(params, n_modes, n_quad):
 
 
 def _coords(masses=None, positions=None, speeds=None, n_modes=None):
-    coords = {"model": ("model", list(MODELS), {"long_name": "model (Section 3)"})}
+    coords = {"model": ("model", list(LINEARISATIONS), {"long_name": "model (Section 3)"})}
     if masses is not None:
         coords["tip_mass"] = ("tip_mass", np.asarray(masses, float),
                               {"units": "kg", "long_name": "tip mass m_t"})
@@ -201,7 +202,7 @@ def k22_sweep(params, masses, positions, speeds, n_modes, n_quad=64):
     eigenvalues = np.stack([
         np.linalg.eigvalsh(linearised.transverse_stiffness(bare.K2, M2[:, :, None], D[:, :, None],
                                                            model, speeds))
-        for model in MODELS
+        for model in LINEARISATIONS
     ])
     units = "s-2"
     note = "modes normalised to unit modal mass of the bare beam"
@@ -230,7 +231,7 @@ def critical_speed_sweep(params, masses, positions, n_modes, search_max, n_quad=
     _check_search_max(search_max)
     bare, M2, D = _mass_position_matrices(params, masses, positions, n_modes, n_quad)
     mu = np.stack([_mu_max(bare.K2, linearised.centrifugal_matrix(M2, D, model))
-                   for model in MODELS])
+                   for model in LINEARISATIONS])
     # the continuum frequency equation holds for a uniform beam only: NaN for tabulated sections
     uniform = isinstance(params, UniformBeam)
     continuum = [
@@ -298,9 +299,9 @@ def campbell(params, masses, speeds, n_modes, n_quad=64):
     systems = [assemble(params, TipMass(mass=float(m), position=float(params.L)), n_modes, n_quad)
                for m in masses]
     omega2 = np.stack([[linearised.eigenvalues(sm, model, speeds) for sm in systems]
-                       for model in MODELS])
+                       for model in LINEARISATIONS])
     eigenvalues = np.array([[gyroscopic_eigenvalues(sm, model, speeds) for sm in systems]
-                            for model in MODELS])
+                            for model in LINEARISATIONS])
     coupled = linearised.pair_frequencies(eigenvalues)
     dims = ("model", "tip_mass", "speed")
     return xr.Dataset(
@@ -349,7 +350,7 @@ def critical_speed_table(params, masses, n_modes, search_max, n_quad=64):
     """Critical speeds (rad s-1) of TLAM and FOAM for each tip mass at the beam tip ``l = L``;
     columns ``model, tip_mass_kg, position_m, critical_speed_rad_s`` (NaN where none)."""
     rows = []
-    for model in MODELS:
+    for model in LINEARISATIONS:
         for mass in masses:
             tip = TipMass(mass=float(mass), position=float(params.L))
             rows.append({"model": model, "tip_mass_kg": float(mass), "position_m": tip.position,

@@ -20,7 +20,7 @@ import xarray as xr
 
 from hubbeam.core.system_matrices import transverse_mass
 from hubbeam.model.beam import SECTION_UNITS, beam_attributes
-from hubbeam.model.eigen import K22, MODELS
+from hubbeam.model.eigen import K22, LINEARISATIONS
 from hubbeam.model.matrices import assemble
 from hubbeam.model.modes import transverse_modes
 from hubbeam.model.parameters import TipMass
@@ -41,9 +41,9 @@ def mode_shapes(params, tip: TipMass, speeds, n_shapes: int, n_modes: int, n_qua
     speed, mode, x)`` on :func:`span`, of the first ``n_shapes`` transverse modes."""
     sm = assemble(params, tip, n_modes, n_quad)
     shapes_x = transverse_modes(span(params), n_modes, params)
-    frequencies = np.full((len(MODELS), len(speeds), n_shapes), np.nan)
+    frequencies = np.full((len(LINEARISATIONS), len(speeds), n_shapes), np.nan)
     shapes = np.full(frequencies.shape + shapes_x.shape[:1], np.nan)
-    for m, model in enumerate(MODELS):
+    for m, model in enumerate(LINEARISATIONS):
         for s, speed in enumerate(speeds):
             omega2, vectors = scipy.linalg.eigh(K22(sm, model, speed), transverse_mass(sm))
             for i in np.flatnonzero(omega2[:n_shapes] > 0.0):
@@ -90,7 +90,7 @@ def beam_dataset(params, tips: Mapping[str, TipMass], speeds, shape_tips, n_shap
             "x": ("x", x, {"units": "m", "long_name": "distance from the clamped root"}),
             "station": ("station", stations, {"units": "m", "long_name": "station of the sectional properties"}),
             "case": ("case", names),
-            "model": ("model", list(MODELS)),
+            "model": ("model", list(LINEARISATIONS)),
             "tip_mass": ("tip_mass", shape_tips, {"units": "kg", "long_name": "tip mass at the tip"}),
             "speed": ("speed", speeds, {"units": "rad s-1", "long_name": "hub angular velocity"}),
             "mode": ("mode", np.arange(1, n_shapes + 1), {"units": "1", "long_name": "mode number"}),

@@ -302,7 +302,7 @@ def build_dataset(sweep: Mapping, params: BeamParameters, results: np.ndarray,
                            {"units": "1", "long_name": long_name})
     data_vars["critical_speed"] = critical
     coords = {"model": ("model", list(sweep["models"]), {"long_name": "model (Section 3)"}),
-              "eigen_model": ("eigen_model", list(eigen.MODELS),
+              "eigen_model": ("eigen_model", list(eigen.LINEARISATIONS),
                               {"long_name": "model of the eigen-analysis (Eq. 31)"})}
     for key, values in axes.items():
         units, long_name = PARAMETERS[key]
@@ -344,7 +344,7 @@ def _validity(sweep: Mapping, params: BeamParameters, status: np.ndarray, peak: 
     maneuver without ``wf`` (a torque pulse) keeps no hub speed, and its stop counts as a
     divergence exactly for a model whose linearisation has a critical speed (TLAM)."""
     axes = axis_values(sweep)
-    critical = xr.DataArray(critical, coords={"eigen_model": list(eigen.MODELS),
+    critical = xr.DataArray(critical, coords={"eigen_model": list(eigen.LINEARISATIONS),
                                               **{key: axes[key] for key in critical.dims if key in axes}})
     cells = xr.DataArray(np.zeros(status.shape), dims=dims,
                          coords={"model": list(sweep["models"]), **axes})

@@ -9,6 +9,7 @@ sampled controller's applied command held by the plant, a shaper's impulses from
 
 from __future__ import annotations
 
+import copy
 import json
 import math
 
@@ -112,6 +113,25 @@ def test_a_design_mode_above_half_the_sampling_frequency_is_refused_naming_it():
     cfg["cases"]["z"]["maneuver"]["design"]["modes"] = 2
     assert_refused(cfg, "cases.z.maneuver.sampling", "vibration mode 2 (22.3",
                    "above half the sampling frequency 10 Hz", "Ts = 0.05 s")
+
+
+def test_a_design_model_too_large_for_the_sampling_is_designed_on_its_truncation():
+    """FOAM's axial modes (kHz) lie far above half of a 500 Hz sampling: its Kalman filter is
+    refused, unless the design is made on the model truncated below that frequency, whose
+    frequency-response error up to there is recorded."""
+    full = sampled_case(KALMAN, SENSORS)
+    full["maneuver"]["design"]["model"] = "FOAM"
+    reduced = copy.deepcopy(full)
+    reduced["maneuver"]["sampling"]["reduce"] = True
+    assert_refused(study(a=reduced, z=full), "cases.z.maneuver.sampling", "above half the sampling frequency 250 Hz",
+                   "mostly q1_")
+    cfg = study(a=reduced)
+    validate_config(cfg)
+    settings = from_config(cfg)
+    ds = simulate_case(settings.cases["a"], settings.beam, settings.numerics)
+    assert ds.attrs["integrator_status"] == "success"
+    assert all(name.startswith("mode_") for name in ds.estimate_state.values)
+    assert 0.0 < ds.attrs["design_reduction_error"] < 1.0
 
 
 def test_a_mode_the_sensors_cannot_see_is_refused():

@@ -337,6 +337,16 @@ def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Prob
     estimator = _section(sampling, "estimator").get("kind", "exact")
     sensors = sampling.get("sensors") if isinstance(sampling.get("sensors"), list) else None
     signals = [sensor.get("signal") for sensor in sensors or [] if isinstance(sensor, dict)]
+    if estimator == "exact" and sampling.get("reduce") is True:
+        problems.append(Problem(f"{where}.sampling.reduce", "true with the exact estimator, whose readings are the "
+                                "design's states (a truncated model's are modal coordinates); allowed: a kalman "
+                                "estimator, or reduce false"))
+    weights = _section(_section(maneuver, "design"), "weights")
+    states = [name for name in weights if name not in MEASURED_SIGNALS]
+    if sampling.get("reduce") is True and states:
+        problems.append(Problem(f"{where}.design.weights.{states[0]}", "a state's weight with sampling.reduce, whose "
+                                "design model's states are modal coordinates; allowed: weights on measured signals "
+                                f"({', '.join(MEASURED_SIGNALS)})"))
     if estimator == "exact" and sensors is not None:
         problems.append(Problem(f"{where}.sampling.sensors", "given with the exact estimator, which reads the "
                                 "design's states; allowed: no sensors, or a kalman or filtered_differences estimator"))

@@ -45,6 +45,7 @@ from hubbeam.control.shaping import case_shaping_mode
 from hubbeam.linear.discrete import discretise
 from hubbeam.linear.export import state_units
 from hubbeam.linear.lumped import LUMPED_SIGNALS
+from hubbeam.linear.reduction import MODAL_PREFIX, reduce_for_sampling
 from hubbeam.linear.statespace import OUTPUTS, linear_model
 from hubbeam.model.maneuvers import StateFeedback
 from hubbeam.model.shapers import Shaper, check_sampling, rounded
@@ -62,7 +63,10 @@ def sampled_controller(case: Case, beam, sm) -> SampledController:
     """The sampled controller of ``case`` (module docstring) for the run's matrices ``sm``."""
     maneuver, sampling = case.maneuver, case.maneuver.sampling
     spec = maneuver.design
-    dm = discretise(design_plant(case, beam, sm), sampling.sample_time, sampling.delay)
+    plant = design_plant(case, beam, sm)
+    if sampling.reduce:
+        plant, _ = reduce_for_sampling(plant, sampling.sample_time)
+    dm = discretise(plant, sampling.sample_time, sampling.delay)
     design = discrete_lqr if sampling.gain == "discrete" else continuous_lqr
     lqr = design(dm, spec.weights, spec.input_weight)
     simulated = linear_model(beam, sm, case.model, 0.0, "free")  # the sensors' rows: the same at any speed
@@ -79,10 +83,19 @@ def sampled_controller(case: Case, beam, sm) -> SampledController:
     return kalman_controller(lqr, kf, simulated, u_max, 0.0, feedforward)
 
 
+def reduction_error(case: Case, beam, sm):
+    """The largest relative frequency-response error of the case's truncated design model up to half
+    the sampling frequency (``hubbeam.linear.reduction.response_error``)."""
+    return reduce_for_sampling(design_plant(case, beam, sm), case.maneuver.sampling.sample_time)[1]
+
+
 def estimate_unit(name: str, inputs=()) -> str:
     """The unit of a state the controller estimates: a measured signal's (the lumped model's
-    states) or a beam model's (``hubbeam.linear.export.state_units``)."""
-    return OUTPUTS[LUMPED_SIGNALS[name]][0] if name in LUMPED_SIGNALS else state_units(name, inputs)
+    states), none for a modal coordinate of a truncated model (``mode_k``, a mixture of states), or a
+    beam model's (``hubbeam.linear.export.state_units``)."""
+    if name in LUMPED_SIGNALS:
+        return OUTPUTS[LUMPED_SIGNALS[name]][0]
+    return "1" if name.startswith(MODAL_PREFIX) else state_units(name, inputs)
 
 
 def sampled_loop(case: Case, controller: SampledController) -> SampledLoop:
@@ -137,6 +150,11 @@ def resolve(case: Case, sm, beam) -> Resolved:
             raise FeedbackError(f"{where}.maneuver.sampling", str(error)) from None
         attributes = {"controller_kind": controller.kind,
                       "controller_poles": [[p.real, p.imag] for p in controller.poles]}
+        if sampling.reduce:
+            error = reduction_error(case, beam, sm)
+            attributes |= {"design_reduced_states": controller.design.plant_states,
+                           "design_reduction_error": error.value, "design_reduction_error_output": error.output,
+                           "design_reduction_error_hz": error.frequency}
     elif case.maneuver.needs_law:
         law, attributes = feedback_law(case, sm, beam)
     shaper = None

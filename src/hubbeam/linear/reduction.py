@@ -39,6 +39,9 @@ import scipy.linalg
 
 from hubbeam.linear.statespace import LinearModel
 
+#: the names of a truncated model's states: ``mode_1``, ``mode_2``, ...
+MODAL_PREFIX = "mode_"
+
 
 @dataclass(frozen=True, eq=False)
 class ReducedModel(LinearModel):
@@ -95,7 +98,7 @@ def modal_truncation(model: LinearModel, max_frequency: float) -> ReducedModel:
     W = Z[:, :r].T - X @ Z[:, r:].T
     return ReducedModel(model=model.model, hub=model.hub, speed=model.speed, A=S[:r, :r],
                         B=ZB[:r] - X @ ZB[r:], C=model.C @ Z[:, :r], D=np.array(model.D, dtype=float),
-                        states=tuple(f"mode_{k}" for k in range(1, r + 1)), inputs=tuple(model.inputs),
+                        states=tuple(f"{MODAL_PREFIX}{k}" for k in range(1, r + 1)), inputs=tuple(model.inputs),
                         outputs=tuple(model.outputs), projection=W, expansion=Z[:, :r], cutoff=cutoff,
                         full_states=tuple(model.states))
 
@@ -152,5 +155,5 @@ def reduce_for_sampling(model: LinearModel, Ts: float, outputs=None) -> tuple[Re
     return reduced, response_error(model, reduced, nyquist, outputs)
 
 
-__all__ = ["ReducedModel", "ResponseError", "frequency_responses", "lowest_vibration", "modal_truncation",
+__all__ = ["MODAL_PREFIX", "ReducedModel", "ResponseError", "frequency_responses", "lowest_vibration", "modal_truncation",
            "reduce_for_sampling", "response_error"]

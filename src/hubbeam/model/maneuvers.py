@@ -483,11 +483,13 @@ class Sampling:
     """A state feedback run as a sampled digital controller (schema ``sampling``): the sample time
     (s), the computation delay in samples (whole or fractional), the gain (``discrete``: LQR
     redesigned on the zero-order-hold model; ``continuous``: the continuous LQR gain applied
-    through the hold), the estimator, the sensors and the seed of their noise."""
+    through the hold), whether to design on the design model truncated below half the sampling
+    frequency (``reduce``), the estimator, the sensors and the seed of their noise."""
 
     sample_time: float
     delay: float = 0.0
     gain: str = "discrete"
+    reduce: bool = False
     estimator: Estimator = Estimator("exact")
     sensors: tuple[SensorSpec, ...] = ()
     seed: int = 0
@@ -499,6 +501,8 @@ class Sampling:
             values["delay"] = float(entry["delay"])
         if "gain" in entry:
             values["gain"] = entry["gain"]
+        if "reduce" in entry:
+            values["reduce"] = bool(entry["reduce"])
         if "estimator" in entry:
             values["estimator"] = Estimator.from_dict(entry["estimator"])
         if "sensors" in entry:
@@ -508,7 +512,7 @@ class Sampling:
         return cls(**values)
 
     def to_dict(self) -> dict:
-        return {"sample_time": self.sample_time, "delay": self.delay, "gain": self.gain,
+        return {"sample_time": self.sample_time, "delay": self.delay, "gain": self.gain, "reduce": self.reduce,
                 "estimator": self.estimator.to_dict(), "sensors": [sensor.to_dict() for sensor in self.sensors],
                 "seed": self.seed}
 

@@ -155,5 +155,5 @@ def reduce_for_sampling(model: LinearModel, Ts: float, outputs=None) -> tuple[Re
     return reduced, response_error(model, reduced, nyquist, outputs)
 
 
-__all__ = ["MODAL_PREFIX", "ReducedModel", "ResponseError", "frequency_responses", "lowest_vibration", "modal_truncation",
-           "reduce_for_sampling", "response_error"]
+__all__ = ["MODAL_PREFIX", "ReducedModel", "ResponseError", "frequency_responses", "lowest_vibration",
+           "modal_truncation", "reduce_for_sampling", "response_error"]

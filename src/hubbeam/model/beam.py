@@ -174,6 +174,9 @@ def beam_from_config(beam: Mapping) -> UniformBeam | BeamSections:
     hub_radius`` and ``sections: {x: [...], rhoA: [...], EI: [...], EA: [...]}`` as inline lists
     (:class:`BeamSections`); a ``sections: {file: ...}`` must have been read into such lists before.
     """
+    if isinstance(beam.get("beam"), Mapping):
+        raise ValueError(f"beam_from_config takes the beam section, not a whole configuration (keys "
+                         f"{', '.join(sorted(beam))}); allowed: beam_from_config(cfg['beam'])")
     if "sections" not in beam:
         cls = BeamProducts if "rhoA" in beam else BeamParameters
         keys = UNIFORM_KEYS[cls]

@@ -115,8 +115,15 @@ class BeamParameters(UniformBeam):
 
     @classmethod
     def from_config(cls, cfg: Mapping) -> BeamParameters:
-        """Build from a validated config (its ``beam`` section)."""
+        """Build from a validated config whose ``beam`` section gives the factors (``density``,
+        ``area``, ...); a ``ValueError`` naming the keys otherwise (a beam of any form:
+        ``hubbeam.model.beam.beam_from_config(cfg["beam"])``, or ``hubbeam.api.load``)."""
         beam = cfg["beam"]
+        missing = [key for key in CONFIG_KEYS.values() if key not in beam]
+        if missing:
+            raise ValueError(f"beam is missing {', '.join(missing)}: BeamParameters takes a beam by its factors "
+                             f"{', '.join(CONFIG_KEYS.values())}; allowed: such a beam, or "
+                             "hubbeam.model.beam.beam_from_config(cfg['beam']) for a beam of any form")
         return cls(**{name: beam[key] for name, key in CONFIG_KEYS.items()})
 
     @property

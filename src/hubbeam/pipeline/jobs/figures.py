@@ -1,0 +1,117 @@
+"""Jobs that draw (rules in ``figures.smk``, ``study.smk``, ``sweeps.smk`` and ``validate.smk``): the
+figures of the registry's products (hubbeam.reporting.products), the sweep maps, and the two
+validation products that come with a figure (the published-table comparison and the comparison with
+the Exudyn reference). The costly validation runs are in :mod:`hubbeam.pipeline.jobs.validation`,
+which imports no drawing code.
+
+Every figure is written as PDF with its PNG beside it (:func:`hubbeam.plotting.draw`), both by
+rename once complete."""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import numpy as np
+
+from hubbeam.pipeline.runner import Job
+from hubbeam.plotting import draw, render_files
+from hubbeam.plotting.sweep_maps import plot as sweep_map
+from hubbeam.reporting.products import resolve
+from hubbeam.results.io import open_result, staged, write_netcdf
+from hubbeam.results.provenance import global_attributes
+from hubbeam.validation import figures as validation_figures
+from hubbeam.validation import published, rotating_eigen
+from hubbeam.validation.comparison import comparison_table
+
+LOG = logging.getLogger(__name__)
+#: the inputs of a figure's rule that are not the result files it draws
+NOT_DRAWN = ("style", "code")
+
+
+def _figure_files(job: Job) -> list[Path]:
+    """The PDF of ``output.pdf`` and the PNG beside it."""
+    pdf = Path(job.output["pdf"])
+    return [pdf, pdf.with_suffix(".png")]
+
+
+def simulation_figure(job: Job) -> None:
+    """A figure drawn from simulation runs (``input.datasets`` of ``params.cases``) by the product's
+    function ``params.function``."""
+    written = _figure_files(job)
+    with staged(*written) as (pdf, _png):  # save_figure writes the PNG beside the PDF
+        render_files(resolve(job.params["function"]), dict(zip(job.params["cases"], job.input["datasets"])), pdf)
+    LOG.info("%s: cases %s -> %s", job.params["function"], ", ".join(job.params["cases"]),
+             ", ".join(map(str, written)))
+
+
+def files_figure(job: Job) -> None:
+    """A figure drawn from the result files it names: the named inputs but ``style`` and ``code``
+    are opened and passed to the product's function (``params.function``) under their names, with
+    the product's ``params.options`` (e.g. the tip mass a linear-model figure shows)."""
+    files = {name: path for name, path in job.input.items() if name not in NOT_DRAWN}
+    datasets = {name: open_result(path) for name, path in files.items()}
+    written = _figure_files(job)
+    with staged(*written) as (pdf, _png):
+        draw(resolve(job.params["function"]), pdf, **datasets, **job.params["options"])
+    LOG.info("%s(%s) -> %s", job.params["function"], files, ", ".join(map(str, written)))
+
+
+def study_figure(job: Job) -> None:
+    """A study's figure of simulations (``input.simulations`` of ``params.cases``), drawn by the
+    product's function with the figure's name: per case (one run, passed alone), per comparison or
+    of the feedback designs (the runs by case name)."""
+    p = job.params
+    datasets = {case: open_result(path) for case, path in zip(p["cases"], job.input["simulations"])}
+    data = next(iter(datasets.values())) if p["per_case"] else datasets
+    written = _figure_files(job)
+    with staged(*written) as (pdf, _png):
+        draw(resolve(p["function"]), pdf, p["name"], data)
+    LOG.info("%s(%r, %s) -> %s", p["function"], p["name"], ", ".join(datasets), ", ".join(map(str, written)))
+
+
+def figure_sweep(job: Job) -> None:
+    """The map of a parameter sweep (``input.sweep``) as configured in its ``figure``."""
+    written = _figure_files(job)
+    with staged(*written) as (pdf, _png):
+        draw(sweep_map, pdf, open_result(job.input["sweep"]))
+    LOG.info("sweep map %s -> %s", job.input["sweep"], ", ".join(map(str, written)))
+
+
+def validate_published(job: Job) -> None:
+    """Rotating-cantilever frequencies of the FOAM linearisation against the published tables
+    (``params.published``: the modes and the speed grid) -> the comparison tables, the frequency
+    curves and their figure. A value not reproduced is a result, reported with its verdict, and
+    announced as a warning; it does not stop the run."""
+    p, out = job.params, job.output
+    modes = p["published"]["modes"]
+    table = rotating_eigen.published_comparison(modes, p["n_quad"])
+    with staged(out["table"]) as (csv,):
+        table.to_csv(csv, index=False)
+    tip_mass = rotating_eigen.tip_mass_comparison(modes[-2:], p["n_quad"])
+    with staged(out["tip_mass"]) as (csv,):
+        tip_mass.to_csv(csv, index=False)
+    curves = rotating_eigen.frequency_curves(np.linspace(**p["published"]["gammas"]), 70.0, 0.0, max(modes),
+                                             p["n_quad"])
+    curves.attrs = global_attributes(curves.attrs.pop("title"), extra={
+        **curves.attrs, "published_sources": "; ".join(published.CITATIONS.values())})
+    write_netcdf(curves, out["curves"])
+    with staged(out["pdf"], out["png"]) as (pdf, _png):
+        draw(validation_figures.rotating_frequencies, pdf, curves, table)
+    LOG.info("published frequencies:\n%s\n%s", table.to_string(index=False), tip_mass.to_string(index=False))
+    disagreeing = [part[~part["agrees"]] for part in (table, tip_mass)]
+    if any(len(part) for part in disagreeing):
+        LOG.warning("published values not reproduced:\n%s",
+                    "\n".join(part.to_string(index=False) for part in disagreeing if len(part)))
+
+
+def validate_comparison(job: Job) -> None:
+    """The table and the figure of the models against the Exudyn reference, from the comparison
+    of every validation case (``input.cases`` of ``params.cases``)."""
+    datasets = {case: open_result(path) for case, path in zip(job.params["cases"], job.input["cases"])}
+    table = comparison_table(datasets)
+    with staged(job.output["table"]) as (csv,):
+        table.to_csv(csv, index=False)
+    with staged(job.output["pdf"], job.output["png"]) as (pdf, _png):
+        draw(validation_figures.exudyn_comparison, pdf, datasets)
+    LOG.info("comparison with the Exudyn reference:\n%s", table.to_string(index=False))

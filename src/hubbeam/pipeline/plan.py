@@ -153,24 +153,22 @@ class Plan:
         """The jobs that build ``targets`` (default: those of ``all``) from the files no rule
         writes, each after the jobs that write its inputs; what Snakemake would run in a folder
         without results, found from the steps alone."""
-        writers: dict[str, tuple[str, Mapping[str, str], Job]] = {}
-        for rule, step in self.steps.items():
-            for wildcards, job in step.jobs():
-                for path in _paths(job.output):
-                    writers[path] = (rule, wildcards, job)
-        ordered: dict[tuple[str, str], PlannedJob] = {}
-        visiting: set[tuple[str, str]] = set()
+        writers = {path: (rule, wildcards) for rule, step in self.steps.items() for wildcards in step.wildcards
+                   for path in step.output_paths(wildcards)}
+        ordered: dict[tuple[str, Mapping[str, str]], PlannedJob] = {}
+        visiting: set[tuple[str, Mapping[str, str]]] = set()
 
         def visit(path: str) -> None:
             if path not in writers:
                 return
-            rule, wildcards, job = writers[path]
-            key = (rule, job.log)
+            key = writers[path]
             if key in ordered:
                 return
             if key in visiting:
-                raise ValueError(f"rule {rule} needs its own output {path}")
+                raise ValueError(f"rule {key[0]} needs its own output {path}")
             visiting.add(key)
+            rule, wildcards = key
+            job = self.steps[rule].job(wildcards)
             for needed in _paths(job.input):
                 visit(needed)
             visiting.discard(key)

@@ -92,13 +92,18 @@ class Step:
             return value
 
         output = FrozenMap({name: evaluate(value, True) for name, value in self.output.items()})
-        return Job(input=FrozenMap({name: evaluate(value, True) for name, value in self.input.items()}),
-                   output=output, params=FrozenMap({name: evaluate(value, False) for name, value in self.params.items()}),
-                   log=fill(self.log, wildcards))
+        inputs = FrozenMap({name: evaluate(value, True) for name, value in self.input.items()})
+        params = FrozenMap({name: evaluate(value, False) for name, value in self.params.items()})
+        return Job(input=inputs, output=output, params=params, log=fill(self.log, wildcards))
 
     def jobs(self) -> list[tuple[Mapping[str, str], Job]]:
         """Every job of the step the configuration defines, with its wildcards."""
         return [(wildcards, self.job(wildcards)) for wildcards in self.wildcards]
+
+    def output_paths(self, wildcards: Mapping[str, str]) -> list[str]:
+        """The paths the job of ``wildcards`` writes (its inputs and params not evaluated)."""
+        return [fill(path, wildcards) for value in self.output.values()
+                for path in ((value,) if isinstance(value, str) else value)]
 
 
 def _as_files(value) -> str | tuple[str, ...]:

@@ -1,9 +1,9 @@
 """Snakemake shim: frequencies of a non-uniform beam, Ritz vs our finite elements vs pyBModes.
 
-Runs :func:`hubbeam.pipeline.jobs.eigen.validate_nonuniform` through the runner.
+Runs :func:`hubbeam.pipeline.jobs.nonuniform.validate_nonuniform` through the runner.
 """
 
-from hubbeam.pipeline.jobs.eigen import validate_nonuniform
+from hubbeam.pipeline.jobs.nonuniform import validate_nonuniform
 from hubbeam.pipeline.runner import run
 
 run(validate_nonuniform, snakemake)

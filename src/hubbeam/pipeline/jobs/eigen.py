@@ -1,7 +1,6 @@
 """Jobs of the eigen-analysis at constant hub speed (rules in ``eigen.smk``): K22's eigenvalues
 (Fig. 9), the critical speeds (Sections 4.2, 4.4) as a map and as the table the claims read, the
-Campbell diagram, the beam as data, Table 2; and the frequencies of a non-uniform beam against
-independent models (rule ``validate_nonuniform`` in ``validate.smk``), seconds like the others."""
+Campbell diagram, the beam as data, Table 2."""
 
 from __future__ import annotations
 
@@ -16,7 +15,6 @@ from hubbeam.model.shapes import beam_dataset
 from hubbeam.pipeline.runner import Job
 from hubbeam.results.io import staged, write_netcdf
 from hubbeam.results.provenance import global_attributes
-from hubbeam.validation.nonuniform import nonuniform_tables
 
 LOG = logging.getLogger(__name__)
 
@@ -75,14 +73,3 @@ def eigen_table2(job: Job) -> None:
     with staged(job.output["csv"]) as (csv,):
         table.to_csv(csv, index=False)
     LOG.info("Table 2:\n%s", table.to_string(index=False))
-
-
-def validate_nonuniform(job: Job) -> None:
-    """The frequencies of a non-uniform beam from the Ritz model against our finite elements
-    (``output.ritz_fe``) and, when the rule has that output, against pyBModes (``output.pybmodes``)."""
-    outputs = job.output
-    tables = nonuniform_tables(beam_from_config(job.params["beam"]), pybmodes="pybmodes" in outputs)
-    for name, table in tables.items():
-        with staged(outputs[name]) as (path,):
-            table.to_csv(path, index=False)
-        LOG.info("%s\n%s", name, table.to_string(index=False))

@@ -1,6 +1,6 @@
-"""Jobs of the tables and reports (rules in ``figures.smk``, ``report.smk``, ``study.smk`` and
-``validate.smk``): Tables 1-3, the paper's claims and reproduction report, a study's report and
-summary, the report of the independent validation, and the archive of a configuration's results."""
+"""Jobs of the reports (rules in ``report.smk``, ``study.smk`` and ``validate.smk``): the paper's
+claims and reproduction report, a study's report and summary, the report of the independent
+validation, and the archive of a configuration's results."""
 
 from __future__ import annotations
 
@@ -10,7 +10,6 @@ import os
 from collections import Counter
 from pathlib import Path
 
-from hubbeam.paper import tables
 from hubbeam.paper.claims import Results, evaluate, read_claims, write_claims
 from hubbeam.paper.explain import section
 from hubbeam.paper.readings import read_rows
@@ -25,34 +24,6 @@ from hubbeam.study.trust import design_table
 from hubbeam.validation.report import published_section, validation_markdown
 
 LOG = logging.getLogger(__name__)
-
-
-def _write_table(job: Job, table) -> None:
-    """Write ``table`` as ``output.csv``, ``output.md`` and ``output.tex``."""
-    out = job.output
-    with staged(out["csv"], out["md"], out["tex"]) as (csv_file, _md, _tex):
-        tables.write_table(table, csv_file)
-    LOG.info("%s", tables.to_markdown(table))
-
-
-def table1(job: Job) -> None:
-    """Table 1, the physical parameters of ``params.beam`` beside the printed ones."""
-    _write_table(job, tables.table1(job.params["beam"]))
-
-
-def table2_render(job: Job) -> None:
-    """The Markdown and LaTeX renderings of Table 2 (its csv, ``input.csv``, comes from the eigen-analysis)."""
-    table = tables.table2(job.input["csv"], job.params["speed"])
-    with staged(job.output["md"], job.output["tex"]) as (md, _tex):
-        tables.write_table(table, md.with_suffix(".csv"), csv=False)  # .md and .tex beside that name
-    LOG.info("%s", tables.to_markdown(table))
-
-
-def table3(job: Job) -> None:
-    """Table 3, the largest |Q_theta| per torque amplitude (FOAM), from the runs ``input.datasets``
-    of ``params.cases``."""
-    runs = zip(job.params["cases"], job.input["datasets"])
-    _write_table(job, tables.table3({case: open_result(path) for case, path in runs}))
 
 
 def claims(job: Job) -> None:

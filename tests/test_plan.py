@@ -20,6 +20,7 @@
 from __future__ import annotations
 
 import ast
+import dataclasses
 import logging
 import math
 import shutil
@@ -29,10 +30,13 @@ import pytest
 import yaml
 from synthetic_results import CONFIG_FILE, REPO, SCRIPTS, small_study
 
+from hubbeam.model.beam import beam_from_config
+from hubbeam.model.eigen import table2
 from hubbeam.model.frozen import FrozenMap
 from hubbeam.model.matrices import configuration_name
 from hubbeam.model.models import FAMILIES, MODELS
 from hubbeam.model.parameters import TipMass
+from hubbeam.pipeline.jobs.eigen import eigen_table2
 from hubbeam.pipeline.plan import NotPlanned, PlanError, build_plan
 from hubbeam.pipeline.runner import Job, run_job
 from hubbeam.pipeline.steps import Step, fill
@@ -333,6 +337,20 @@ def test_a_costly_job_s_code_inputs_hold_no_drawing_code(paper):
         assert any(path.endswith("pipeline/runner.py") for path in code), rule
     exudyn = [Path(path).as_posix() for path in paper.steps["validate_exudyn"].input["code"]]
     assert not [path for path in exudyn if path.endswith(("fe_beam.py", "simulation/simulate.py"))]
+
+
+def test_a_job_function_runs_on_its_step_s_job(paper, tmp_path):
+    """Table 2's job, called directly with the job of its step (the output moved aside), writes
+    the table hubbeam.model.eigen.table2 gives for the configuration's own beam, speed, modes and
+    quadrature: the params reach the function under the right names."""
+    job = dataclasses.replace(paper.steps["eigen_table2"].job(), output=FrozenMap({"csv": str(tmp_path / "t.csv")}),
+                              log=str(tmp_path / "t.log"))
+    run_job(eigen_table2, job)
+    raw = paper_config()
+    expected = table2(beam_from_config(raw["beam"]), float(raw["eigen"]["table2_speed"]), raw["numerics"]["modes"],
+                      raw["numerics"]["quadrature_points"])
+    assert (tmp_path / "t.csv").read_text() == expected.to_csv(index=False)
+    assert "Table 2:" in (tmp_path / "t.log").read_text()
 
 
 # --- the runner -------------------------------------------------------------------------------

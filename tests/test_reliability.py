@@ -47,6 +47,7 @@ from hubbeam.reporting.products import PAPER_PRODUCTS
 from hubbeam.results.io import ResultFileError, open_result, staged, write_netcdf
 from hubbeam.results.reader import DatasetError, simulation_inputs
 from hubbeam.simulation.simulate import compile_kernels, simulate
+from hubbeam.simulation.sweep import run_sweep
 
 SNAKEFILE = REPO / "Snakefile"
 
@@ -311,6 +312,17 @@ def test_every_job_of_all_puts_each_output_in_place_by_rename(small_run):
     assert ran == {step.script for step in plan.steps.values()} - {
         "validate_exudyn.py", "validate_models.py", "validate_case.py", "validate_comparison.py", "validate_modes.py",
         "validate_convergence.py", "validate_nonuniform.py", "report_validation.py"}  # `snakemake validate` only
+
+
+def test_the_map_gathered_by_the_jobs_is_the_map_of_the_configuration_s_sweep(small_run):
+    """The sweep's chunk and gather jobs, given the plan's params, write exactly the map that
+    run_sweep gives for the configuration's Sweep in one go."""
+    root, plan, _ = small_run
+    (name, sweep), = plan.settings.sweeps.items()
+    gathered = open_result(root / plan.paths.sweep(name))
+    whole = run_sweep(sweep, plan.settings.beam)
+    xr.testing.assert_identical(gathered.drop_attrs(deep=False), whole.drop_attrs(deep=False))
+    assert json.loads(gathered.attrs["sweep_config"]) == sweep.to_dict()
 
 
 # ---------------------------------------------------------------------------------------------

@@ -39,7 +39,7 @@ from hubbeam.model.parameters import TipMass
 from hubbeam.pipeline.jobs.eigen import eigen_table2
 from hubbeam.pipeline.plan import NotPlanned, PlanError, build_plan
 from hubbeam.pipeline.runner import Job, run_job
-from hubbeam.pipeline.steps import Step, fill
+from hubbeam.pipeline.steps import Step, file_paths, fill
 from hubbeam.reporting.products import GENERAL_PRODUCTS, PAPER_PRODUCTS, product_cases
 from hubbeam.results.io import ResultFileError
 from hubbeam.study import MARKER
@@ -108,13 +108,11 @@ def test_the_paper_builds_its_products_and_what_they_read(paper):
 
 def test_every_target_is_written_by_a_job_after_the_jobs_writing_its_inputs(paper):
     jobs = paper.jobs()
-    written = {path: index for index, planned in enumerate(jobs) for value in planned.job.output.values()
-               for path in ((value,) if isinstance(value, str) else value)}
+    written = {path: index for index, planned in enumerate(jobs) for path in file_paths(planned.job.output)}
     assert set(paper.targets) <= set(written)
     for index, planned in enumerate(jobs):
-        for value in planned.job.input.values():
-            for path in (value,) if isinstance(value, str) else value:
-                assert written.get(path, -1) < index, (planned.rule, path)
+        for path in file_paths(planned.job.input):
+            assert written.get(path, -1) < index, (planned.rule, path)
     counts = {rule: sum(planned.rule == rule for planned in jobs) for rule in paper.steps}
     raw = paper_config()
     assert counts["simulate"] == len(raw["cases"]) and counts["matrices"] == 3

@@ -42,6 +42,7 @@ from hubbeam.configuration.load import ConfigError
 from hubbeam.model.matrices import assemble, to_dataset
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.pipeline.plan import build_plan
+from hubbeam.pipeline.steps import file_paths
 from hubbeam.plotting.style import styled
 from hubbeam.reporting.products import PAPER_PRODUCTS
 from hubbeam.results.io import ResultFileError, open_result, staged, write_netcdf
@@ -252,11 +253,6 @@ def test_staged_writes_nothing_when_the_writer_fails_or_forgets_a_file(tmp_path)
     assert sorted(os.listdir(tmp_path)) == ["a.csv"] and (tmp_path / "a.csv").read_text() == "old\n"
 
 
-def result_paths(files) -> list[str]:
-    """The paths of a job's named files (a path or a tuple of paths each)."""
-    return [path for value in files.values() for path in ((value,) if isinstance(value, str) else value)]
-
-
 @pytest.fixture(scope="module")
 def small_run(tmp_path_factory):
     """Every job of `all` of the small study (tests/synthetic_results.py: the paper's products and
@@ -285,7 +281,7 @@ def small_run(tmp_path_factory):
         for planned in plan.jobs():
             job, script = planned.job, plan.steps[planned.rule].script
             if set(job.output) == {"pdf", "png"} and script in drawn:
-                for path in result_paths(job.output):
+                for path in file_paths(job.output):
                     Path(path).parent.mkdir(parents=True, exist_ok=True)
                     Path(path).write_bytes(b"stand-in figure")
                 runs.append((planned, None))
@@ -304,7 +300,7 @@ def test_every_job_of_all_puts_each_output_in_place_by_rename(small_run):
     root, plan, runs = small_run
     for planned, renamed in runs:
         if renamed is not None:
-            expected = {(root / path).resolve() for path in result_paths(planned.job.output)}
+            expected = {(root / path).resolve() for path in file_paths(planned.job.output)}
             assert expected <= renamed, (planned.rule, sorted(map(str, expected - renamed)))
     assert all((root / target).is_file() for target in plan.targets)
     assert temporaries(root) == []
@@ -352,7 +348,7 @@ def test_a_truncated_input_is_named_by_every_job_reading_it(small_run, tmp_path)
     for planned, _ in runs:
         script = plan.steps[planned.rule].script
         job = planned.job
-        results = [path for path in result_paths(job.input) if path.endswith(".nc")]
+        results = [path for path in file_paths(job.input) if path.endswith(".nc")]
         if script in checked or script in BUNDLING or not results:
             continue
         checked.add(script)

@@ -19,6 +19,7 @@ import yaml
 from synthetic_results import CONFIG_FILE, REPO
 
 from hubbeam.pipeline.plan import build_plan
+from hubbeam.pipeline.steps import file_paths
 
 #: the one lint the workflow keeps, on purpose (README, "The pipeline")
 NO_SOFTWARE_DIRECTIVE = "Specify a conda environment or container for each rule."
@@ -70,7 +71,5 @@ def test_a_dry_run_lists_the_jobs_of_the_plan(workdir, study):
     assert "This was a dry-run" in output, output[-3000:]
     config_file = workdir / ("studies/" + study if study else "config/config.yaml")
     plan = build_plan(yaml.safe_load(config_file.read_text()), [config_file.relative_to(workdir)], REPO)
-    planned = {(job.rule, frozenset(path for value in job.job.output.values()
-                                    for path in ((value,) if isinstance(value, str) else value)))
-               for job in plan.jobs()} | {("all", frozenset())}
+    planned = {(job.rule, frozenset(file_paths(job.job.output))) for job in plan.jobs()} | {("all", frozenset())}
     assert dry_run_jobs(output) == planned

@@ -44,7 +44,7 @@ from hubbeam.model.parameters import TipMass
 from hubbeam.paper.readings import ReadingError, ReadingRuns, reading_runs
 from hubbeam.pipeline.jobs.linear import LinearExport
 from hubbeam.pipeline.runner import Job
-from hubbeam.pipeline.steps import Step, fingerprint
+from hubbeam.pipeline.steps import Step, file_paths, fingerprint
 from hubbeam.reporting.products import (
     BEAM_NC,
     CAMPBELL_NC,
@@ -169,7 +169,7 @@ class Plan:
             visiting.add(key)
             rule, wildcards = key
             job = self.steps[rule].job(wildcards)
-            for needed in _paths(job.input):
+            for needed in file_paths(job.input):
                 visit(needed)
             visiting.discard(key)
             ordered[key] = PlannedJob(rule, wildcards, job)
@@ -192,11 +192,6 @@ class Plan:
         if problems:
             raise ValueError("the rule files and the plan (hubbeam.pipeline.plan) disagree:\n"
                              + "\n".join(f"  - {problem}" for problem in problems))
-
-
-def _paths(files: Mapping[str, Any]) -> list[str]:
-    """The paths of a job's named files (a path or a tuple of paths each)."""
-    return [path for value in files.values() for path in ((value,) if isinstance(value, str) else value)]
 
 
 def build_plan(config: Mapping, config_files: Sequence[os.PathLike | str], workflow_root: os.PathLike | str) -> Plan:

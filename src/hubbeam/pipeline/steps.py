@@ -38,6 +38,11 @@ def fill(pattern: str, wildcards: Mapping[str, str]) -> str:
     return WILDCARD.sub(value, pattern)
 
 
+def file_paths(files: Mapping[str, Any]) -> list[str]:
+    """The paths of named files (each a path or a tuple of paths), in order."""
+    return [path for value in files.values() for path in ((value,) if isinstance(value, str) else value)]
+
+
 def fingerprint(*values) -> Callable:
     """A params function that stands for ``values`` (settings objects, or functions of the
     wildcards giving them) in Snakemake's rerun trigger: Snakemake compares only built-in param
@@ -102,8 +107,7 @@ class Step:
 
     def output_paths(self, wildcards: Mapping[str, str]) -> list[str]:
         """The paths the job of ``wildcards`` writes (its inputs and params not evaluated)."""
-        return [fill(path, wildcards) for value in self.output.values()
-                for path in ((value,) if isinstance(value, str) else value)]
+        return [fill(path, wildcards) for path in file_paths(self.output)]
 
 
 def _as_files(value) -> str | tuple[str, ...]:

@@ -1,9 +1,9 @@
 """Snakemake shim: the claims x readings matrix.
 
-Runs :func:`hubbeam.pipeline.jobs.readings.readings_matrix` through the runner.
+Runs :func:`hubbeam.pipeline.jobs.claims.readings_matrix` through the runner.
 """
 
-from hubbeam.pipeline.jobs.readings import readings_matrix
+from hubbeam.pipeline.jobs.claims import readings_matrix
 from hubbeam.pipeline.runner import run
 
 run(readings_matrix, snakemake)

@@ -1,16 +1,15 @@
 """Jobs of the reports (rules in ``report.smk``, ``study.smk`` and ``validate.smk``): the paper's
-claims and reproduction report, a study's report and summary, the report of the independent
-validation, and the archive of a configuration's results."""
+reproduction report, a study's report and summary, the report of the independent validation, and
+the archive of a configuration's results."""
 
 from __future__ import annotations
 
 import csv
 import logging
 import os
-from collections import Counter
 from pathlib import Path
 
-from hubbeam.paper.claims import Results, evaluate, read_claims, write_claims
+from hubbeam.paper.claims import read_claims
 from hubbeam.paper.explain import section
 from hubbeam.paper.readings import read_rows
 from hubbeam.paper.report import reproduction_markdown
@@ -24,19 +23,6 @@ from hubbeam.study.trust import design_table
 from hubbeam.validation.report import published_section, validation_markdown
 
 LOG = logging.getLogger(__name__)
-
-
-def claims(job: Job) -> None:
-    """Every claim of the paper against the runs (``input.datasets`` of ``params.cases``) and the
-    eigen-analysis tables -> ``output.claims``."""
-    results = Results(dict(zip(job.params["cases"], job.input["datasets"])), table2_csv=job.input["table2"],
-                      critical_speeds_csv=job.input["critical_speeds"])
-    rows = evaluate(results)
-    with staged(job.output["claims"]) as (path,):
-        write_claims(rows, path)
-    LOG.info("%d claims: %s", len(rows), dict(Counter(row["verdict"] for row in rows)))
-    for row in rows:
-        LOG.info("%-12s %s: paper %s, computed %.6g", row["verdict"], row["id"], row["paper"], row["computed"])
 
 
 def reproduction_report(job: Job) -> None:

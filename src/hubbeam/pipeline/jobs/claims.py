@@ -1,17 +1,32 @@
-"""Jobs of the alternative readings of the paper (rules in ``readings.smk``; hubbeam.paper.readings):
-one reading's claims, the claims x readings matrix."""
+"""Jobs of the paper's claims (rules ``claims`` in ``report.smk`` and those of ``readings.smk``;
+hubbeam.paper.claims, hubbeam.paper.readings): every claim against the results, one alternative
+reading's claims, the claims x readings matrix. Together because they import the same modules."""
 
 from __future__ import annotations
 
 import logging
+from collections import Counter
 
-from hubbeam.paper.claims import read_claims
+from hubbeam.paper.claims import Results, evaluate, read_claims, write_claims
 from hubbeam.paper.readings import evaluate_reading, matrix, read_rows, reading_rows, write_rows
 from hubbeam.pipeline.runner import Job
 from hubbeam.results.io import staged, write_netcdf
 from hubbeam.results.provenance import global_attributes
 
 LOG = logging.getLogger(__name__)
+
+
+def claims(job: Job) -> None:
+    """Every claim of the paper against the runs (``input.datasets`` of ``params.cases``) and the
+    eigen-analysis tables -> ``output.claims``."""
+    results = Results(dict(zip(job.params["cases"], job.input["datasets"])), table2_csv=job.input["table2"],
+                      critical_speeds_csv=job.input["critical_speeds"])
+    rows = evaluate(results)
+    with staged(job.output["claims"]) as (path,):
+        write_claims(rows, path)
+    LOG.info("%d claims: %s", len(rows), dict(Counter(row["verdict"] for row in rows)))
+    for row in rows:
+        LOG.info("%-12s %s: paper %s, computed %.6g", row["verdict"], row["id"], row["paper"], row["computed"])
 
 
 def reading(job: Job) -> None:

@@ -12,9 +12,10 @@ from functools import partial
 import numpy as np
 
 from benchmarks.timing import median_time
-from hubbeam.configuration.settings import case_from_config
+from hubbeam.configuration.settings import case_from_config, from_config
 from hubbeam.core import radau
 from hubbeam.model import eigen
+from hubbeam.model.frozen import FrozenMap
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.simulation import sweep as sweeps
 from hubbeam.simulation.simulate import simulate
@@ -74,18 +75,16 @@ def sweep_rows(cfg: Mapping, params: BeamParameters, points: int,
 
     rows = []
     threads = sweeps.default_threads()
-    for name in sweeps.sweep_names(cfg):
-        spec = sweeps.sweep_settings(cfg, name)
-        for key in spec["axes"]:
-            spec["grid"][key]["num"] = points
+    for name, configured in from_config(cfg).sweeps.items():
+        spec = dataclasses.replace(configured, grid=FrozenMap({key: dataclasses.replace(grid, num=points)
+                                                               for key, grid in configured.grid.items()}))
         timings = {}
         for count in sorted({1, threads}):
             start = time.perf_counter()
             ds = sweeps.run_sweep(spec, params, threads=count)
             timings[count] = time.perf_counter() - start
-        tight = {**spec, "numerics": {**spec["numerics"], "rtol": reference_rtol,
-                                      "atol": reference_rtol * spec["numerics"]["atol"]
-                                      / spec["numerics"]["rtol"]}}
+        tight = dataclasses.replace(spec, numerics=dataclasses.replace(
+            spec.numerics, rtol=reference_rtol, atol=reference_rtol * spec.numerics.atol / spec.numerics.rtol))
         exact = sweeps.run_sweep(tight, params, threads=threads)
         both = (ds.status == radau.SUCCESS) & (exact.status == radau.SUCCESS)
         relative = abs(ds.peak_tip_deflection / exact.peak_tip_deflection - 1.0).where(both)
@@ -93,7 +92,7 @@ def sweep_rows(cfg: Mapping, params: BeamParameters, points: int,
         residual = (abs(ds.residual_amplitude - exact.residual_amplitude).where(both).max()
                     if "residual_amplitude" in ds else np.nan)
         rows.append({"sweep": name, "simulations": int(ds.diverged.size),
-                     "rtol": spec["numerics"]["rtol"], "atol": spec["numerics"]["atol"],
+                     "rtol": spec.numerics.rtol, "atol": spec.numerics.atol,
                      "wall_1_thread_s": timings[1], f"wall_{threads}_threads_s": timings[threads],
                      "simulations_per_s": ds.diverged.size / timings[threads],
                      "diverged": int(ds.diverged.sum()),

@@ -124,6 +124,39 @@ def write_dataset(ds: xr.Dataset, path: Path) -> Path:
 CONFIG_FILE = Path(__file__).resolve().parents[1] / "config" / "config.yaml"
 
 
+def small_study(name: str = "small") -> dict:
+    """config/config.yaml made a study of its own (folder results/<name>/) that also asks for the
+    paper's products, and shrunk to seconds of computing: every rule of `all`, the paper's and a
+    study's, in one configuration. Cases of 6 s with the maneuver over 4 s and at most 2 modes (as
+    the tiny workflow of tests/test_archive.py), coarse integrator and grids, no convergence check,
+    one measure reading (it simulates nothing), one 2 x 2 sweep of FOAM in one chunk, the
+    published-table validation with few modes, the linear models without a tip mass."""
+    import yaml
+
+    config = yaml.safe_load(CONFIG_FILE.read_text())
+    config["study"] = {"name": name, "title": "A small study",
+                       "comparisons": {"spinups": ["fig05_foam_wf2p8", "fig05_tlam_wf2p8"]}}
+    del config["numerics"]["convergence_check"]
+    config["numerics"] |= {"quadrature_points": 16, "rtol": 1e-6, "atol": 1e-8, "output_step": 0.05}
+    config["eigen"] |= {"speeds": {"start": 0.0, "stop": 4.0, "num": 5},
+                        "positions": {"start": 0.0, "stop": config["beam"]["length"], "num": 3}}
+    config["linear"] |= {"speeds": {"start": 0.0, "stop": 2.0, "num": 3}, "tip_masses": [0.0], "bode_speeds": [1.0],
+                         "frequencies": {"start": 1.0, "stop": 100.0, "num": 5}, "shapes": 2}
+    for case in config["cases"].values():
+        case["t_end"] = 6.0
+        case["maneuver"]["tf"] = 4.0
+        case["modes"] = min(case.get("modes", 2), 2)
+    config["readings"] = {name: reading for name, reading in config["readings"].items()
+                          if "measure" in reading["change"]}
+    config["readings"] = dict([next(iter(config["readings"].items()))])
+    config["sweeps"]["maps"] = {"spinup": {
+        "models": ["FOAM"], "maneuver": {"kind": "prescribed"},
+        "grid": {"wf": {"start": 1.0, "stop": 2.0, "num": 2}, "tf": {"start": 2.0, "stop": 4.0, "num": 2}},
+        "t_after": 1.0, "outputs": ["peak_tip_deflection"], "figure": {"kind": "peak"}}}
+    config["validation"]["published"] = {"modes": [6, 8, 10], "gammas": {"start": 0.0, "stop": 10.0, "num": 5}}
+    return config
+
+
 def paper_cases() -> dict[str, dict]:
     """The cases of the project's ``config/config.yaml`` (so the fixtures follow the config)."""
     import yaml

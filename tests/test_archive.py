@@ -3,7 +3,6 @@ config: every product, CF compliance of every netCDF file, the archive's Workflo
 
 from __future__ import annotations
 
-import importlib.util
 import io
 import json
 import os
@@ -17,14 +16,11 @@ import netCDF4
 import pytest
 import xarray as xr
 import yaml
-from synthetic_results import CONFIG_FILE, REPO, SCRIPTS
+from synthetic_results import CONFIG_FILE, REPO
 
+from hubbeam.reporting import archive
 from hubbeam.reporting.crate import sha256
 from hubbeam.results.io import write_netcdf
-
-spec = importlib.util.spec_from_file_location("hubbeam_archive_script", SCRIPTS / "archive.py")
-archive = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(archive)
 
 
 @pytest.fixture

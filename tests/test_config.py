@@ -462,8 +462,9 @@ def test_a_config_without_the_cases_of_a_figure_stops_with_one_clear_message(tmp
     output = run.stdout + run.stderr
     assert run.returncode != 0
     assert "the config `cases` does not define" in output
-    assert "  - fig03: fig03_cfoam_n1\n" in output
-    assert "  - table3: tab3_foam_tau100, tab3_foam_tau200, tab3_foam_tau400, tab3_foam_tau50\n" in output
+    assert "  - cases: product fig03 reads fig03_cfoam_n1, which the config `cases` does not define\n" in output
+    assert ("  - cases: product table3 reads tab3_foam_tau100, tab3_foam_tau200, tab3_foam_tau400, tab3_foam_tau50, "
+            "which the config `cases` does not define\n") in output
     assert "Traceback" not in output and 'File "' not in output
 
 

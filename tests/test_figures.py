@@ -16,14 +16,13 @@ from synthetic_results import paper_cases, run_script, simulation_dataset, write
 from hubbeam.plotting import draw
 from hubbeam.plotting.style import styled, units_tex
 from hubbeam.reporting.products import (
-    EIGEN_FIGURE,
+    FILES_FIGURE,
     PAPER_PRODUCTS,
     SIMULATION_FIGURE,
     Product,
     ProductError,
-    check_product_cases,
     of_kind,
-    product_from_entry,
+    product_case_problems,
 )
 from hubbeam.results.io import ResultFileError, open_result
 from hubbeam.results.reader import DatasetError
@@ -61,46 +60,47 @@ def sha(path):
 # --- which case goes where -----------------------------------------------------------------------
 
 def test_every_case_a_product_names_is_configured():
-    check_product_cases(PAPER_PRODUCTS, paper_cases())
+    assert product_case_problems(PAPER_PRODUCTS, paper_cases()) == []
     assert PAPER_PRODUCTS["fig05"].cases == ("fig05_foam_wf2p8", "fig05_foam_wf3p5", "fig05_tlam_wf2p8",
                                              "fig05_tlam_wf3p5")
     # Fig. 8 compares with the FOAM torque runs of Table 3
     assert set(PAPER_PRODUCTS["table3"].cases) < set(PAPER_PRODUCTS["fig08"].cases)
 
 
-def test_missing_cases_are_listed_in_one_message():
+def test_missing_cases_are_listed_one_product_each():
     names = [name for name in paper_cases() if name not in ("fig04_foam", "tab3_foam_tau50")]
-    with pytest.raises(ProductError) as error:
-        check_product_cases(PAPER_PRODUCTS, names)
-    message = str(error.value)
-    assert "fig04: fig04_foam" in message and "table3: tab3_foam_tau50" in message
-    assert "fig08: tab3_foam_tau50" in message and "fig05" not in message
+    problems = product_case_problems(PAPER_PRODUCTS, names)
+    assert "cases: product fig04 reads fig04_foam, which the config `cases` does not define" in problems
+    assert [problem.split()[2] for problem in problems] == ["fig04", "fig07", "fig08", "table3"]
+    assert all(problem.endswith("reads tab3_foam_tau50, which the config `cases` does not define")
+               for problem in problems[1:])
 
 
 def test_a_case_joins_a_figure_only_when_a_product_names_it():
     names = list(paper_cases()) + ["fig05_cfoam_wf2p8"]
-    check_product_cases(PAPER_PRODUCTS, names)
+    assert product_case_problems(PAPER_PRODUCTS, names) == []
     assert all("fig05_cfoam_wf2p8" not in p.cases for p in PAPER_PRODUCTS.values())
 
 
 def test_the_paper_products_cover_its_figures_and_tables():
     paper = [key for key, p in PAPER_PRODUCTS.items() if p.in_paper]
     assert paper == [f"fig{i:02d}" for i in range(3, 11)] + ["table1", "table2", "table3"]
-    assert set(of_kind(PAPER_PRODUCTS, EIGEN_FIGURE)) == {"fig09", "campbell", "critical_map"}
+    assert set(of_kind(PAPER_PRODUCTS, FILES_FIGURE)) == {"fig09", "campbell", "critical_map"}
     for product in PAPER_PRODUCTS.values():
         assert callable(product.resolve()), product.key
         assert (product.paper and product.ours) or product.kind == "table", product.key
 
 
-def test_a_study_declares_a_product_from_a_mapping():
-    product = product_from_entry("spinups", {
-        "kind": "simulation figure", "function": "hubbeam.plotting.fig05:plot", "title": "Spin-ups",
-        "ours": "Our runs.", "in_paper": False, "cases": ["a", "b"]})
+def test_a_product_declaration_is_checked():
+    product = Product("spinups", "simulation figure", "hubbeam.plotting.fig05:plot", "Spin-ups", "Our runs.",
+                      in_paper=False, cases=["a", "b"])
     assert product.cases == ("a", "b") and product.category == "Beyond the paper"
-    with pytest.raises(ProductError, match="spinups: unknown key.*colour.*allowed: cases"):
-        product_from_entry("spinups", {"colour": "red"})
     with pytest.raises(ProductError, match="kind 'movie' is not allowed; allowed: simulation figure"):
         Product("x", "movie", "m:f", "X", "x")
+    with pytest.raises(ProductError, match="x: section 'appendix' is not allowed; allowed: paper, beam"):
+        Product("x", "simulation figure", "m:f", "X", "x", section="appendix")
+    with pytest.raises(ProductError, match="function 'draw' is not allowed; allowed: an import path"):
+        Product("x", "simulation figure", "draw", "X", "x")
 
 
 def test_snakemake_captions_escape_restructuredtext_markup():
@@ -238,7 +238,7 @@ def test_figure_script_fails_loudly_naming_a_bad_dataset(damage, sims, tmp_path)
 def test_eigen_figure_script_passes_named_inputs(key, inputs, tmp_path_factory, tmp_path):
     eigen = write_eigen(tmp_path_factory.mktemp("eigen"), n_modes=3, n_quad=16)
     out = tmp_path / f"{key}.pdf"
-    run_script("figure_eigen.py",
+    run_script("figure_files.py",
                input={name: str(eigen[stem]) for name, stem in inputs.items()} | {"style": "x", "code": []},
                output={"pdf": str(out)}, params={"function": PAPER_PRODUCTS[key].function, "options": {}})
     assert out.is_file() and out.with_suffix(".png").is_file()

@@ -1,5 +1,6 @@
-"""The paper is one study: every path from hubbeam.results.paths, one registry of products for the paper
-and every study, and one set of rules that every configuration runs."""
+"""The paper is one study: every path from hubbeam.results.paths, every file named there or in the
+registry of products, one registry of products for the paper and every study, and one set of rules
+that every configuration runs."""
 
 import re
 import shutil
@@ -32,6 +33,8 @@ STUDY_CONFIG = REPO / "studies" / "spinup10m.yaml"
 
 #: a string literal that starts with the results or logs folder ("results/...", f'logs/...')
 PATH_LITERAL = re.compile(r"""(?<![\w/.])[rbfuRBFU]{0,2}["'](results|logs)/""")
+#: a string literal that names a file of a results folder by its extension ("claims.csv", f"{x}.nc")
+RESULT_FILE_LITERAL = re.compile(r"""["'][^"'\s]+\.(nc|csv|md|html|tex|pdf|png|mat|done|tar\.gz)["']""")
 
 
 def paper() -> dict:
@@ -61,6 +64,26 @@ def test_no_results_or_logs_path_is_spelled_outside_the_paths_module():
              for path in files if path != paths_module
              for number, line in enumerate(path.read_text().splitlines(), start=1)
              if PATH_LITERAL.search(line)]
+    assert found == []
+
+
+@pytest.mark.parametrize("line, found", [
+    ('"claims.csv"', True), ("f'exudyn_{case}.nc'", True), ('"runs/models_x.nc"', True), ('"kernel.done"', True),
+    ('"../report/claims.rst"', False), ('("nc", "mat")', False), ("``simulations/{case}.nc``", False),
+    ('with_suffix(".png")', False),
+])
+def test_the_result_file_pattern_finds_what_it_should(line, found):
+    assert bool(RESULT_FILE_LITERAL.search(line)) == found
+
+
+def test_only_the_paths_module_and_the_registry_name_result_files():
+    """The rule files, the Snakefile and the workflow's plan and jobs take every file name from
+    hubbeam.results.paths or the registry of products, where each is stated once."""
+    files = [REPO / "Snakefile", *(REPO / "workflow" / "rules").glob("*.smk"),
+             *(REPO / "src" / "hubbeam" / "pipeline").rglob("*.py")]
+    found = [f"{path.relative_to(REPO)}:{number}: {line.strip()}"
+             for path in files for number, line in enumerate(path.read_text().splitlines(), start=1)
+             if RESULT_FILE_LITERAL.search(line)]
     assert found == []
 
 

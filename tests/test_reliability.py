@@ -8,9 +8,10 @@ What other test files already prove is not repeated here:
   together through the Snakefile with ``--configfile`` (incl. ``numerics.convergence_check``);
 * ``write_netcdf`` failing by an exception or a refused rename, and ``open_result`` on damaged
   files (tests/test_io.py); here: writers killed by SIGKILL, a real Snakemake run killed twice
-  and resumed, and every rule script writing its outputs by rename;
-* a truncated file given to ``figure_simulation.py`` (tests/test_figures.py); here: the other
-  scripts that read result files;
+  and resumed, and every job of `all` writing its outputs by rename (the jobs of a small
+  configuration's plan, hubbeam.pipeline.plan, each run through its rule's script);
+* a truncated file given to ``figure_simulation.py`` (tests/test_figures.py); here: every job of
+  those that reads result files;
 * TLAM at 3.5 rad/s recorded as diverged by ``simulate`` and a synthetic diverged run drawn as
   such (tests/test_simulate.py, tests/test_figures.py); here: the real run through the workflow,
   which goes on to draw Fig. 5 and mark the divergence;
@@ -35,16 +36,19 @@ import numpy as np
 import pytest
 import xarray as xr
 import yaml
-from synthetic_results import CONFIG_FILE, REPO, case_of, run_script, simulation_params, write_eigen, write_simulations
+from synthetic_results import CONFIG_FILE, REPO, case_of, run_script, simulation_params, small_study
 
 from hubbeam.configuration.load import ConfigError
 from hubbeam.model.matrices import assemble, to_dataset
 from hubbeam.model.parameters import BeamParameters
+from hubbeam.pipeline.plan import build_plan
+from hubbeam.pipeline.steps import file_paths
 from hubbeam.plotting.style import styled
 from hubbeam.reporting.products import PAPER_PRODUCTS
 from hubbeam.results.io import ResultFileError, open_result, staged, write_netcdf
 from hubbeam.results.reader import DatasetError, simulation_inputs
 from hubbeam.simulation.simulate import compile_kernels, simulate
+from hubbeam.simulation.sweep import run_sweep
 
 SNAKEFILE = REPO / "Snakefile"
 
@@ -123,8 +127,10 @@ BAD_CASES = (
      ("cases.fig05_foam_wf3p5.t_end", "got 0.005; allowed: at least one output step, "
                                       "t_end >= numerics.output_step = 0.01"),
      ("cases.fig05_tlam_wf2p8.t_end", "got -1.0; allowed: a number > 0"),
+     # 25 values per output time: the 23 of a FOAM run with 5 modes and the tip body's centre (2);
+     # (1e14 + 1) x 25 x 8 bytes = 17.76 PiB
      ("cases.fig05_tlam_wf3p5.t_end", "got 1e+12 s: case fig05_tlam_wf3p5 (TLAM, 5 modes) would store "
-                                      "100000000000001 output times x 23 values x 8 bytes = 16.34 PiB, above "
+                                      "100000000000001 output times x 25 values x 8 bytes = 17.76 PiB, above "
                                       "the memory budget numerics.memory_budget_mb = 2048 MiB"),
      ("cases.fig06_foam_n1.modes", "got 0; allowed: an integer >= 1 and <= 20"),
      ("cases.fig06_foam_n3.modes", "got 25; allowed: an integer >= 1 and <= 20"),
@@ -250,137 +256,115 @@ def test_staged_writes_nothing_when_the_writer_fails_or_forgets_a_file(tmp_path)
 
 
 @pytest.fixture(scope="module")
-def synthetic(tmp_path_factory):
-    root = tmp_path_factory.mktemp("synthetic")
-    return write_simulations(root / "simulations", dt=0.1), write_eigen(root, n_modes=5, n_quad=24)
-
-
-@pytest.fixture
-def renames(monkeypatch):
-    """Destinations of every ``os.replace`` made while the test runs."""
-    done = []
+def small_run(tmp_path_factory):
+    """Every job of `all` of the small study (tests/synthetic_results.py: the paper's products and
+    a study's in one configuration, seconds of computing) run without Snakemake: taken from the
+    configuration's plan (hubbeam.pipeline.plan) in the order of its jobs, each through its rule's
+    script with the plan's files and params. A figure (outputs ``pdf`` and ``png``) is drawn by
+    the first job of each script; the others, the same code on other runs at about 2 s each (every
+    figure is drawn in tests/test_figures.py), get stand-in files, which the reports embed and the
+    archive bundles as bytes. Returns the working directory, the plan and, per job, the files
+    renamed into place while it ran (None for a stand-in)."""
+    root = tmp_path_factory.mktemp("small")
+    renamed: list[Path] = []
     real = os.replace
 
     def record(source, destination, *args, **kwargs):
         real(source, destination, *args, **kwargs)
-        done.append(Path(destination))
+        renamed.append(Path(destination).resolve())
 
-    monkeypatch.setattr(os, "replace", record)
-    return done
-
-
-def script_runs(synthetic, out: Path, config: dict):
-    """(script, input, output, params) of every rule script of `snakemake all`, on synthetic data
-    (in dependency order: the report reads the claims, tables and figures written before)."""
-    sims, eigen = synthetic
-    cases = sorted(sims)
-    tab3 = [c for c in cases if c.startswith("tab3_")]
-    fig04 = [c for c in cases if c.startswith("fig04_")]
-    tip = {"mass": 0.5, "position": 8.0, "modes": 3}
-    case = case_of(config, "fig10_foam_mt0p5", modes=2, t_end=1.0)
-    numerics = config["numerics"]
-    t = {name: str(out / "tables" / f"{name}") for name in
-         ("table1.csv", "table1.md", "table1.tex", "table2.csv", "table2.md", "table2.tex",
-          "table3.csv", "table3.md", "table3.tex", "critical_speeds.csv")}
-    linear = {"beam": config["beam"], "tip_masses": [0.0], "speeds": {"start": 0.0, "stop": 2.0, "num": 3},
-              "damping": None, "n_modes": 2, "n_quad": 16}
-    models = out / "linear" / "models"
-    return [
-        ("compile_simulation_kernel.py", {}, {"done": str(out / "kernel_foam.done")}, {"family": "foam"}),
-        ("assemble_matrices.py", {}, {"nc": str(out / "matrices" / "mt0p5_l8.nc")},
-         {"beam": config["beam"], "configuration": tip, "n_quad": 16}),
-        ("simulate_case.py", {"matrices": str(out / "matrices" / "mt0p5_l8.nc")},
-         {"nc": str(out / "simulations" / "case.nc")},
-         simulation_params(config, case, convergence_check=True)),
-        ("eigen_table2.py", {}, {"csv": t["table2.csv"]},
-         {"beam": config["beam"], "speed": 1.0, "n_modes": 5, "n_quad": 24}),
-        ("eigen_critical_speeds.py", {}, {"grid": str(out / "eigen" / "critical_speeds.nc")},
-         {"beam": config["beam"], "tip_masses": [0.0, 0.5], "positions": {"start": 0.0, "stop": 8.0, "num": 3},
-          "search_max": 20.0, "n_modes": 3, "n_quad": 16}),
-        ("eigen_critical_speed_table.py", {}, {"table": t["critical_speeds.csv"]},
-         {"beam": config["beam"], "tip_masses": [0.0, 0.5], "search_max": 20.0, "n_modes": 3, "n_quad": 16}),
-        ("table_1.py", {}, {k: t[f"table1.{k}"] for k in ("csv", "md", "tex")},
-         {"beam": config["beam"], "tip_masses": [0.0, 0.5]}),
-        ("table_2.py", {"csv": t["table2.csv"]}, {k: t[f"table2.{k}"] for k in ("md", "tex")}, {"speed": 1.0}),
-        ("table_3.py", {"datasets": [str(sims[c]) for c in tab3]},
-         {k: t[f"table3.{k}"] for k in ("csv", "md", "tex")}, {"cases": tab3}),
-        ("figure_simulation.py", {"datasets": [str(sims[c]) for c in fig04]},
-         {"pdf": str(out / "figures" / "fig04.pdf"), "png": str(out / "figures" / "fig04.png")},
-         {"function": PAPER_PRODUCTS["fig04"].function, "cases": fig04}),
-        ("figure_eigen.py", {"critical": str(eigen["critical_speeds"]), "style": "x", "code": []},
-         {"pdf": str(out / "figures" / "critical_map.pdf"), "png": str(out / "figures" / "critical_map.png")},
-         {"function": PAPER_PRODUCTS["critical_map"].function, "options": {}}),
-        ("linear_models.py", {}, {"nc": str(models / "FOAM_free_tip0.nc"), "mat": str(models / "FOAM_free_tip0.mat")},
-         linear | {"files": [[0, "FOAM", "free", str(models / "FOAM_free_tip0.nc"),
-                              str(models / "FOAM_free_tip0.mat")]]}),
-        ("linear_dataset.py", {}, {"nc": str(out / "linear" / "campbell.nc")}, linear | {"product": "campbell"}),
-        ("linear_mode_shapes.py", {"campbell": str(out / "linear" / "campbell.nc")},
-         {"nc": str(out / "linear" / "mode_shapes.nc")}, {"beam": config["beam"], "shapes": 2}),
-        ("report_claims.py", {"datasets": [str(sims[c]) for c in cases], "table2": str(eigen["table2"]),
-                              "critical_speeds": str(eigen["critical_speeds_csv"])},
-         {"claims": str(out / "report" / "claims.csv")}, {"cases": cases}),
-        ("report_reproduction.py", {"claims": str(out / "report" / "claims.csv"),
-                                    "figures": [str(out / "figures" / "fig04.png")],
-                                    "tables": [t["table1.md"]], "datasets": [str(sims[c]) for c in cases]},
-         {"markdown": str(out / "report" / "reproduction.md"), "html": str(out / "report" / "reproduction.html")},
-         {"cases": cases, "numerics": numerics}),
-        ("archive.py", {"table": "tables/table1.csv", "figure": "figures/fig04.pdf"},
-         {"archive": str(out / "hubbeam-results.tar.gz")}, {"config": config, "workflow_root": str(REPO)}),
-    ]
+    with pytest.MonkeyPatch.context() as patch:
+        patch.chdir(root)  # the study's folder and the archive's members are relative to it
+        config_file = root / "small.yaml"
+        config_file.write_text(yaml.safe_dump(small_study(), sort_keys=False))
+        plan = build_plan(yaml.safe_load(config_file.read_text()), [config_file], REPO)
+        patch.setattr(os, "replace", record)
+        runs, drawn = [], set()
+        for planned in plan.jobs():
+            job, script = planned.job, plan.steps[planned.rule].script
+            if set(job.output) == {"pdf", "png"} and script in drawn:
+                for path in file_paths(job.output):
+                    Path(path).parent.mkdir(parents=True, exist_ok=True)
+                    Path(path).write_bytes(b"stand-in figure")
+                runs.append((planned, None))
+                continue
+            drawn.add(script)
+            before = len(renamed)
+            run_script(script, input=dict(job.input), output=dict(job.output), params=dict(job.params), log=job.log)
+            runs.append((planned, set(renamed[before:])))
+    return root, plan, runs
 
 
-def test_every_rule_script_puts_each_output_in_place_by_rename(synthetic, tmp_path, monkeypatch, renames,
-                                                                study_config):
-    """Each output of the rules of `snakemake all` (netCDF, csv, md, tex, pdf, png, html, archive,
-    the kernel marker) appears by an atomic rename, never by writing under its own name."""
-    monkeypatch.chdir(tmp_path)  # the archive names its members relative to the working directory
-    runs = script_runs(synthetic, tmp_path, study_config)
-    for script, inputs, outputs, params in runs:
-        before = len(renames)
-        run_script(script, input=inputs, output=outputs, params=params, log=str(tmp_path / f"{script}.log"))
-        renamed = {path.resolve() for path in renames[before:]}
-        expected = {Path(path).resolve() for path in outputs.values()}
-        assert expected <= renamed, (script, sorted(map(str, expected - renamed)))
-    assert temporaries(tmp_path) == []
+def test_every_job_of_all_puts_each_output_in_place_by_rename(small_run):
+    """Each output of every job of `snakemake all` (netCDF, csv, md, tex, pdf, png, html, MATLAB,
+    the archive, the kernels' markers) appears by an atomic rename, never by writing under its own
+    name; and the jobs in the plan's order, from nothing, build every target."""
+    root, plan, runs = small_run
+    for planned, renamed in runs:
+        if renamed is not None:
+            expected = {(root / path).resolve() for path in file_paths(planned.job.output)}
+            assert expected <= renamed, (planned.rule, sorted(map(str, expected - renamed)))
+    assert all((root / target).is_file() for target in plan.targets)
+    assert temporaries(root) == []
+    ran = {plan.steps[planned.rule].script for planned, renamed in runs if renamed is not None}
+    assert ran == {step.script for step in plan.steps.values()} - {
+        "validate_exudyn.py", "validate_models.py", "validate_case.py", "validate_comparison.py", "validate_modes.py",
+        "validate_convergence.py", "validate_nonuniform.py", "report_validation.py"}  # `snakemake validate` only
+
+
+def test_the_map_gathered_by_the_jobs_is_the_map_of_the_configuration_s_sweep(small_run):
+    """The sweep's chunk and gather jobs, given the plan's params, write exactly the map that
+    run_sweep gives for the configuration's Sweep in one go."""
+    root, plan, _ = small_run
+    (name, sweep), = plan.settings.sweeps.items()
+    gathered = open_result(root / plan.paths.sweep(name))
+    whole = run_sweep(sweep, plan.settings.beam)
+    xr.testing.assert_identical(gathered.drop_attrs(deep=False), whole.drop_attrs(deep=False))
+    assert json.loads(gathered.attrs["sweep_config"]) == sweep.to_dict()
 
 
 # ---------------------------------------------------------------------------------------------
-# damaged inputs: every script that reads result files names the file
+# damaged inputs: every job that reads result files names the file
+
+#: scripts that take result files without reading them as results: the archive bundles their bytes
+BUNDLING = {"archive.py"}
+
+
+def relocated(files, place) -> dict:
+    """A job's named files with each path replaced by ``place(path)``."""
+    return {name: place(value) if isinstance(value, str) else [place(path) for path in value]
+            for name, value in files.items()}
 
 
 def truncate(source: Path, target: Path) -> Path:
+    target.parent.mkdir(parents=True, exist_ok=True)
     target.write_bytes(source.read_bytes()[:1500])
     return target
 
 
-@pytest.mark.parametrize("script", ["table_3.py", "figure_eigen.py", "report_claims.py",
-                                    "report_reproduction.py", "simulate_case.py"])
-def test_a_truncated_input_is_named_by_the_script_reading_it(script, synthetic, tmp_path, study_config):
-    sims, eigen = synthetic
-    bad = truncate(sims["tab3_foam_tau100"], tmp_path / "tab3_foam_tau100.nc")
-    cases = sorted(sims)
-    datasets = [str(bad if c == "tab3_foam_tau100" else sims[c]) for c in cases]
-    out = tmp_path / "out"
-    arguments = {
-        "table_3.py": ({"datasets": [str(bad)]}, {"csv": str(out / "table3.csv")}, {"cases": ["tab3_foam_tau100"]}),
-        "figure_eigen.py": ({"critical": str(truncate(eigen["critical_speeds"], tmp_path / "critical.nc"))},
-                            {"pdf": str(out / "critical_map.pdf")},
-                            {"function": PAPER_PRODUCTS["critical_map"].function}),
-        "report_claims.py": ({"datasets": datasets, "table2": str(eigen["table2"]),
-                              "critical_speeds": str(eigen["critical_speeds_csv"])},
-                             {"claims": str(out / "claims.csv")}, {"cases": cases}),
-        "report_reproduction.py": ({"claims": str(out / "claims.csv"), "figures": [], "tables": [],
-                                    "datasets": datasets},
-                                   {"markdown": str(out / "reproduction.md"), "html": str(out / "reproduction.html")},
-                                   {"cases": cases, "numerics": study_config["numerics"]}),
-        "simulate_case.py": ({"matrices": str(bad)}, {"nc": str(out / "case.nc")},
-                             simulation_params(study_config, case_of(study_config, "fig04_foam"))),
-    }[script]
-    inputs, outputs, params = arguments
-    expected = bad if script != "figure_eigen.py" else tmp_path / "critical.nc"
-    with pytest.raises(ResultFileError, match=f"result file {expected} cannot be read, it is corrupted or truncated"):
-        run_script(script, input=inputs, output=outputs, params=params, log=str(tmp_path / "script.log"))
-    assert not out.exists() or not [p for p in out.iterdir() if p.suffix != ".log"]
+def test_a_truncated_input_is_named_by_every_job_reading_it(small_run, tmp_path):
+    """For every script of `all` that reads a netCDF result (its first job of the small study's):
+    its first such input truncated, it fails naming that file and writes no output."""
+    root, plan, runs = small_run
+    checked = set()
+    for planned, _ in runs:
+        script = plan.steps[planned.rule].script
+        job = planned.job
+        results = [path for path in file_paths(job.input) if path.endswith(".nc")]
+        if script in checked or script in BUNDLING or not results:
+            continue
+        checked.add(script)
+        bad = truncate(root / results[0], tmp_path / script / "in" / Path(results[0]).name)
+        out = tmp_path / script / "out"
+        inputs = relocated(job.input, lambda path: str(bad) if path == results[0] else str(root / path))  # noqa: B023
+        outputs = relocated(job.output, lambda path: str(out / Path(path).name))  # noqa: B023
+        with pytest.raises(ResultFileError, match=f"result file {bad} cannot be read, it is corrupted or truncated"):
+            run_script(script, input=inputs, output=outputs, params=dict(job.params),
+                       log=str(tmp_path / script / "log"))
+        assert not out.exists() or not list(out.iterdir()), script
+    assert checked >= {"simulate_case.py", "table_3.py", "figure_simulation.py", "figure_files.py", "study_figure.py",
+                       "report_claims.py", "report_reproduction.py", "study_report.py", "readings_reading.py",
+                       "sweep_gather.py", "figure_sweep.py", "linear_mode_shapes.py"}
 
 
 # ---------------------------------------------------------------------------------------------

@@ -105,8 +105,9 @@ def test_the_beam_summary_has_a_row_per_property_whatever_the_stations():
     assert rows[1]["min"] == pytest.approx(9450.0 - 590.0 * 8.0) and rows[2]["max"] == pytest.approx(1.26e8)
     uniform = beam_summary(UNIFORM)
     assert [row["root"] for row in uniform] == pytest.approx([1.2, 1.4e4, 2.8e7])
-    markdown = study_markdown({"name": "s"}, TAPERED, [], {}, {}, {"beam_properties": "../figures/beam_properties.png",
-                                                                  "mode_shapes": "../figures/mode_shapes.png"})
+    figures = {"beam": {"beam_properties": "../figures/beam_properties.png"},
+               "eigen": {"mode_shapes": "../figures/mode_shapes.png"}}
+    markdown = study_markdown({"name": "s"}, TAPERED, [], figures)
     beam_section = markdown[markdown.index("## Beam"):markdown.index("## Cases")]
     assert beam_section.count("\n|") == 2 + 3  # header, rule and one row per property
     assert "161 stations" in beam_section and "](../figures/beam_properties.png)" in beam_section

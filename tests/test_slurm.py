@@ -25,9 +25,10 @@ import xarray as xr
 import yaml
 
 from hubbeam.configuration.load import load_config
+from hubbeam.configuration.settings import from_config
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.results.io import open_result
-from hubbeam.simulation.sweep import n_chunks, run_sweep, sweep_settings
+from hubbeam.simulation.sweep import n_chunks, run_sweep
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -102,7 +103,7 @@ def test_a_chunked_map_on_the_cluster_equals_one_run(tmp_path):
                      "--configfile", str(REPO / "config" / "config.yaml"), str(config))
     cfg = load_config(REPO / "config" / "config.yaml")
     cfg["sweeps"]["maps"] = {"tiny_map": TINY_MAP}
-    sweep = sweep_settings(cfg, "tiny_map")
+    sweep = from_config(cfg).sweeps["tiny_map"]
     assert n_chunks(sweep) == 4
     rules = cluster_rules(run)
     assert rules.count("sweep_chunk") == 4  # one cluster job per chunk

@@ -14,6 +14,7 @@
 """
 
 import copy
+import dataclasses
 import json
 import math
 
@@ -22,10 +23,12 @@ import pytest
 import xarray as xr
 
 from hubbeam.configuration.load import ConfigError, validate_config
+from hubbeam.configuration.settings import Grid, from_config
 from hubbeam.core import radau
 from hubbeam.core.inputs import ModelTraits
 from hubbeam.core.sweep import hermite_abs_max, output_grid
 from hubbeam.model import validity
+from hubbeam.model.frozen import FrozenMap
 from hubbeam.model.parameters import BeamParameters
 from hubbeam.results.io import open_result, write_netcdf
 from hubbeam.simulation.simulate import simulate
@@ -36,8 +39,6 @@ from hubbeam.simulation.sweep import (
     n_chunks,
     run_chunk,
     run_sweep,
-    sweep_names,
-    sweep_settings,
 )
 
 #: relative accuracy of the peak tip deflection that the maps are meant to have
@@ -51,11 +52,9 @@ def params(_study_config):
 
 def small_sweep(config, name, **grid):
     """The configured sweep ``name`` on a reduced grid ``{parameter: values}`` (3 modes)."""
-    sweep = sweep_settings(config, name)
-    sweep["modes"] = 3
-    for key, values in grid.items():
-        sweep["grid"][key] = {"start": values[0], "stop": values[-1], "num": len(values)}
-    return sweep
+    sweep = from_config(config).sweeps[name]
+    reduced = {key: Grid(float(values[0]), float(values[-1]), len(values)) for key, values in grid.items()}
+    return dataclasses.replace(sweep, modes=3, grid=FrozenMap({**sweep.grid, **reduced}))
 
 
 @pytest.fixture(scope="module")
@@ -66,16 +65,16 @@ def spinup(_study_config, params):
 
 @pytest.fixture(scope="module")
 def with_tip_mass(_study_config, params):
-    sweep = small_sweep(_study_config, "tlam_vs_foam", wf=[1.0, 1.5], tip_mass=[0.0, 0.5])
-    sweep["t_after"] = 5.0
+    sweep = dataclasses.replace(small_sweep(_study_config, "tlam_vs_foam", wf=[1.0, 1.5], tip_mass=[0.0, 0.5]),
+                                t_after=5.0)
     return sweep, run_sweep(sweep, params)
 
 
 def simulated_extrema(sweep, params, numerics, model, maneuver, tip_mass):
     """``simulate`` on a fine output grid: (peak, time, |v(L)|), residual amplitude."""
-    case = {"name": "sweep_point", "model": model, "modes": sweep["modes"],
-            "maneuver": {"kind": sweep["maneuver"]["kind"], **maneuver},
-            "t_end": maneuver["tf"] + sweep["t_after"], "tip_mass": tip_mass}
+    case = {"name": "sweep_point", "model": model, "modes": sweep.modes,
+            "maneuver": {"kind": sweep.maneuver["kind"], **maneuver},
+            "t_end": maneuver["tf"] + sweep.t_after, "tip_mass": tip_mass}
     ds = simulate(case, params, dict(numerics, rtol=1e-10, atol=1e-12, output_step=2e-3))
     assert ds.attrs["diverged"] == 0
     tip = abs(ds.tip_transverse)
@@ -89,7 +88,7 @@ def test_sweep_point_equals_a_simulation_of_the_same_case(spinup, params, _study
     assert int(point.diverged) == 0
     peak, tip, residual = simulated_extrema(
         sweep, params, _study_config["numerics"], model, {"wf": 1.5, "tf": 8.0},
-        sweep["tip_mass"])
+        {"mass": sweep.tip_mass.mass, "position": sweep.tip_mass.position})
     assert float(point.peak_tip_deflection) == pytest.approx(peak, rel=MAP_ACCURACY)
     # the simulation reaches the peak at the sweep's peak time
     at_peak_time = np.interp(float(point.peak_time), tip.time.values, tip.values)
@@ -103,7 +102,7 @@ def test_sweep_point_with_a_tip_mass_equals_a_simulation(with_tip_mass, params, 
         point = ds.sel(model="TLAM", wf=1.5, tip_mass=mass)
         peak, _, residual = simulated_extrema(
             sweep, params, _study_config["numerics"], "TLAM", {"wf": 1.5, "tf": 30.0},
-            {"mass": mass, "position": sweep["tip_mass"]["position"]})
+            {"mass": mass, "position": sweep.tip_mass.position})
         assert float(point.peak_tip_deflection) == pytest.approx(peak, rel=MAP_ACCURACY)
         assert float(point.residual_amplitude) == pytest.approx(residual, abs=MAP_ACCURACY * peak)
     # the tip mass changes the answer (the matrix sets are not mixed up)
@@ -118,7 +117,7 @@ def test_diverged_run_is_flagged_not_raised(spinup, params):
     assert (tlam.status == radau.LEFT_RANGE).all()  # stopped at |v(L)| > divergence_limit * L
     assert (tlam.validity == validity.DIVERGED).all()  # beyond the critical speed: not left_range
     assert np.isnan(tlam.peak_tip_deflection).all()
-    assert (tlam.stopped_at < tlam.tf + sweep["t_after"]).all()
+    assert (tlam.stopped_at < tlam.tf + sweep.t_after).all()
     assert float(ds.critical_speed.sel(eigen_model="TLAM")) < 4.0
     foam = ds.sel(model="FOAM", wf=4.0)
     assert (foam.diverged == 0).all() and np.isfinite(foam.peak_tip_deflection).all()
@@ -142,8 +141,7 @@ def test_tlam_diverges_exactly_above_its_critical_speed(_study_config, params):
                         wf=np.linspace(min(critical) - margin, max(critical) + margin, 2 + round(
                             (max(critical) - min(critical) + 2 * margin) / 0.1)),
                         tip_mass=list(masses))
-    sweep["models"] = ["TLAM"]
-    sweep["figure"] = {"kind": "peak"}
+    sweep = dataclasses.replace(sweep, models=("TLAM",), figure=FrozenMap({"kind": "peak"}))
     ds = run_sweep(sweep, params)
     np.testing.assert_allclose(ds.critical_speed.sel(eigen_model="TLAM").values, critical)
     for mass, speed in zip(masses, critical):
@@ -155,11 +153,11 @@ def test_tlam_diverges_exactly_above_its_critical_speed(_study_config, params):
 
 
 def test_grid_and_coordinates_follow_the_config(_study_config):
-    assert sweep_names(_study_config) == sorted(_study_config["sweeps"]["maps"])
-    for name in sweep_names(_study_config):
+    sweeps = from_config(_study_config).sweeps
+    assert list(sweeps) == sorted(_study_config["sweeps"]["maps"])
+    for name, sweep in sweeps.items():
         spec = _study_config["sweeps"]["maps"][name]
-        sweep = sweep_settings(_study_config, name)
-        assert sweep["axes"] == list(spec["grid"])
+        assert sweep.axes == tuple(spec["grid"])
         for key, values in axis_values(sweep).items():
             grid = spec["grid"][key]
             np.testing.assert_array_equal(values, np.linspace(grid["start"], grid["stop"],
@@ -170,9 +168,9 @@ def test_grid_and_coordinates_follow_the_config(_study_config):
         assert models.shape[1:] == (len(ModelTraits._fields),)
         # C order (model, axis 1, axis 2): the swept values vary along their own axis only
         grids = np.meshgrid(*axis_values(sweep).values(), indexing="ij")
-        for key, grid in zip(sweep["axes"], grids):
+        for key, grid in zip(sweep.axes, grids):
             if key in ("wf", "tf", "tau_max"):
-                column = ("wf", "tf") if sweep["maneuver"]["kind"] == "prescribed" else (
+                column = ("wf", "tf") if sweep.maneuver["kind"] == "prescribed" else (
                     "tau_max", "tf")
                 swept = mp[:, column.index(key)].reshape(shape)
             elif key == "tip_mass":
@@ -180,7 +178,7 @@ def test_grid_and_coordinates_follow_the_config(_study_config):
             else:
                 swept = np.array([tips[i].position for i in index]).reshape(shape)
             np.testing.assert_array_equal(swept, np.broadcast_to(grid, shape))
-        np.testing.assert_allclose(t_end - t_mark, sweep["t_after"])
+        np.testing.assert_allclose(t_end - t_mark, sweep.t_after)
 
 
 def test_dataset_is_self_describing_and_round_trips(with_tip_mass, tmp_path):
@@ -195,7 +193,7 @@ def test_dataset_is_self_describing_and_round_trips(with_tip_mass, tmp_path):
     for key in ("rtol", "atol", "output_step", "max_steps", "divergence_limit", "integrator",
                 "Conventions", "git_commit"):
         assert key in ds.attrs
-    assert json.loads(ds.attrs["sweep_config"]) == json.loads(json.dumps(sweep))
+    assert json.loads(ds.attrs["sweep_config"]) == json.loads(json.dumps(sweep.to_dict()))
     back = open_result(write_netcdf(ds, tmp_path / "sweep.nc"))
     np.testing.assert_array_equal(back.peak_tip_deflection.values, ds.peak_tip_deflection.values)
     np.testing.assert_array_equal(back.diverged.values, ds.diverged.values)
@@ -219,8 +217,7 @@ def cube(_study_config, params):
     """The three-axis map on a 3 x 2 x 2 grid, in one go."""
     sweep = small_sweep(_study_config, "tlam_vs_foam_3d", wf=[1.0, 2.0, 3.0], tf=[4.0, 8.0],
                         tip_mass=[0.0, 0.5])
-    sweep["t_after"] = 3.0
-    sweep["chunk_size"] = 5
+    sweep = dataclasses.replace(sweep, t_after=3.0, chunk_size=5)
     return sweep, run_sweep(sweep, params)
 
 
@@ -238,15 +235,15 @@ def test_a_map_gathered_from_chunk_files_equals_the_single_run(cube, params, tmp
     with pytest.raises(ValueError, match=r"chunks \[0, 1, 2, 3\]; allowed: each of 0 to 4 once"):
         gather_chunks(sweep, params, chunks[1:])
     with pytest.raises(ValueError, match="chunk 0 was run with other sweep settings"):
-        gather_chunks(dict(sweep, t_after=4.0), params, chunks)
+        gather_chunks(dataclasses.replace(sweep, t_after=4.0), params, chunks)
     with pytest.raises(IndexError, match="chunk 5; allowed: 0 to 4"):
         run_chunk(sweep, params, 5)
 
 
 def test_the_million_run_map_is_chunked(_study_config):
-    sweep = sweep_settings(_study_config, "tlam_vs_foam_3d")
-    assert len(sweep["models"]) * math.prod(g["num"] for g in sweep["grid"].values()) >= 10**6
-    assert not sweep["in_all"] and n_chunks(sweep) > 1
+    sweep = from_config(_study_config).sweeps["tlam_vs_foam_3d"]
+    assert len(sweep.models) * math.prod(grid.num for grid in sweep.grid.values()) >= 10**6
+    assert not sweep.in_all and n_chunks(sweep) > 1
 
 
 def test_hermite_extremum_and_output_grid():
@@ -292,8 +289,8 @@ def test_both_figure_kinds_are_drawn(spinup, with_tip_mass, cube, tmp_path):
         pdf, png = draw(plot, tmp_path / f"{name}.pdf", ds)
         assert pdf.stat().st_size > 0 and png.stat().st_size > 0
     sweep, ds = cube
-    for figure in (sweep["figure"], {"kind": "peak", "slices": 2}):
-        ds = ds.assign_attrs(sweep_config=json.dumps(dict(sweep, figure=figure)))
+    for figure in (dict(sweep.figure), {"kind": "peak", "slices": 2}):
+        ds = ds.assign_attrs(sweep_config=json.dumps(dict(sweep.to_dict(), figure=figure)))
         pdf, png = draw(plot, tmp_path / f"cube_{figure['kind']}.pdf", ds)
         assert pdf.stat().st_size > 0 and png.stat().st_size > 0
     _, ds = with_tip_mass
@@ -308,8 +305,7 @@ def test_sweep_cells_tell_left_range_from_diverged(_study_config, params):
     (left_range: its linearisation has no critical speed), TLAM's, beyond its critical speed,
     diverged."""
     sweep = small_sweep(_study_config, "tlam_vs_foam", wf=[1.0, 3.0], tip_mass=[0.0, 10.0])
-    sweep["t_after"] = 5.0
-    sweep["divergence_limit"] = 0.3
+    sweep = dataclasses.replace(sweep, t_after=5.0, divergence_limit=0.3)
     ds = run_sweep(sweep, params)
     cell = ds.validity.sel(wf=3.0, tip_mass=10.0)
     assert int(cell.sel(model="FOAM")) == validity.LEFT_RANGE

@@ -25,15 +25,15 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
-from hubbeam.configuration.load import ConfigError, merge_configs, read_config_file, validate_config
-from hubbeam.configuration.settings import Case, Settings, from_config
-from hubbeam.configuration.tabular import resolve_files
-from hubbeam.control.cases import check_cases, resolve, sampled_controller, sampling_of, simulate_case
+from hubbeam.configuration.load import ConfigError, merge_configs, read_config_file
+from hubbeam.configuration.settings import Case, Settings
+from hubbeam.control.cases import resolve, sampled_controller, sampling_of, simulate_case
 from hubbeam.control.feedback import design_plant
 from hubbeam.control.implementation import write_implementation
 from hubbeam.linear.statespace import linear_model
 from hubbeam.linear.voltage import voltage_model
 from hubbeam.model.damping import damping_matrices
+from hubbeam.pipeline.plan import checked_configuration
 from hubbeam.simulation.simulate import case_matrices
 from hubbeam.study import base_config_files
 
@@ -48,10 +48,9 @@ def load(paths: os.PathLike | str | Iterable[os.PathLike | str]) -> Configuratio
         raise ValueError("load: no config file given; allowed: one path or a list of paths")
     merged = merge_configs(*(read_config_file(path) for path in given))
     files = [Path(path) for path in base_config_files(merged)] + given
-    cfg = merge_configs(*(read_config_file(path) for path in files))
-    cfg = validate_config(resolve_files(cfg, given[-1].parent), files=files)
-    settings = from_config(cfg)
-    check_cases(settings, files)
+    _, settings, problems = checked_configuration(merge_configs(*(read_config_file(path) for path in files)), files)
+    if problems:
+        raise ConfigError(problems, files)
     return Configuration(settings, tuple(str(path) for path in files))
 
 

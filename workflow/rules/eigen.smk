@@ -1,112 +1,83 @@
 """Eigen-analysis at constant hub speed: K22 eigenvalues (Fig. 9), critical speeds (Sections 4.2,
-4.4), Campbell diagram and Table 2, of the configuration's beam (uniform or in sections). Every
-physical parameter reaches the scripts via `params:`. The products and the claims that read these
-files decide which are built (`eigen_results` in common.smk)."""
+4.4), Campbell diagram, the beam as data and Table 2, of the configuration's beam (uniform or in
+sections). Every physical parameter reaches the scripts via `params:`. The products and the claims
+that read these files decide which are built. Inputs and params: hubbeam.pipeline.plan
+(`eigen_steps`)."""
 
-#: the transverse mode shapes of the beam's data (eigen/beam.nc, the mode-shape figure)
-BEAM_MODE_SHAPES = 3
 
 rule eigen_k22:
     input:
-        code=script_code("eigen_k22.py"),
+        **STEPS["eigen_k22"].input,
     output:
-        ensure(PATHS.eigen("k22"), non_empty=True),
+        nc=ensure(STEPS["eigen_k22"].output["nc"], non_empty=True),
     params:
-        beam=config["beam"],
-        tip_masses=config["eigen"]["tip_masses"],
-        positions=config["eigen"]["positions"],
-        speeds=config["eigen"]["speeds"],
-        n_modes=config["numerics"]["modes"],
-        n_quad=config["numerics"]["quadrature_points"],
+        **STEPS["eigen_k22"].params,
     log:
-        PATHS.log("eigen", "k22.log"),
+        STEPS["eigen_k22"].log,
     script:
         "../scripts/eigen_k22.py"
 
 
 rule eigen_critical_speeds:
     input:
-        code=script_code("eigen_critical_speeds.py"),
+        **STEPS["eigen_critical_speeds"].input,
     output:
-        ensure(PATHS.eigen("critical_speeds"), non_empty=True),
+        nc=ensure(STEPS["eigen_critical_speeds"].output["nc"], non_empty=True),
     params:
-        beam=config["beam"],
-        tip_masses=config["eigen"]["tip_masses"],
-        positions=config["eigen"]["positions"],
-        search_max=config["eigen"]["critical_speed_search_max"],
-        n_modes=config["numerics"]["modes"],
-        n_quad=config["numerics"]["quadrature_points"],
+        **STEPS["eigen_critical_speeds"].params,
     log:
-        PATHS.log("eigen", "critical_speeds.log"),
+        STEPS["eigen_critical_speeds"].log,
     script:
         "../scripts/eigen_critical_speeds.py"
 
 
 rule eigen_critical_speed_table:
     input:
-        code=script_code("eigen_critical_speed_table.py"),
+        **STEPS["eigen_critical_speed_table"].input,
     output:
-        ensure(CLAIM_TABLES["critical_speeds"], non_empty=True),
+        csv=ensure(STEPS["eigen_critical_speed_table"].output["csv"], non_empty=True),
     params:
-        beam=config["beam"],
-        tip_masses=config["eigen"]["tip_masses"],
-        search_max=config["eigen"]["critical_speed_search_max"],
-        n_modes=config["numerics"]["modes"],
-        n_quad=config["numerics"]["quadrature_points"],
+        **STEPS["eigen_critical_speed_table"].params,
     log:
-        PATHS.log("eigen", "critical_speed_table.log"),
+        STEPS["eigen_critical_speed_table"].log,
     script:
         "../scripts/eigen_critical_speed_table.py"
 
 
 rule eigen_campbell:
     input:
-        code=script_code("eigen_campbell.py"),
+        **STEPS["eigen_campbell"].input,
     output:
-        ensure(PATHS.eigen("campbell"), non_empty=True),
+        nc=ensure(STEPS["eigen_campbell"].output["nc"], non_empty=True),
     params:
-        beam=config["beam"],
-        tip_masses=config["eigen"]["tip_masses"],
-        speeds=config["eigen"]["speeds"],
-        n_modes=config["numerics"]["modes"],
-        n_quad=config["numerics"]["quadrature_points"],
+        **STEPS["eigen_campbell"].params,
     log:
-        PATHS.log("eigen", "campbell.log"),
+        STEPS["eigen_campbell"].log,
     script:
         "../scripts/eigen_campbell.py"
 
 
 rule eigen_beam:
     input:
-        code=script_code("eigen_beam.py"),
+        **STEPS["eigen_beam"].input,
     output:
-        beam=ensure(PATHS.eigen("beam"), non_empty=True),
+        nc=ensure(STEPS["eigen_beam"].output["nc"], non_empty=True),
     params:
-        beam=config["beam"],
-        tips={name: case.tip_mass for name, case in SETTINGS.cases.items()},
-        speeds=[0.0, config["eigen"]["speeds"]["stop"]],
-        tip_masses=config["eigen"]["tip_masses"],
-        n_shapes=BEAM_MODE_SHAPES,
-        n_modes=config["numerics"]["modes"],
-        n_quad=config["numerics"]["quadrature_points"],
+        **STEPS["eigen_beam"].params,
     log:
-        PATHS.log("eigen", "beam.log"),
+        STEPS["eigen_beam"].log,
     script:
         "../scripts/eigen_beam.py"
 
 
 rule eigen_table2:
     input:
-        code=script_code("eigen_table2.py"),
+        **STEPS["eigen_table2"].input,
     output:
-        ensure(CLAIM_TABLES["table2"], non_empty=True),
+        csv=ensure(STEPS["eigen_table2"].output["csv"], non_empty=True),
     params:
-        beam=config["beam"],
-        # only the paper's configuration has it; read when the job runs
-        speed=lambda wildcards: config["eigen"]["table2_speed"],
-        n_modes=config["numerics"]["modes"],
-        n_quad=config["numerics"]["quadrature_points"],
+        **STEPS["eigen_table2"].params,
     log:
-        PATHS.log("eigen", "table2.log"),
+        STEPS["eigen_table2"].log,
     script:
         "../scripts/eigen_table2.py"

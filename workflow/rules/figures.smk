@@ -1,79 +1,68 @@
-"""Figures (Figs. 3-10 and beyond, the eigen-analysis figures of every configuration) and Tables
-1-3, drawn from the result files only.
+"""Figures (Figs. 3-10 and beyond: the figures of the eigen-analysis and of the linear models of
+every configuration) and Tables 1-3, drawn from the result files only.
 
-Every figure and table is a product of the registry (`hubbeam.reporting.products`; `PRODUCTS` in common.smk
-holds the configuration's), which names the cases or result files it reads, the function that
-draws it and its caption. One rule per figure (defined in a loop) so that each figure has its own
-caption in `snakemake --report`. The figures per case and per comparison are in study.smk.
+Every figure and table is a product of the registry (hubbeam.reporting.products;
+`PLAN.products` holds the configuration's), which names the cases or result files it reads, the
+function that draws it and its caption. One rule per figure (defined in a loop over the products
+of a kind) so that each figure has its own caption in `snakemake --report`; its step is
+`STEPS["figure_<key>"]`. The figures per case and per comparison are in study.smk. Inputs and
+params: hubbeam.pipeline.plan (`figure_steps`, `table_steps`).
 """
 
-for _key, _product in of_kind(PRODUCTS, SIMULATION_FIGURE).items():
+for _key, _product in of_kind(PLAN.products, SIMULATION_FIGURE).items():
+    _step = STEPS[f"figure_{_key}"]
 
     rule:
         name:
             f"figure_{_key}"
         localrule: True
         input:
-            datasets=product_datasets(_key),
-            style=FIGURE_STYLE,
-            code=script_code("figure_simulation.py", _product.module),
+            **_step.input,
         output:
-            pdf=ensure(PATHS.figure(_key, "pdf"), non_empty=True),
-            png=report(
-                ensure(PATHS.figure(_key, "png"), non_empty=True),
-                caption=PRODUCT_CAPTION,
-                category=_product.category,
-            ),
+            pdf=ensure(_step.output["pdf"], non_empty=True),
+            png=report(ensure(_step.output["png"], non_empty=True), caption=PRODUCT_CAPTION,
+                       category=_product.category),
         params:
-            function=_product.function,
-            cases=list(_product.cases),
-            caption=_product.caption(),
+            **_step.params,
         log:
-            PATHS.log("figures", f"{_key}.log"),
+            _step.log,
         script:
             "../scripts/figure_simulation.py"
 
 
-for _key, _product in of_kind(PRODUCTS, EIGEN_FIGURE).items():
+for _key, _product in of_kind(PLAN.products, FILES_FIGURE).items():
+    _step = STEPS[f"figure_{_key}"]
 
     rule:
         name:
             f"figure_{_key}"
         localrule: True
         input:
-            **product_files(_product),
-            style=FIGURE_STYLE,
-            code=script_code("figure_eigen.py", _product.module),
+            **_step.input,
         output:
-            pdf=ensure(PATHS.figure(_key, "pdf"), non_empty=True),
-            png=report(
-                ensure(PATHS.figure(_key, "png"), non_empty=True),
-                caption=PRODUCT_CAPTION,
-                category=_product.category,
-            ),
+            pdf=ensure(_step.output["pdf"], non_empty=True),
+            png=report(ensure(_step.output["png"], non_empty=True), caption=PRODUCT_CAPTION,
+                       category=_product.category),
         params:
-            function=_product.function,
-            options=dict(_product.options),
-            caption=_product.caption(),
+            **_step.params,
         log:
-            PATHS.log("figures", f"{_key}.log"),
+            _step.log,
         script:
-            "../scripts/figure_eigen.py"
+            "../scripts/figure_files.py"
 
 
 rule table1:
     localrule: True
     input:
-        code=script_code("table_1.py"),
+        **STEPS["table1"].input,
     output:
-        csv=report(PATHS.table("table1", "csv"), caption=PRODUCT_CAPTION, category="Tables"),
-        md=PATHS.table("table1", "md"),
-        tex=PATHS.table("table1", "tex"),
+        csv=report(STEPS["table1"].output["csv"], caption=PRODUCT_CAPTION, category="Tables"),
+        md=STEPS["table1"].output["md"],
+        tex=STEPS["table1"].output["tex"],
     params:
-        beam=config["beam"],
-        caption=product("table1").caption(),
+        **STEPS["table1"].params,
     log:
-        PATHS.log("tables", "table1.log"),
+        STEPS["table1"].log,
     script:
         "../scripts/table_1.py"
 
@@ -81,17 +70,14 @@ rule table1:
 rule table2_render:
     localrule: True
     input:
-        **product_files(product("table2")),
-        code=script_code("table_2.py"),
+        **STEPS["table2_render"].input,
     output:
-        md=report(PATHS.table("table2", "md"), caption=PRODUCT_CAPTION, category="Tables"),
-        tex=PATHS.table("table2", "tex"),
+        md=report(STEPS["table2_render"].output["md"], caption=PRODUCT_CAPTION, category="Tables"),
+        tex=STEPS["table2_render"].output["tex"],
     params:
-        # only the paper's configuration has it; read when the job runs
-        speed=lambda wildcards: config["eigen"]["table2_speed"],
-        caption=product("table2").caption(),
+        **STEPS["table2_render"].params,
     log:
-        PATHS.log("tables", "table2.log"),
+        STEPS["table2_render"].log,
     script:
         "../scripts/table_2.py"
 
@@ -99,16 +85,14 @@ rule table2_render:
 rule table3:
     localrule: True
     input:
-        datasets=product_datasets("table3"),
-        code=script_code("table_3.py"),
+        **STEPS["table3"].input,
     output:
-        csv=report(PATHS.table("table3", "csv"), caption=PRODUCT_CAPTION, category="Tables"),
-        md=PATHS.table("table3", "md"),
-        tex=PATHS.table("table3", "tex"),
+        csv=report(STEPS["table3"].output["csv"], caption=PRODUCT_CAPTION, category="Tables"),
+        md=STEPS["table3"].output["md"],
+        tex=STEPS["table3"].output["tex"],
     params:
-        cases=list(product("table3").cases),
-        caption=product("table3").caption(),
+        **STEPS["table3"].params,
     log:
-        PATHS.log("tables", "table3.log"),
+        STEPS["table3"].log,
     script:
         "../scripts/table_3.py"

@@ -1,89 +1,72 @@
 """Linear models about a steady spin for control design (hubbeam.linear, docs/linear-models.md),
-from the `linear` section of the configuration (defaults in hubbeam.configuration.defaults): the state-space
-models of every model, free and prescribed hub, over the speed grid as CF netCDF and MATLAB files
-(`linear_models`), and the datasets the linear-model figures of the registry read: the tracked,
-damped Campbell diagram, the mode shapes along the span, the poles and zeros over speed and the
-Bode diagrams. Built for every configuration, the paper's included."""
-
-
-def linear_params():
-    """The `params:` every linear-model rule reads: the beam, the tip masses, the grid, the
-    damping and the discretisation."""
-    linear = config["linear"]
-    return dict(beam=config["beam"], tip_masses=linear["tip_masses"], speeds=linear["speeds"],
-                damping=linear.get("damping"), n_modes=config["numerics"]["modes"],
-                n_quad=config["numerics"]["quadrature_points"])
+from the `linear` section of the configuration (defaults in hubbeam.configuration.defaults): the
+state-space models of every model, free and prescribed hub, over the speed grid as CF netCDF and
+MATLAB files (`linear_models`), and the datasets the linear-model figures of the registry read:
+the tracked, damped Campbell diagram, the mode shapes along the span, the poles and zeros over
+speed and the Bode diagrams. Built for every configuration, the paper's included. Inputs and
+params: hubbeam.pipeline.plan (`linear_steps`)."""
 
 
 rule linear_models:
     input:
-        code=script_code("linear_models.py"),
+        **STEPS["linear_models"].input,
     output:
-        [ensure(path, non_empty=True) for path in linear_model_files()],
+        files=[ensure(path, non_empty=True) for path in STEPS["linear_models"].output["files"]],
     params:
-        **linear_params(),
-        files=linear_model_exports(),
+        **STEPS["linear_models"].params,
     log:
-        PATHS.log("linear", "models.log"),
+        STEPS["linear_models"].log,
     script:
         "../scripts/linear_models.py"
 
 
 rule linear_campbell:
     input:
-        code=script_code("linear_dataset.py"),
+        **STEPS["linear_campbell"].input,
     output:
-        ensure(PATHS.linear("campbell"), non_empty=True),
+        nc=ensure(STEPS["linear_campbell"].output["nc"], non_empty=True),
     params:
-        **linear_params(),
-        product="campbell",
+        **STEPS["linear_campbell"].params,
     log:
-        PATHS.log("linear", "campbell.log"),
+        STEPS["linear_campbell"].log,
     script:
         "../scripts/linear_dataset.py"
 
 
 rule linear_poles_zeros:
     input:
-        code=script_code("linear_dataset.py"),
+        **STEPS["linear_poles_zeros"].input,
     output:
-        ensure(PATHS.linear("poles_zeros"), non_empty=True),
+        nc=ensure(STEPS["linear_poles_zeros"].output["nc"], non_empty=True),
     params:
-        **linear_params(),
-        product="poles_zeros",
+        **STEPS["linear_poles_zeros"].params,
     log:
-        PATHS.log("linear", "poles_zeros.log"),
+        STEPS["linear_poles_zeros"].log,
     script:
         "../scripts/linear_dataset.py"
 
 
 rule linear_bode:
     input:
-        code=script_code("linear_dataset.py"),
+        **STEPS["linear_bode"].input,
     output:
-        ensure(PATHS.linear("bode"), non_empty=True),
+        nc=ensure(STEPS["linear_bode"].output["nc"], non_empty=True),
     params:
-        **linear_params(),
-        product="bode",
-        bode_speeds=config["linear"]["bode_speeds"],
-        frequencies=config["linear"]["frequencies"],
+        **STEPS["linear_bode"].params,
     log:
-        PATHS.log("linear", "bode.log"),
+        STEPS["linear_bode"].log,
     script:
         "../scripts/linear_dataset.py"
 
 
 rule linear_mode_shapes:
     input:
-        campbell=PATHS.linear("campbell"),
-        code=script_code("linear_mode_shapes.py"),
+        **STEPS["linear_mode_shapes"].input,
     output:
-        ensure(PATHS.linear("mode_shapes"), non_empty=True),
+        nc=ensure(STEPS["linear_mode_shapes"].output["nc"], non_empty=True),
     params:
-        beam=config["beam"],
-        # no more than the vibration modes every model has (SFOAM: numerics.modes)
-        shapes=min(config["linear"]["shapes"], config["numerics"]["modes"]),
+        **STEPS["linear_mode_shapes"].params,
     log:
-        PATHS.log("linear", "mode_shapes.log"),
+        STEPS["linear_mode_shapes"].log,
     script:
         "../scripts/linear_mode_shapes.py"

@@ -4,45 +4,38 @@ Each reading is one job: it simulates the runs its change generates (`reading-<r
 held in memory; unchanged runs are the default results) and evaluates its claims with the
 functions of hubbeam.paper.claims -> readings/claims/<reading>.csv of the results folder.
 `readings_matrix` collects them into the claims x readings matrix, readings/readings.csv and
-readings.nc, which the
-reproduction report reads. The default results never depend on these rules. Part of `all` (the
-17 readings of config/config.yaml take about 1.5 minutes on two cores); `snakemake readings` builds
-the matrix alone.
+readings.nc, which the reproduction report reads. The default results never depend on these
+rules. Part of `all` (the 17 readings of config/config.yaml take about 1.5 minutes on two cores);
+`snakemake readings` builds the matrix alone. Every reading is checked, and its generated cases
+built, once with the plan. Inputs and params: hubbeam.pipeline.plan (`reading_steps`).
 """
 
 
 rule reading:
     input:
-        datasets=lambda wildcards: [PATHS.simulation(case) for case in reading_base_cases(wildcards)],
-        **CLAIM_TABLES,
-        claims=PATHS.report("claims.csv"),
-        kernel=simulation_kernels_done,
-        code=script_code("readings_reading.py"),
+        **STEPS["reading"].input,
     output:
-        ensure(PATHS.reading("{reading}"), non_empty=True),
+        csv=ensure(STEPS["reading"].output["csv"], non_empty=True),
     params:
-        cases=reading_base_cases,
-        runs=reading_params,
-        settings=fingerprint(reading_params),
+        **STEPS["reading"].params,
     wildcard_constraints:
         reading="[A-Za-z0-9_]+",
     log:
-        PATHS.log("readings", "{reading}.log"),
+        STEPS["reading"].log,
     script:
         "../scripts/readings_reading.py"
 
 
 rule readings_matrix:
     input:
-        readings=[PATHS.reading(name) for name in reading_names()],
-        code=script_code("readings_matrix.py"),
+        **STEPS["readings_matrix"].input,
     output:
-        csv=ensure(PATHS.readings("csv"), non_empty=True),
-        nc=ensure(PATHS.readings("nc"), non_empty=True),
+        csv=ensure(STEPS["readings_matrix"].output["csv"], non_empty=True),
+        nc=ensure(STEPS["readings_matrix"].output["nc"], non_empty=True),
     params:
-        readings=config.get("readings", {}),
+        **STEPS["readings_matrix"].params,
     log:
-        PATHS.log("readings", "matrix.log"),
+        STEPS["readings_matrix"].log,
     script:
         "../scripts/readings_matrix.py"
 
@@ -50,4 +43,4 @@ rule readings_matrix:
 rule readings:
     """Target: the claims x readings matrix alone (`snakemake readings`)."""
     input:
-        reading_targets(),
+        PLAN.reading_targets,

@@ -1,5 +1,6 @@
 """The claims of the paper against our results and the reproduction report (with the paper's
-products), and the archive of every configuration's results."""
+products), and the archive of every configuration's results. Inputs and params:
+hubbeam.pipeline.plan (`report_steps`)."""
 
 
 report: "../report/workflow.rst"
@@ -8,19 +9,14 @@ report: "../report/workflow.rst"
 rule claims:
     localrule: True
     input:
-        datasets=[PATHS.simulation(case) for case in claim_cases()],
-        **CLAIM_TABLES,
-        code=script_code("report_claims.py"),
+        **STEPS["claims"].input,
     output:
-        report(
-            ensure(PATHS.report("claims.csv"), non_empty=True),
-            caption="../report/claims.rst",
-            category="Report",
-        ),
+        claims=report(ensure(STEPS["claims"].output["claims"], non_empty=True), caption="../report/claims.rst",
+                      category="Report"),
     params:
-        cases=claim_cases(),
+        **STEPS["claims"].params,
     log:
-        PATHS.log("report", "claims.log"),
+        STEPS["claims"].log,
     script:
         "../scripts/report_claims.py"
 
@@ -28,28 +24,15 @@ rule claims:
 rule reproduction_report:
     localrule: True
     input:
-        claims=PATHS.report("claims.csv"),
-        figures=list(figures("png").values()),
-        tables=[PATHS.table(key, "md") for key in table_keys()],
-        datasets=simulation_results(),
-        # the published-table validation (none when the config has no `validation` section)
-        **published_validation_inputs(),
-        # the claims under alternative readings (none when the config has no `readings` section)
-        **reading_inputs(),
-        code=script_code("report_reproduction.py"),
+        **STEPS["reproduction_report"].input,
     output:
-        markdown=ensure(PATHS.report("reproduction.md"), non_empty=True),
-        html=report(
-            ensure(PATHS.report("reproduction.html"), non_empty=True),
-            caption="../report/reproduction.rst",
-            category="Report",
-        ),
+        markdown=ensure(STEPS["reproduction_report"].output["markdown"], non_empty=True),
+        html=report(ensure(STEPS["reproduction_report"].output["html"], non_empty=True),
+                    caption="../report/reproduction.rst", category="Report"),
     params:
-        cases=cases(),
-        numerics=config["numerics"],
-        readings=config.get("readings", {}),
+        **STEPS["reproduction_report"].params,
     log:
-        PATHS.log("report", "reproduction.log"),
+        STEPS["reproduction_report"].log,
     script:
         "../scripts/report_reproduction.py"
 
@@ -57,15 +40,12 @@ rule reproduction_report:
 rule archive:
     localrule: True
     input:
-        archive_inputs,
+        **STEPS["archive"].input,
     output:
-        ensure(PATHS.archive(), non_empty=True),
+        archive=ensure(STEPS["archive"].output["archive"], non_empty=True),
     params:
-        config=config,
-        top=PATHS.archive_top,
-        root=PATHS.archive_root,
-        workflow_root=workflow.basedir,
+        **STEPS["archive"].params,
     log:
-        PATHS.log("report", "archive.log"),
+        STEPS["archive"].log,
     script:
         "../scripts/archive.py"

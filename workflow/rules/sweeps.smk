@@ -8,61 +8,59 @@ a chunk being sized for about a minute on one core) and writes the temporary
 `figures/sweep_<name>.pdf/.png` from that file only. Maps marked `in_all: false` (too
 large for every run) are built by `large_sweeps`. `sweep_kernel` compiles the kernel into numba's
 on-disk cache once, after `simulation_kernel` has cached the integrator it shares, so that no two
-jobs compile the same code at the same time. Helpers (`sweeps`, `sweep_params`, `sweep_chunks`,
-`sweep_targets`) are in common.smk.
+jobs compile the same code at the same time. Each job takes its map as the configuration's
+`Sweep` object (hubbeam.configuration.settings), with its plain mapping for Snakemake's rerun
+trigger. Inputs and params: hubbeam.pipeline.plan (`sweep_steps`).
 """
 
 
 rule large_sweeps:
     input:
-        sweep_targets(in_all=False),
+        PLAN.large_sweep_targets,
     localrule: True
 
 
 rule sweep_kernel:
     input:
-        code=script_code("sweep_compile.py"),
-        simulation_kernels=simulation_kernels_done,
+        **STEPS["sweep_kernel"].input,
     output:
-        SHARED.log("sweeps", "kernel.done"),
+        done=STEPS["sweep_kernel"].output["done"],
+    params:
+        **STEPS["sweep_kernel"].params,
     log:
-        SHARED.log("sweeps", "kernel.log"),
+        STEPS["sweep_kernel"].log,
     script:
         "../scripts/sweep_compile.py"
 
 
 rule sweep_chunk:
     input:
-        kernel=SHARED.log("sweeps", "kernel.done"),
-        code=script_code("sweep_chunk.py"),
+        **STEPS["sweep_chunk"].input,
     output:
-        temp(ensure(PATHS.sweep_chunk("{sweep}", "{chunk}"), non_empty=True)),
+        nc=temp(ensure(STEPS["sweep_chunk"].output["nc"], non_empty=True)),
     params:
-        beam=config["beam"],
-        sweep=sweep_params,
+        **STEPS["sweep_chunk"].params,
     wildcard_constraints:
-        sweep="|".join(sweeps()) or "no-sweeps",
+        sweep=PLAN.sweep_pattern,
         chunk=r"\d+",
     log:
-        PATHS.log("sweeps", "chunks", "{sweep}", "{chunk}.log"),
+        STEPS["sweep_chunk"].log,
     script:
         "../scripts/sweep_chunk.py"
 
 
 rule sweep:
     input:
-        chunks=sweep_chunks,
-        code=script_code("sweep_gather.py"),
+        **STEPS["sweep"].input,
     output:
-        ensure(PATHS.sweep("{sweep}"), non_empty=True),
+        nc=ensure(STEPS["sweep"].output["nc"], non_empty=True),
     params:
-        beam=config["beam"],
-        sweep=sweep_params,
+        **STEPS["sweep"].params,
     wildcard_constraints:
-        sweep="|".join(sweeps()) or "no-sweeps",
+        sweep=PLAN.sweep_pattern,
     localrule: True
     log:
-        PATHS.log("sweeps", "{sweep}.log"),
+        STEPS["sweep"].log,
     script:
         "../scripts/sweep_gather.py"
 
@@ -70,19 +68,16 @@ rule sweep:
 rule figure_sweep:
     localrule: True
     input:
-        sweep=PATHS.sweep("{sweep}"),
-        style=FIGURE_STYLE,
-        code=script_code("figure_sweep.py"),
+        **STEPS["figure_sweep"].input,
     output:
-        pdf=ensure(PATHS.figure("sweep_{sweep}", "pdf"), non_empty=True),
-        png=report(
-            ensure(PATHS.figure("sweep_{sweep}", "png"), non_empty=True),
-            caption="../report/sweep.rst",
-            category="Beyond the paper",
-        ),
+        pdf=ensure(STEPS["figure_sweep"].output["pdf"], non_empty=True),
+        png=report(ensure(STEPS["figure_sweep"].output["png"], non_empty=True), caption="../report/sweep.rst",
+                   category="Beyond the paper"),
+    params:
+        **STEPS["figure_sweep"].params,
     wildcard_constraints:
-        sweep="|".join(sweeps()) or "no-sweeps",
+        sweep=PLAN.sweep_pattern,
     log:
-        PATHS.log("figures", "sweep_{sweep}.log"),
+        STEPS["figure_sweep"].log,
     script:
         "../scripts/figure_sweep.py"

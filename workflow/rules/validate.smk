@@ -1,4 +1,4 @@
-"""Independent validation (docs/validation.md); helpers in common.smk.
+"""Independent validation (docs/validation.md).
 
 Builds in validation/ of the results folder (results/validation/ for the paper,
 results/<name>/validation/ for a study):
@@ -13,159 +13,135 @@ results/<name>/validation/ for a study):
 * nonuniform_ritz_fe.csv, nonuniform_pybmodes.csv: frequencies of a non-uniform beam (the
   config's own when it has sections, else the tapered version of its uniform beam) from the Ritz
   model, our finite elements and pyBModes (`hubbeam.validation.nonuniform`);
-and report/validation_exudyn.md/.html, the report of these checks. Everything but the
-published check is built only by the `validate` target (`snakemake validate`, not part of `all`);
-it needs the optional dependencies (`pip install -e .[validation]`) and without them stops before
-running anything, saying so. The Exudyn part needs the config's `validation` section.
+and report/validation_exudyn.md/.html, the report of these checks (the names: hubbeam.results.paths).
+Everything but the published check is built only by the `validate` target (`snakemake validate`,
+not part of `all`); it needs the optional dependencies (`pip install -e .[validation]`) and
+without them stops before running anything, saying so. The Exudyn part needs the config's
+`validation` section. Inputs and params: hubbeam.pipeline.plan (`validation_steps`).
 """
-
 
 
 rule validate:
     localrule: True
     input:
-        validation_targets,
+        lambda wildcards: PLAN.validation_targets(),
 
 
 rule validate_published:
     input:
-        code=script_code("validate_published.py"),
-        style=FIGURE_STYLE,
+        **STEPS["validate_published"].input,
     output:
-        table=ensure(PATHS.validation("published_comparison.csv"), non_empty=True),
-        tip_mass=ensure(PATHS.validation("tip_mass_comparison.csv"), non_empty=True),
-        curves=ensure(PATHS.validation("rotating_eigen.nc"), non_empty=True),
-        pdf=ensure(PATHS.validation("rotating_frequencies.pdf"), non_empty=True),
-        png=report(
-            ensure(PATHS.validation("rotating_frequencies.png"), non_empty=True),
-            caption="../report/rotating_frequencies.rst",
-            category="Validation",
-        ),
+        table=ensure(STEPS["validate_published"].output["table"], non_empty=True),
+        tip_mass=ensure(STEPS["validate_published"].output["tip_mass"], non_empty=True),
+        curves=ensure(STEPS["validate_published"].output["curves"], non_empty=True),
+        pdf=ensure(STEPS["validate_published"].output["pdf"], non_empty=True),
+        png=report(ensure(STEPS["validate_published"].output["png"], non_empty=True),
+                   caption="../report/rotating_frequencies.rst", category="Validation"),
     params:
-        published=validation_section("published"),
-        n_quad=config["numerics"]["quadrature_points"],
+        **STEPS["validate_published"].params,
     log:
-        PATHS.log("validation", "published.log"),
+        STEPS["validate_published"].log,
     script:
         "../scripts/validate_published.py"
 
 
 rule validate_exudyn:
     input:
-        code=script_code("validate_exudyn.py"),
+        **STEPS["validate_exudyn"].input,
     output:
-        ensure(PATHS.validation("runs/exudyn_{vcase}.nc"), non_empty=True),
+        nc=ensure(STEPS["validate_exudyn"].output["nc"], non_empty=True),
     wildcard_constraints:
         vcase=CASE_NAME_PATTERN,
     params:
-        beam=config["beam"],
-        case=validation_case,
-        exudyn=validation_section("exudyn"),
-        output_step=config["numerics"]["output_step"],
+        **STEPS["validate_exudyn"].params,
     log:
-        PATHS.log("validation", "exudyn_{vcase}.log"),
+        STEPS["validate_exudyn"].log,
     script:
         "../scripts/validate_exudyn.py"
 
 
 rule validate_models:
     input:
-        code=script_code("validate_models.py"),
+        **STEPS["validate_models"].input,
     output:
-        ensure(PATHS.validation("runs/models_{vcase}.nc"), non_empty=True),
+        nc=ensure(STEPS["validate_models"].output["nc"], non_empty=True),
     wildcard_constraints:
         vcase=CASE_NAME_PATTERN,
     params:
-        beam=config["beam"],
-        case=validation_case,
-        models=validation_section("models"),
-        numerics=config["numerics"],
+        **STEPS["validate_models"].params,
     log:
-        PATHS.log("validation", "models_{vcase}.log"),
+        STEPS["validate_models"].log,
     script:
         "../scripts/validate_models.py"
 
 
 rule validate_case:
     input:
-        reference=PATHS.validation("runs/exudyn_{vcase}.nc"),
-        models=PATHS.validation("runs/models_{vcase}.nc"),
-        code=script_code("validate_case.py"),
+        **STEPS["validate_case"].input,
     output:
-        ensure(PATHS.validation("exudyn_{vcase}.nc"), non_empty=True),
+        nc=ensure(STEPS["validate_case"].output["nc"], non_empty=True),
     wildcard_constraints:
         vcase=CASE_NAME_PATTERN,
+    params:
+        **STEPS["validate_case"].params,
     log:
-        PATHS.log("validation", "case_{vcase}.log"),
+        STEPS["validate_case"].log,
     script:
         "../scripts/validate_case.py"
 
 
 rule validate_comparison:
     input:
-        cases=validation_case_files,
-        code=script_code("validate_comparison.py"),
-        style=FIGURE_STYLE,
+        **STEPS["validate_comparison"].input,
     output:
-        table=ensure(PATHS.validation("exudyn_comparison.csv"), non_empty=True),
-        pdf=ensure(PATHS.validation("exudyn_comparison.pdf"), non_empty=True),
-        png=report(
-            ensure(PATHS.validation("exudyn_comparison.png"), non_empty=True),
-            caption="../report/exudyn_comparison.rst",
-            category="Validation",
-        ),
+        table=ensure(STEPS["validate_comparison"].output["table"], non_empty=True),
+        pdf=ensure(STEPS["validate_comparison"].output["pdf"], non_empty=True),
+        png=report(ensure(STEPS["validate_comparison"].output["png"], non_empty=True),
+                   caption="../report/exudyn_comparison.rst", category="Validation"),
+    params:
+        **STEPS["validate_comparison"].params,
     log:
-        PATHS.log("validation", "comparison.log"),
+        STEPS["validate_comparison"].log,
     script:
         "../scripts/validate_comparison.py"
 
 
 rule validate_modes:
     input:
-        references=validation_reference_files,
-        code=script_code("validate_modes.py"),
+        **STEPS["validate_modes"].input,
     output:
-        ensure(PATHS.validation("exudyn_mode_study.csv"), non_empty=True),
+        csv=ensure(STEPS["validate_modes"].output["csv"], non_empty=True),
     params:
-        beam=config["beam"],
-        cases=validation_section("cases"),
-        models=validation_section("models"),
-        modes=validation_section("mode_study"),
-        numerics=config["numerics"],
+        **STEPS["validate_modes"].params,
     log:
-        PATHS.log("validation", "modes.log"),
+        STEPS["validate_modes"].log,
     script:
         "../scripts/validate_modes.py"
 
 
 rule validate_convergence:
     input:
-        code=script_code("validate_convergence.py"),
+        **STEPS["validate_convergence"].input,
     output:
-        table=ensure(PATHS.validation("exudyn_convergence.csv"), non_empty=True),
-        runs=ensure(PATHS.validation("exudyn_convergence.nc"), non_empty=True),
+        table=ensure(STEPS["validate_convergence"].output["table"], non_empty=True),
+        runs=ensure(STEPS["validate_convergence"].output["runs"], non_empty=True),
     params:
-        beam=config["beam"],
-        case=convergence_case,
-        exudyn=validation_section("exudyn"),
-        convergence=validation_section("convergence"),
-        output_step=config["numerics"]["output_step"],
+        **STEPS["validate_convergence"].params,
     log:
-        PATHS.log("validation", "convergence.log"),
+        STEPS["validate_convergence"].log,
     script:
         "../scripts/validate_convergence.py"
 
 
 rule validate_nonuniform:
     input:
-        code=script_code("validate_nonuniform.py"),
+        **STEPS["validate_nonuniform"].input,
     output:
-        **{name: ensure(path, non_empty=True) for name, path in nonuniform_results().items()},
+        **{name: ensure(path, non_empty=True) for name, path in STEPS["validate_nonuniform"].output.items()},
     params:
-        beam=config["beam"],
-        n_quad=config["numerics"]["quadrature_points"],
+        **STEPS["validate_nonuniform"].params,
     log:
-        PATHS.log("validation", "nonuniform.log"),
+        STEPS["validate_nonuniform"].log,
     script:
         "../scripts/validate_nonuniform.py"
 
@@ -173,17 +149,14 @@ rule validate_nonuniform:
 rule validation_report:
     localrule: True
     input:
-        **exudyn_report_inputs(),
-        **nonuniform_results(),
-        code=script_code("report_validation.py"),
+        **STEPS["validation_report"].input,
     output:
-        markdown=ensure(PATHS.report("validation_exudyn.md"), non_empty=True),
-        html=report(
-            ensure(PATHS.report("validation_exudyn.html"), non_empty=True),
-            caption="../report/validation_exudyn.rst",
-            category="Validation",
-        ),
+        markdown=ensure(STEPS["validation_report"].output["markdown"], non_empty=True),
+        html=report(ensure(STEPS["validation_report"].output["html"], non_empty=True),
+                    caption="../report/validation_exudyn.rst", category="Validation"),
+    params:
+        **STEPS["validation_report"].params,
     log:
-        PATHS.log("report", "validation_exudyn.log"),
+        STEPS["validation_report"].log,
     script:
         "../scripts/report_validation.py"

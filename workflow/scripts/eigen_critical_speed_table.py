@@ -1,12 +1,9 @@
-"""Snakemake shim: critical speeds with each tip mass at the beam tip (csv), which the claims read."""
+"""Snakemake shim: critical speed of each tip mass at the beam tip, the table the claims read.
 
-from hubbeam.model.beam import beam_from_config
-from hubbeam.model.eigen import critical_speed_table
-from hubbeam.results.io import staged
+Runs :func:`hubbeam.pipeline.jobs.eigen.eigen_critical_speed_table` through the runner.
+"""
 
-p = snakemake.params
-table = critical_speed_table(beam_from_config(p.beam), p.tip_masses, p.n_modes, p.search_max, p.n_quad)
-with staged(snakemake.output[0]) as (csv,):
-    table.to_csv(csv, index=False)
-with open(snakemake.log[0], "w") as log:
-    print(table.to_string(index=False), file=log)
+from hubbeam.pipeline.jobs.eigen import eigen_critical_speed_table
+from hubbeam.pipeline.runner import run
+
+run(eigen_critical_speed_table, snakemake)

@@ -1,16 +1,9 @@
-"""Snakemake shim: critical speeds over tip mass x position (netCDF)."""
+"""Snakemake shim: critical speeds over tip mass x position.
 
-import numpy as np
+Runs :func:`hubbeam.pipeline.jobs.eigen.eigen_critical_speeds` through the runner.
+"""
 
-from hubbeam.model.beam import beam_from_config
-from hubbeam.model.eigen import critical_speed_sweep
-from hubbeam.results.io import write_netcdf
-from hubbeam.results.provenance import global_attributes
+from hubbeam.pipeline.jobs.eigen import eigen_critical_speeds
+from hubbeam.pipeline.runner import run
 
-p = snakemake.params
-ds = critical_speed_sweep(beam_from_config(p.beam), p.tip_masses, np.linspace(**p.positions), p.n_modes,
-                          p.search_max, p.n_quad)
-ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
-write_netcdf(ds, snakemake.output[0])
-with open(snakemake.log[0], "w") as log:
-    print(f"critical speeds: {dict(ds.sizes)}", file=log)
+run(eigen_critical_speeds, snakemake)

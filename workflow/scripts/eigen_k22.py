@@ -1,17 +1,9 @@
-"""Snakemake shim: eigenvalues of K22 over tip mass x position x speed (Fig. 9)."""
+"""Snakemake shim: eigenvalues of K22 over tip mass x position x speed (Fig. 9).
 
-import numpy as np
+Runs :func:`hubbeam.pipeline.jobs.eigen.eigen_k22` through the runner.
+"""
 
-from hubbeam.model.beam import beam_from_config
-from hubbeam.model.eigen import k22_sweep
-from hubbeam.results.io import write_netcdf
-from hubbeam.results.provenance import global_attributes
+from hubbeam.pipeline.jobs.eigen import eigen_k22
+from hubbeam.pipeline.runner import run
 
-p = snakemake.params
-params = beam_from_config(p.beam)
-ds = k22_sweep(params, p.tip_masses, np.linspace(**p.positions), np.linspace(**p.speeds),
-               p.n_modes, p.n_quad)
-ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
-write_netcdf(ds, snakemake.output[0])
-with open(snakemake.log[0], "w") as log:
-    print(f"K22 eigenvalues: {dict(ds.sizes)}", file=log)
+run(eigen_k22, snakemake)

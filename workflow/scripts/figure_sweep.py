@@ -1,9 +1,9 @@
-"""Snakemake shim: draw a parameter-sweep map from its result file (rule figure_sweep)."""
+"""Snakemake shim: draw the map of a parameter sweep.
 
-from hubbeam.plotting import draw
-from hubbeam.plotting.sweep_maps import plot
-from hubbeam.results.io import open_result
+Runs :func:`hubbeam.pipeline.jobs.figures.figure_sweep` through the runner.
+"""
 
-written = draw(plot, snakemake.output.pdf, open_result(snakemake.input.sweep))
-with open(snakemake.log[0], "w") as log:
-    print(f"sweep map {snakemake.input.sweep} -> {', '.join(map(str, written))}", file=log)
+from hubbeam.pipeline.jobs.figures import figure_sweep
+from hubbeam.pipeline.runner import run
+
+run(figure_sweep, snakemake)

@@ -1,13 +1,9 @@
-"""Snakemake shim: simulate one chunk of a parameter sweep on the job's threads (rule sweep_chunk)."""
+"""Snakemake shim: simulate one chunk of a parameter sweep.
 
-import logging
+Runs :func:`hubbeam.pipeline.jobs.sweeps.sweep_chunk` through the runner.
+"""
 
-from hubbeam.model.beam import beam_from_config
-from hubbeam.results.io import write_netcdf
-from hubbeam.simulation.sweep import run_chunk
+from hubbeam.pipeline.jobs.sweeps import sweep_chunk
+from hubbeam.pipeline.runner import run
 
-logging.basicConfig(filename=snakemake.log[0], filemode="w", level=logging.INFO, force=True,
-                    format="%(asctime)s %(name)s %(levelname)s %(message)s")
-params = beam_from_config(snakemake.params.beam)
-write_netcdf(run_chunk(snakemake.params.sweep, params, int(snakemake.wildcards.chunk),
-                       threads=snakemake.threads), snakemake.output[0])
+run(sweep_chunk, snakemake)

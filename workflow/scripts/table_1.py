@@ -1,11 +1,9 @@
-"""Snakemake shim: Table 1 (physical parameters) from the configuration, csv + md + tex."""
+"""Snakemake shim: Table 1 (physical parameters), csv + md + tex.
 
-from hubbeam.paper.tables import table1, to_markdown, write_table
-from hubbeam.results.io import staged
+Runs :func:`hubbeam.pipeline.jobs.tables.table1` through the runner.
+"""
 
-table = table1(snakemake.params.beam)
-out = snakemake.output
-with staged(out.csv, out.md, out.tex) as (csv, _md, _tex):
-    write_table(table, csv)
-with open(snakemake.log[0], "w") as log:
-    print(to_markdown(table), file=log)
+from hubbeam.pipeline.jobs.tables import table1
+from hubbeam.pipeline.runner import run
+
+run(table1, snakemake)

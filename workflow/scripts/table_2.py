@@ -1,10 +1,9 @@
-"""Snakemake shim: Markdown and LaTeX renderings of Table 2 (its csv comes from the eigen rule)."""
+"""Snakemake shim: Markdown and LaTeX renderings of Table 2.
 
-from hubbeam.paper.tables import table2, to_markdown, write_table
-from hubbeam.results.io import staged
+Runs :func:`hubbeam.pipeline.jobs.tables.table2_render` through the runner.
+"""
 
-table = table2(snakemake.input.csv, snakemake.params.speed)
-with staged(snakemake.output.md, snakemake.output.tex) as (md, _tex):
-    write_table(table, md.with_suffix(".csv"), csv=False)  # .md and .tex beside that name
-with open(snakemake.log[0], "w") as log:
-    print(to_markdown(table), file=log)
+from hubbeam.pipeline.jobs.tables import table2_render
+from hubbeam.pipeline.runner import run
+
+run(table2_render, snakemake)

@@ -2,9 +2,10 @@
 
 :func:`from_config` turns a validated configuration (:func:`hubbeam.configuration.load.validate_config`)
 into :class:`Settings`: the study, the beam (:func:`hubbeam.model.beam.beam_from_config`), the
-numerics, the eigen grids and the cases, each :class:`Case` with its defaults filled in and its
+numerics, the eigen grids, the cases, each :class:`Case` with its defaults filled in and its
 maneuver and damping as the records of their kinds (:mod:`hubbeam.model.maneuvers`,
-:mod:`hubbeam.model.damping`). The workflow builds them once, before any job, and hands them to its
+:mod:`hubbeam.model.damping`), and the parameter sweeps, each :class:`Sweep` with its defaults
+filled in (run by :mod:`hubbeam.simulation.sweep`). The workflow builds them once, before any job, and hands them to its
 jobs; nothing downstream checks them again or turns them back into mappings (``to_dict()`` gives
 only the plain mapping a dataset records, ``case_config``).
 
@@ -202,15 +203,83 @@ class Study:
     comparisons: FrozenMap = field(default_factory=FrozenMap)
 
 
+#: simulations per chunk job of a sweep unless ``sweeps.chunk_size`` or the map's ``chunk_size``
+#: says otherwise: about a minute on one core at the default sweep numerics (docs/performance.md)
+DEFAULT_CHUNK_SIZE = 32_000
+
+
+@dataclass(frozen=True)
+class SweepNumerics:
+    """The integrator settings of every run of a sweep (schema ``sweeps.numerics``), as given."""
+
+    rtol: float
+    atol: float
+    output_step: float
+    max_steps: int
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A parameter sweep (schema ``sweeps.maps.<name>``) with its defaults filled in: ``modes`` from
+    ``numerics.modes``; no tip mass is mass 0 at the tip, a tip mass without position sits at the
+    tip (unless a tip parameter is swept); ``chunk_size`` from ``sweeps.chunk_size``, else
+    :data:`DEFAULT_CHUNK_SIZE`; ``in_all`` true. The integrator settings are ``sweeps.numerics``;
+    the divergence and small-deflection limits and the quadrature come from ``numerics``, the
+    critical-speed search from ``eigen``.
+
+    ``maneuver`` holds the kind and the fixed parameters of the maneuver, ``grid`` the swept
+    parameters (the map's axes, in their order) with their :class:`Grid`.
+    """
+
+    name: str
+    models: tuple[str, ...]
+    maneuver: FrozenMap
+    grid: FrozenMap
+    t_after: float
+    modes: int
+    tip_mass: TipMass
+    outputs: tuple[str, ...]
+    figure: FrozenMap
+    in_all: bool
+    chunk_size: int
+    numerics: SweepNumerics
+    divergence_limit: float
+    small_deflection_limit: float
+    quadrature_points: int
+    critical_speed_search_max: float
+
+    @property
+    def axes(self) -> tuple[str, ...]:
+        """The swept parameters, in the order of the map's axes."""
+        return tuple(self.grid)
+
+    def to_dict(self) -> dict:
+        """The sweep as a plain mapping (JSON-serialisable), as its datasets record it (``sweep_config``)."""
+        return {
+            "name": self.name, "models": list(self.models), "maneuver": dict(self.maneuver),
+            "axes": list(self.axes),
+            "grid": {key: {"start": grid.start, "stop": grid.stop, "num": grid.num} for key, grid in self.grid.items()},
+            "t_after": self.t_after, "modes": self.modes,
+            "tip_mass": {"mass": self.tip_mass.mass, "position": self.tip_mass.position},
+            "outputs": list(self.outputs), "figure": dict(self.figure), "in_all": self.in_all,
+            "chunk_size": self.chunk_size,
+            "numerics": {item.name: getattr(self.numerics, item.name) for item in fields(self.numerics)},
+            "divergence_limit": self.divergence_limit, "small_deflection_limit": self.small_deflection_limit,
+            "quadrature_points": self.quadrature_points, "critical_speed_search_max": self.critical_speed_search_max,
+        }
+
+
 @dataclass(frozen=True)
 class Settings:
-    """A whole configuration: ``study`` is None for the paper."""
+    """A whole configuration: ``study`` is None for the paper; ``sweeps`` by name (none without a
+    ``sweeps`` section)."""
 
     beam: UniformBeam | BeamSections
     numerics: Numerics
     eigen: Eigen
     cases: FrozenMap
     study: Study | None = None
+    sweeps: FrozenMap = field(default_factory=FrozenMap)
 
     def case(self, name: str) -> Case:
         """The case ``name``; a :class:`ConfigError` names the defined ones."""
@@ -229,7 +298,30 @@ def from_config(cfg: Mapping) -> Settings:
                        "tip_masses": tuple(eigen["tip_masses"])}),
         cases=FrozenMap({name: case_from_config(cfg, name) for name in sorted(cfg["cases"])}),
         study=None if study is None else Study(**{**study, "comparisons": freeze(study.get("comparisons", {}))}),
+        sweeps=FrozenMap({name: sweep_from_config(cfg, name)
+                          for name in sorted(cfg.get("sweeps", {}).get("maps", {}))}),
     )
+
+
+def sweep_from_config(cfg: Mapping, name: str) -> Sweep:
+    """The :class:`Sweep` ``name`` of a validated configuration, its defaults filled in (class docstring)."""
+    sweeps, numerics = cfg["sweeps"], cfg["numerics"]
+    spec = sweeps["maps"][name]
+    tip = spec.get("tip_mass", {})
+    return Sweep(
+        name=name, models=tuple(spec["models"]),
+        maneuver=FrozenMap({key: value if key == "kind" else float(value) for key, value in spec["maneuver"].items()}),
+        grid=FrozenMap({key: Grid(float(grid["start"]), float(grid["stop"]), int(grid["num"]))
+                        for key, grid in spec["grid"].items()}),
+        t_after=float(spec["t_after"]), modes=int(spec.get("modes", numerics["modes"])),
+        tip_mass=TipMass(float(tip.get("mass", 0.0)), float(tip.get("position", cfg["beam"]["length"]))),
+        outputs=tuple(spec["outputs"]), figure=FrozenMap(spec["figure"]), in_all=bool(spec.get("in_all", True)),
+        chunk_size=int(spec.get("chunk_size", sweeps.get("chunk_size", DEFAULT_CHUNK_SIZE))),
+        numerics=SweepNumerics(**{item.name: sweeps["numerics"][item.name] for item in fields(SweepNumerics)}),
+        divergence_limit=float(numerics["divergence_limit"]),
+        small_deflection_limit=float(numerics.get("small_deflection_limit", SMALL_DEFLECTION_LIMIT)),
+        quadrature_points=int(numerics["quadrature_points"]),
+        critical_speed_search_max=float(cfg["eigen"]["critical_speed_search_max"]))
 
 
 def case_from_config(cfg: Mapping, name: str) -> Case:

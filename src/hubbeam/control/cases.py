@@ -19,7 +19,7 @@ body, the drive's rotor), so it is resolved for each run (:func:`resolve`, the `
 
 :func:`case_problems` resolves every case of a configuration on its own matrices before any job
 runs, and reports what would stop one as a problem naming its key (the workflow refuses the
-configuration with all of them, :func:`check_cases`). :func:`simulate_case` runs any case.
+configuration with all of them, ``hubbeam.pipeline.plan.checked_configuration``). :func:`simulate_case` runs any case.
 """
 
 from __future__ import annotations
@@ -27,7 +27,6 @@ from __future__ import annotations
 import functools
 import math
 
-from hubbeam.configuration.load import ConfigError
 from hubbeam.configuration.schema import Problem
 from hubbeam.configuration.settings import Case, Settings
 from hubbeam.control.dlqr import continuous_lqr, discrete_lqr
@@ -180,13 +179,6 @@ def case_problems(settings: Settings) -> list[Problem]:
         except FeedbackError as error:
             problems.append(error.problem)
     return problems
-
-
-def check_cases(settings: Settings, sources=()) -> None:
-    """:class:`~hubbeam.configuration.load.ConfigError` listing :func:`case_problems`, if any."""
-    problems = case_problems(settings)
-    if problems:
-        raise ConfigError(problems, sources)
 
 
 def simulate_case(case, params, numerics, matrices=None, **options):

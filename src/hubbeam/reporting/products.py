@@ -1,21 +1,24 @@
 """The registry of products: every figure and table, what it reads, how it is drawn, what it says.
 
 A :class:`Product` declares its key (``fig05``, ``campbell``, ``table3``), its kind (a figure drawn
-from simulation runs, one figure per case or per comparison of a study, a figure of the
-eigen-analysis, or a table), the function that draws it (an import path ``"module:attribute"``,
-imported only when the product is drawn, so that importing the registry stays cheap), the
-simulation cases it reads by their exact names (no name patterns), or the result files it reads
-(relative to the results folder, :data:`hubbeam.results.paths.IN_RESULTS`), the configuration keys it
-needs, its caption and the claims of the paper it carries.
+from simulation runs, one figure per case or per comparison of a study, a figure drawn from the
+result files of the eigen-analysis or the linear models, or a table), the function that draws it
+(an import path ``"module:attribute"``, imported only when the product is drawn, so that importing
+the registry stays cheap), the simulation cases it reads by their exact names (no name patterns),
+or the result files it reads (relative to the results folder,
+:data:`hubbeam.results.paths.IN_RESULTS`; each file named once here), the configuration keys it
+needs, its caption, the claims of the paper it carries and the section of the reports it is shown in.
 
 :data:`GENERAL_PRODUCTS` are those of every configuration whose keys they need are present (the
 Campbell diagram always; the study report's figures with a ``study`` section);
 :data:`PAPER_PRODUCTS` are the paper's own, built when the configuration asks for them
 (``products: [paper]``, :data:`PRODUCT_SETS`). :func:`products_for` gives a configuration's
-products: the Snakemake rules (targets, inputs, ``snakemake --report`` captions), the figure
-sections of the reproduction report (with their captions) and of the study report are derived
-from it. A new product of
-every study is one entry of :data:`GENERAL_PRODUCTS` (plus a rule when no rule of its kind exists).
+products, :func:`product_case_problems` the cases they read that a configuration lacks: the
+workflow's plan (:mod:`hubbeam.pipeline.plan`: targets, rules' inputs,
+``snakemake --report`` captions), the figure sections of the reproduction report (with their
+captions) and of the study report (by the products' ``section``) are derived from it. A new
+product of every study is one entry of :data:`GENERAL_PRODUCTS` (plus a rule when no rule of its
+kind exists).
 """
 
 from __future__ import annotations
@@ -27,23 +30,45 @@ from types import MappingProxyType
 
 from hubbeam.results.paths import IN_RESULTS
 
-#: kinds of product
+#: kinds of product: a figure drawn from simulation runs (the cases it names)
 SIMULATION_FIGURE = "simulation figure"
 #: one figure per configured case (``<key>_<case>``), drawn from that case's run
 CASE_FIGURE = "figure per case"
 #: one figure per comparison of ``study.comparisons`` (``<key>_<comparison>``), its runs overlaid
 COMPARISON_FIGURE = "figure per comparison"
-EIGEN_FIGURE = "eigen figure"
+#: a figure drawn from the result files it names (``files``): the eigen-analysis, the linear models'
+#: Campbell diagram, mode shapes, poles and zeros and Bode diagrams, the beam's data
+FILES_FIGURE = "figure of result files"
 #: one figure (``<key>``) of every case whose state feedback was designed (``maneuver.design``)
 DESIGNS_FIGURE = "figure of the feedback designs"
 TABLE = "table"
-KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, EIGEN_FIGURE, DESIGNS_FIGURE, TABLE)
+KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, FILES_FIGURE, DESIGNS_FIGURE, TABLE)
 
+#: the section of the reports a product is shown in: the paper's reproduction report, or a
+#: section of the study report (the beam, the cases, the comparisons, the feedback designs, the
+#: eigen-analysis, the linear models)
+PAPER_SECTION = "paper"
+BEAM_SECTION = "beam"
+CASES_SECTION = "cases"
+COMPARISONS_SECTION = "comparisons"
+DESIGNS_SECTION = "designs"
+EIGEN_SECTION = "eigen"
+LINEAR_SECTION = "linear"
+SECTIONS = (PAPER_SECTION, BEAM_SECTION, CASES_SECTION, COMPARISONS_SECTION, DESIGNS_SECTION, EIGEN_SECTION,
+            LINEAR_SECTION)
+
+# the result files the products and the claims read, relative to a results folder: each named once
+K22_NC = IN_RESULTS.eigen("k22")
+CAMPBELL_NC = IN_RESULTS.eigen("campbell")
 CRITICAL_SPEEDS_NC = IN_RESULTS.eigen("critical_speeds")
-#: the linear-model datasets the figures read (hubbeam.linear.datasets)
-LINEAR_NC = {name: IN_RESULTS.linear(name) for name in ("campbell", "mode_shapes", "poles_zeros", "bode")}
 #: the study's beam as data: its properties along the span and first mode shapes (hubbeam.model.shapes)
 BEAM_NC = IN_RESULTS.eigen("beam")
+#: the linear-model datasets the figures read (hubbeam.linear.datasets)
+LINEAR_NC = {name: IN_RESULTS.linear(name) for name in ("campbell", "mode_shapes", "poles_zeros", "bode")}
+#: Table 2 of the paper as computed (the eigen-analysis writes it, the table's renderings and the claims read it)
+TABLE2_CSV = IN_RESULTS.table("table2", "csv")
+#: the critical speed of each tip mass at the beam tip (the claims read it)
+CRITICAL_SPEEDS_CSV = IN_RESULTS.table("critical_speeds", "csv")
 
 
 class ProductError(ValueError):
@@ -56,10 +81,11 @@ class Product:
 
     ``cases``: the simulation cases it reads (simulation figures, tables from runs); ``files``: the
     result files it reads relative to the results folder, by the keyword its function takes them
-    under (eigen figures, tables from csv). ``needs``: the configuration keys (dotted, e.g.
+    under (figures of result files, tables from csv). ``needs``: the configuration keys (dotted, e.g.
     ``study.comparisons``; a number indexes a list) without which it is not built. ``options``: keyword arguments of the
     drawing function besides the files (e.g. which tip mass a linear-model figure shows).
-    ``paper``: what the paper shows in it; ``ours``: what our product shows.
+    ``paper``: what the paper shows in it; ``ours``: what our product shows. ``section``: the
+    section of the reports it is shown in (:data:`SECTIONS`).
     """
 
     key: str
@@ -74,11 +100,15 @@ class Product:
     claims: tuple[str, ...] = ()
     needs: tuple[str, ...] = ()
     options: Mapping[str, object] = field(default_factory=dict)
+    section: str = PAPER_SECTION
 
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ProductError(f"product {self.key}: kind {self.kind!r} is not allowed; "
                                f"allowed: {', '.join(KINDS)}")
+        if self.section not in SECTIONS:
+            raise ProductError(f"product {self.key}: section {self.section!r} is not allowed; "
+                               f"allowed: {', '.join(SECTIONS)}")
         module, _, attribute = self.function.partition(":")
         if not module or not attribute:
             raise ProductError(f"product {self.key}: function {self.function!r} is not allowed; "
@@ -153,19 +183,6 @@ def resolve(path: str):
     return getattr(importlib.import_module(module), attribute)
 
 
-def product_from_entry(key: str, entry: Mapping) -> Product:
-    """A product from a plain mapping (e.g. a study's configuration), with a clear error."""
-    allowed = set(Product.__dataclass_fields__) - {"key"}
-    unknown = sorted(set(entry) - allowed)
-    if unknown:
-        raise ProductError(f"product {key}: unknown key(s) {', '.join(unknown)}; "
-                           f"allowed: {', '.join(sorted(allowed))}")
-    try:
-        return Product(key=key, **entry)
-    except TypeError as error:
-        raise ProductError(f"product {key}: {error}") from None
-
-
 def registry(*products: Product) -> Mapping[str, Product]:
     """``{key: product}`` in declaration order; a repeated key is an error."""
     out: dict[str, Product] = {}
@@ -196,54 +213,52 @@ def product_cases(products: Mapping[str, Product]) -> list[str]:
     return sorted({case for product in products.values() for case in product.cases})
 
 
-def check_product_cases(products: Mapping[str, Product], case_names: Iterable[str]) -> None:
-    """Raise one :class:`ProductError` listing every case a product names that is not configured."""
+def product_case_problems(products: Mapping[str, Product], case_names: Iterable[str]) -> list[str]:
+    """One problem per product that reads cases the configuration does not define, naming them."""
     configured = set(case_names)
-    missing = [f"  - {key}: {', '.join(c for c in p.cases if c not in configured)}"
-               for key, p in products.items() if any(c not in configured for c in p.cases)]
-    if missing:
-        raise ProductError("invalid hubbeam configuration: the figures and tables read cases that "
-                           "the config `cases` does not define:\n" + "\n".join(missing))
+    return [f"cases: product {key} reads {', '.join(missing)}, which the config `cases` does not define"
+            for key, product in products.items()
+            if (missing := [case for case in product.cases if case not in configured])]
 
 
 # --- the products of every configuration ------------------------------------------------------
 
 #: the Campbell diagram: a general product that the paper's products include
 CAMPBELL = Product(
-    "campbell", EIGEN_FIGURE, "hubbeam.plotting.campbell:plot",
-    "Beyond the paper: Campbell diagram", in_paper=False,
+    "campbell", FILES_FIGURE, "hubbeam.plotting.campbell:plot",
+    "Beyond the paper: Campbell diagram", in_paper=False, section=EIGEN_SECTION,
     paper="Not in the paper; Table 2 is one vertical slice of it (1 rad/s).",
     ours="Frequencies of TLAM and FOAM against hub speed: TLAM's first frequency reaches zero at the "
          "critical speed, FOAM's rises with speed (dynamic stiffening).",
-    files={"campbell": IN_RESULTS.eigen("campbell"), "critical": CRITICAL_SPEEDS_NC},
+    files={"campbell": CAMPBELL_NC, "critical": CRITICAL_SPEEDS_NC},
     claims=("table2_tlam_softens_foam_stiffens",))
 
 GENERAL_PRODUCTS: Mapping[str, Product] = registry(
     Product(
         "case", CASE_FIGURE, "hubbeam.plotting.case_figure:plot", "The response of one case",
         ours="Tip deflection, hub angular velocity, hub torque and energy balance of one run of the "
-             "study.", in_paper=False, needs=("study",)),
+             "study.", in_paper=False, needs=("study",), section=CASES_SECTION),
     Product(
         "compare", COMPARISON_FIGURE, "hubbeam.plotting.comparison:plot", "A comparison of cases",
         ours="Tip deflection, hub angular velocity and hub torque of the runs of one comparison of the "
              "study, overlaid.", in_paper=False,
-        needs=("study.comparisons",)),
+        needs=("study.comparisons",), section=COMPARISONS_SECTION),
     CAMPBELL,
     Product(
-        "critical_speeds", EIGEN_FIGURE, "hubbeam.plotting.study_critical:plot",
+        "critical_speeds", FILES_FIGURE, "hubbeam.plotting.study_critical:plot",
         "Critical speeds over tip-mass position", in_paper=False,
         ours="The hub speed at which each model's transverse stiffness K22 becomes singular, against "
              "the tip-mass position, one curve per tip mass.",
-        files={"critical": CRITICAL_SPEEDS_NC}, needs=("study",)),
+        files={"critical": CRITICAL_SPEEDS_NC}, needs=("study",), section=EIGEN_SECTION),
     Product(
-        "beam_properties", EIGEN_FIGURE, "hubbeam.plotting.beam_properties:plot", "The beam",
+        "beam_properties", FILES_FIGURE, "hubbeam.plotting.beam_properties:plot", "The beam",
         ours="rhoA, EI and EA along the span, the stations marked, and the tip mass of every case at "
              "its position.", in_paper=False,
-        files={"beam": BEAM_NC}, needs=("study",)),
+        files={"beam": BEAM_NC}, needs=("study",), section=BEAM_SECTION),
     Product(
-        "mode_shapes", EIGEN_FIGURE, "hubbeam.plotting.mode_shapes:plot", "First mode shapes",
+        "mode_shapes", FILES_FIGURE, "hubbeam.plotting.mode_shapes:plot", "First mode shapes",
         ours="The first transverse mode shapes of FOAM at rest and at the top of the speed grid.",
-        in_paper=False, files={"beam": BEAM_NC}, needs=("study",)),
+        in_paper=False, files={"beam": BEAM_NC}, needs=("study",), section=EIGEN_SECTION),
     *(product for key, function, title, what, files in (
         ("linear_campbell", "campbell_tracked", "Tracked, damped Campbell diagram",
          "Frequency and damping ratio of every mode of every model against hub speed, with the hub "
@@ -265,13 +280,13 @@ GENERAL_PRODUCTS: Mapping[str, Product] = registry(
          "angle, the tip deflection v(L) and the tip's arc position, every model, at several hub "
          "speeds.", {"bode": LINEAR_NC["bode"]}),
     ) for product in (
-        Product(key, EIGEN_FIGURE, f"hubbeam.plotting.{function}:plot",
+        Product(key, FILES_FIGURE, f"hubbeam.plotting.{function}:plot",
                 f"{title}, no tip mass",
-                ours=what, in_paper=False, files=files, options={"tip_mass": 0.0}),
-        Product(f"{key}_tip", EIGEN_FIGURE, f"hubbeam.plotting.{function}:plot",
+                ours=what, in_paper=False, files=files, options={"tip_mass": 0.0}, section=LINEAR_SECTION),
+        Product(f"{key}_tip", FILES_FIGURE, f"hubbeam.plotting.{function}:plot",
                 f"{title}, the largest tip mass",
                 ours=what, in_paper=False, files=files, options={"tip_mass": "largest"},
-                needs=("linear.tip_masses.1",)),
+                needs=("linear.tip_masses.1",), section=LINEAR_SECTION),
     )),
     Product(
         "controller_trust", DESIGNS_FIGURE, "hubbeam.plotting.controller_trust:plot",
@@ -279,7 +294,7 @@ GENERAL_PRODUCTS: Mapping[str, Product] = registry(
         ours="Peak and residual tip deflection, settling time of v(L) and peak torque of every LQR "
              "design of the study against its design speed, on CFOAM and on its own design model; "
              "the paper's conclusion (iii) that SFOAM can be used for controller design, tested.",
-        needs=("study",)),
+        needs=("study",), section=DESIGNS_SECTION),
 )
 
 # --- the paper's products ------------------------------------------------------------------------
@@ -348,7 +363,7 @@ PAPER_PRODUCTS: Mapping[str, Product] = registry(
         claims=("sfoam_foam_close_tau50", "sfoam_phase_lead_tau200", "sfoam_amplitude_reduction_tau200",
                 "sfoam_n1_equals_n5_tau200")),
     Product(
-        "fig09", EIGEN_FIGURE, "hubbeam.plotting.fig09:plot",
+        "fig09", FILES_FIGURE, "hubbeam.plotting.fig09:plot",
         "Fig. 9: dominant eigenvalue of K22",
         paper="The sign of the lowest eigenvalue of TLAM's stiffness K22 against the tip-mass position, "
               "for 0.1 and 0.5 kg; the critical speeds are 2.91 rad/s (mass on the hub), 2.60 and "
@@ -356,7 +371,7 @@ PAPER_PRODUCTS: Mapping[str, Product] = registry(
         ours="The hub speed of the printed curves is not stated (note 10): we show the dominant "
              "eigenvalue over position and speed and mark where it crosses zero; eigenvalues depend on "
              "the unit modal mass normalisation (note 7).",
-        files={"k22": IN_RESULTS.eigen("k22"), "critical": CRITICAL_SPEEDS_NC},
+        files={"k22": K22_NC, "critical": CRITICAL_SPEEDS_NC},
         claims=("critical_speed_tlam_mt0", "critical_speed_tlam_mt0p1", "critical_speed_tlam_mt0p5",
                 "tip_mass_lowers_tlam_critical_speed", "foam_no_critical_speed")),
     Product(
@@ -371,7 +386,7 @@ PAPER_PRODUCTS: Mapping[str, Product] = registry(
         claims=("tlam_fails_mt0p5_wf2", "tlam_foam_close_mt0_wf2")),
     CAMPBELL,
     Product(
-        "critical_map", EIGEN_FIGURE, "hubbeam.plotting.critical_map:plot",
+        "critical_map", FILES_FIGURE, "hubbeam.plotting.critical_map:plot",
         "Beyond the paper: critical speed over tip mass and position", in_paper=False,
         paper="Not in the paper, which quotes three points of it.",
         ours="TLAM's critical speed for every tip mass and position of the eigen grid (FOAM has none).",
@@ -393,7 +408,7 @@ PAPER_PRODUCTS: Mapping[str, Product] = registry(
         ours="The first five vibration frequencies of the beam, natural and of TLAM and FOAM at the hub "
              "speed of the table, beside the printed ones; the journal prints this table under Table "
              "3's caption (note 3).",
-        files={"csv": IN_RESULTS.table("table2", "csv")}),
+        files={"csv": TABLE2_CSV}),
     Product(
         "table3", TABLE, "hubbeam.paper.tables:table3", "Table 3: largest inertia torque",
         ours="The largest inertia torque |Q_theta| of FOAM under the torque pulse for each torque "

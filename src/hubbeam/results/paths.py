@@ -77,9 +77,13 @@ class StudyPaths:
         return self.result(FOLDERS["eigen"], f"{name}.nc")
 
     def linear(self, name: str, ext: str = "nc") -> str:
-        """A linear-model product (``campbell``, ``poles_zeros``, ``bode``, ``mode_shapes``, or the
-        exported models ``models/<model>_<hub>_tip<k>``, as ``nc`` or ``mat``)."""
+        """A linear-model dataset (``campbell``, ``poles_zeros``, ``bode``, ``mode_shapes``)."""
         return self.result(FOLDERS["linear"], f"{name}.{ext}")
+
+    def linear_model(self, model: str, hub: str, tip_mass: int, ext: str) -> str:
+        """The exported linear models of ``model`` with the hub ``hub`` at the tip mass of index
+        ``tip_mass`` of ``linear.tip_masses``, as ``nc`` or ``mat``."""
+        return self.linear(f"models/{model}_{hub}_tip{tip_mass}", ext)
 
     def figure(self, key: str, ext: str) -> str:
         return self.result(FOLDERS["figure"], f"{key}.{ext}")
@@ -96,7 +100,7 @@ class StudyPaths:
         return self.result(FOLDERS["report"], name)
 
     def validation(self, name: str) -> str:
-        """A file of the independent validation (``published_comparison.csv``, ``runs/...``)."""
+        """A file of the independent validation (each named by one of the methods below)."""
         return self.result(FOLDERS["validation"], name)
 
     def sweep(self, name: str) -> str:
@@ -119,6 +123,85 @@ class StudyPaths:
 
     def archive(self) -> str:
         return self.result(f"{self.archive_top}.tar.gz")
+
+    # --- the reports (folder report/) -------------------------------------------------------
+
+    def claims(self) -> str:
+        """The paper's claims against our results (``hubbeam.paper.claims``)."""
+        return self.report("claims.csv")
+
+    def reproduction(self, ext: str) -> str:
+        """The reproduction report of the paper (``md`` or ``html``)."""
+        return self.report(f"reproduction.{ext}")
+
+    def study_report(self, ext: str) -> str:
+        """A study's report (``md`` or ``html``)."""
+        return self.report(f"report.{ext}")
+
+    def summary(self) -> str:
+        """A study's summary, a row per case."""
+        return self.report("summary.csv")
+
+    def validation_report(self, ext: str) -> str:
+        """The report of the independent validation (``md`` or ``html``; ``snakemake validate``)."""
+        return self.report(f"validation_exudyn.{ext}")
+
+    # --- the independent validation (folder validation/) ----------------------------------------
+
+    def published_comparison(self) -> str:
+        """Rotating-cantilever frequencies against the published tables."""
+        return self.validation("published_comparison.csv")
+
+    def tip_mass_comparison(self) -> str:
+        """Frequencies of a cantilever with a tip mass against the published ones."""
+        return self.validation("tip_mass_comparison.csv")
+
+    def rotating_eigen(self) -> str:
+        """The frequency curves of the rotating cantilever over the dimensionless speed."""
+        return self.validation("rotating_eigen.nc")
+
+    def rotating_frequencies(self, ext: str) -> str:
+        """The figure of those curves with the published values."""
+        return self.validation(f"rotating_frequencies.{ext}")
+
+    def exudyn_run(self, case: str) -> str:
+        """The Exudyn ANCF reference run of the validation case ``case``."""
+        return self.validation(f"runs/exudyn_{case}.nc")
+
+    def model_runs(self, case: str) -> str:
+        """The runs of hubbeam's models of the validation case ``case``."""
+        return self.validation(f"runs/models_{case}.nc")
+
+    def exudyn_case(self, case: str) -> str:
+        """The models' tip deflection against the reference's, validation case ``case``."""
+        return self.validation(f"exudyn_{case}.nc")
+
+    def exudyn_comparison(self, ext: str) -> str:
+        """The comparison with the Exudyn reference: its table (``csv``) and figure (``pdf``, ``png``)."""
+        return self.validation(f"exudyn_comparison.{ext}")
+
+    def exudyn_mode_study(self) -> str:
+        """The models' differences from the reference against the number of assumed modes."""
+        return self.validation("exudyn_mode_study.csv")
+
+    def exudyn_convergence(self, ext: str) -> str:
+        """The convergence of the reference: its table (``csv``) and runs (``nc``)."""
+        return self.validation(f"exudyn_convergence.{ext}")
+
+    def nonuniform_check(self, check: str) -> str:
+        """A table of the non-uniform beam's frequencies: ``ritz_fe`` (the Ritz model against our
+        finite elements) or ``pybmodes`` (both against pyBModes)."""
+        return self.validation(f"nonuniform_{check}.csv")
+
+    # --- the compiled kernels' markers (of :data:`SHARED`: every configuration shares them) ----
+
+    def kernel_marker(self, family: str) -> str:
+        """The marker of the compiled simulation kernel of a family of models."""
+        return self.log("simulations", f"kernel_{family}.done")
+
+    def sweep_kernel_marker(self) -> str:
+        """The marker of the compiled sweep kernel."""
+        return self.log("sweeps", "kernel.done")
 
 
 #: the default folders (the paper's), which also hold what every configuration shares

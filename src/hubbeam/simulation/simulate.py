@@ -439,12 +439,13 @@ def sample_variables(records: SampleRecords, loop: SampledLoop) -> dict:
 
 def compile_kernels(family: str | None = None, sampled: bool = False) -> float:
     """Compile (or load from numba's cache) the simulation kernel of ``family`` (a key of
-    :data:`hubbeam.core.integrate.FAMILY_KERNELS`; default: every family), and with ``sampled`` its
-    sampled-controller kernel (:mod:`hubbeam.core.sampled`); return the seconds it took.
+    :data:`hubbeam.core.integrate.FAMILY_KERNELS`; default: every family), or with ``sampled`` its
+    sampled-controller kernel (:mod:`hubbeam.core.sampled`) instead; return the seconds it took.
 
-    One kernel per family serves every model of it, maneuver and mode count, so a workflow calls
-    this once per family before it starts parallel simulations (they then all load the cached
-    machine code); the families compile independently, in parallel processes if wanted.
+    One kernel per family (and one sampled kernel) serves every model of it, maneuver and mode
+    count, so a workflow calls this once per kernel before it starts parallel simulations (they
+    then all load the cached machine code); the kernels compile independently, in parallel
+    processes if wanted.
     """
     if family is not None and family not in FAMILIES:
         raise ValueError(f"family: got {family!r}; allowed: {', '.join(FAMILIES)}")
@@ -456,14 +457,15 @@ def compile_kernels(family: str | None = None, sampled: bool = False) -> float:
         case = Case(name="compile_kernels", model=family_model(name).name, maneuver=SpinUp(wf=0.1, tf=0.05),
                     t_end=0.1, modes=1, tip_mass=TipMass(0.0, 1.0))
         sm = case_matrices(case, params, numerics)
-        run(case, params, numerics, sm, UNRESOLVED)
-        if sampled:
-            tracking = dataclasses.replace(case, maneuver=PdControl(kp=1.0, kd=1.0, reference=case.maneuver))
-            N = 1 + 2 * case.modes
-            loop = SampledLoop([Sensor("hub_angle", np.eye(2 * N)[0])], np.zeros((0, 0)), np.zeros((0, 1)),
-                               np.zeros(0), np.zeros((1, 0)), np.ones((1, 1)), np.ones(1), np.zeros((1, 3)),
-                               np.zeros(3), np.zeros(0), Ts=0.02)
-            run(tracking, params, numerics, sm, Resolved(loop=loop))
+        if not sampled:
+            run(case, params, numerics, sm, UNRESOLVED)
+            continue
+        tracking = dataclasses.replace(case, maneuver=PdControl(kp=1.0, kd=1.0, reference=case.maneuver))
+        N = 1 + 2 * case.modes
+        loop = SampledLoop([Sensor("hub_angle", np.eye(2 * N)[0])], np.zeros((0, 0)), np.zeros((0, 1)),
+                           np.zeros(0), np.zeros((1, 0)), np.ones((1, 1)), np.ones(1), np.zeros((1, 3)),
+                           np.zeros(3), np.zeros(0), Ts=0.02)
+        run(tracking, params, numerics, sm, Resolved(loop=loop))
     return time.perf_counter() - start
 
 

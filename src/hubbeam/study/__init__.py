@@ -33,10 +33,20 @@ def base_config_files(cfg: Mapping) -> tuple[str, ...]:
 
 def claim_results_dir(folder: os.PathLike | str, config_file: os.PathLike | str) -> Path:
     """Record ``config_file`` as the owner of ``folder`` (its ``.study`` marker), or raise
-    :class:`StudyError` when another config file owns it already. Paths are compared as given
-    relative to the working directory, so a moved checkout keeps its claims."""
+    :class:`StudyError` when another config file owns it already (:func:`check_results_dir`)."""
+    marker = check_results_dir(folder, config_file)
+    if not marker.is_file():
+        marker.parent.mkdir(parents=True, exist_ok=True)
+        marker.write_text(_owner(config_file) + "\n", encoding="utf-8")
+    return marker
+
+
+def check_results_dir(folder: os.PathLike | str, config_file: os.PathLike | str) -> Path:
+    """The ``.study`` marker of ``folder``; :class:`StudyError` when it names a config file other
+    than ``config_file``. Writes nothing. Paths are compared as given relative to the working
+    directory, so a moved checkout keeps its claims."""
     marker = Path(folder, MARKER)
-    owner = Path(os.path.relpath(config_file)).as_posix()
+    owner = _owner(config_file)
     if marker.is_file():
         recorded = marker.read_text(encoding="utf-8").strip()
         if recorded != owner:
@@ -44,13 +54,20 @@ def claim_results_dir(folder: os.PathLike | str, config_file: os.PathLike | str)
                 f"study.name: the folder {folder} belongs to the study of {recorded} (recorded in "
                 f"{marker}), not to {owner}; allowed: a study name no other config file uses "
                 f"(rename the study, or delete {folder} to give it to {owner})")
-        return marker
-    marker.parent.mkdir(parents=True, exist_ok=True)
-    marker.write_text(owner + "\n", encoding="utf-8")
     return marker
+
+
+def _owner(config_file: os.PathLike | str) -> str:
+    return Path(os.path.relpath(config_file)).as_posix()
 
 
 def claim_folder(paths: StudyPaths, config_file: os.PathLike | str) -> Path | None:
     """:func:`claim_results_dir` for a configuration's folders when they are its own (a study's);
     the default folders are shared by config/config.yaml and the files extending it."""
     return claim_results_dir(paths.results, config_file) if paths.owned else None
+
+
+def check_folder(paths: StudyPaths, config_file: os.PathLike | str) -> None:
+    """:func:`check_results_dir` for a configuration's own folders (a study's); writes nothing."""
+    if paths.owned:
+        check_results_dir(paths.results, config_file)

@@ -5,9 +5,11 @@ Markdown (``hubbeam.reporting.document``).
 table of stations stays in the archived configuration) beside the figure of its properties, lists
 a row per case (:mod:`hubbeam.study.summary`) with links to its figure, the comparison figures,
 the LQR designs tried on another model (:mod:`hubbeam.study.trust`: a table, the verdict per
-design model and their figure) and the eigen-analysis figures (the beam's mode shapes among them); paths of
-figures are given relative to the report's folder, so the Markdown reads the same in the results
-archive. :func:`study_html` renders it into one self-contained page (figures embedded).
+design model and their figure), the eigen-analysis figures (the beam's mode shapes among them) and
+the linear models' figures: each figure in the section its product names in the registry
+(:mod:`hubbeam.reporting.products`). Paths of figures are given relative to the report's folder,
+so the Markdown reads the same in the results archive. :func:`study_html` renders it into one
+self-contained page (figures embedded).
 """
 
 from __future__ import annotations
@@ -17,35 +19,38 @@ from collections.abc import Mapping, Sequence
 from hubbeam.model.beam import SECTION_PROPERTIES, SECTION_UNITS, beam_from_config
 from hubbeam.reporting.document import markdown_table, markdown_to_html, render
 from hubbeam.reporting.formatting import number
+from hubbeam.reporting.products import (
+    BEAM_SECTION,
+    CASES_SECTION,
+    COMPARISONS_SECTION,
+    DESIGNS_SECTION,
+    EIGEN_SECTION,
+    LINEAR_SECTION,
+)
 from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, verdicts
-
-#: the eigen figure shown in the report's beam section rather than with the eigen-analysis
-BEAM_FIGURE = "beam_properties"
-#: the figure of the feedback designs, shown in their section
-DESIGNS_FIGURE = "controller_trust"
-#: the registry's linear-model figures (``hubbeam.reporting.products``), shown in a section of their own
-LINEAR_PREFIX = "linear_"
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
-                   case_figures: Mapping[str, str], comparison_figures: Mapping[str, str],
-                   eigen_figures: Mapping[str, str], designs: Sequence[Mapping] = ()) -> str:
+                   figures: Mapping[str, Mapping[str, str]], designs: Sequence[Mapping] = ()) -> str:
     """The report in Markdown. ``rows`` are summary rows, ``designs`` the rows of
-    :func:`hubbeam.study.trust.design_table`; the figure maps give, per case, comparison or
-    eigen figure (the figure of the designs among them), the PNG path relative to the report."""
-    own = (BEAM_FIGURE, DESIGNS_FIGURE)
+    :func:`hubbeam.study.trust.design_table`; ``figures`` gives, per section of the report (the
+    products' ``section``, :data:`hubbeam.reporting.products.SECTIONS`), the PNG paths relative
+    to the report by label: the case of a figure per case, the comparison of a figure per
+    comparison, the figure's name otherwise. Sections the study report has no place for (the
+    paper's) are left out."""
+    def first(section: str) -> str | None:
+        return next(iter(figures.get(section, {}).values()), None)
+
     return render("study_report.md.j2", study=study, beam=beam, rows=rows,
                   beam_table=beam_markdown(beam), cases_table=cases_markdown(rows),
-                  case_figures=case_figures, comparison_figures=comparison_figures,
-                  beam_figure=eigen_figures.get(BEAM_FIGURE),
+                  case_figures=figures.get(CASES_SECTION, {}),
+                  comparison_figures=figures.get(COMPARISONS_SECTION, {}),
+                  beam_figure=first(BEAM_SECTION),
                   designs_table=designs_markdown(designs) if designs else "",
-                  verdicts=verdicts(list(designs)), design_figure=eigen_figures.get(DESIGNS_FIGURE),
+                  verdicts=verdicts(list(designs)), design_figure=first(DESIGNS_SECTION),
                   reference_model=REFERENCE_MODEL, settling_band=SETTLING_BAND,
                   trust_tolerance=TRUST_TOLERANCE,
-                  eigen_figures={name: path for name, path in eigen_figures.items()
-                                 if name not in own and not name.startswith(LINEAR_PREFIX)},
-                  linear_figures={name: path for name, path in eigen_figures.items()
-                                  if name.startswith(LINEAR_PREFIX)})
+                  eigen_figures=figures.get(EIGEN_SECTION, {}), linear_figures=figures.get(LINEAR_SECTION, {}))
 
 
 def beam_summary(beam: Mapping) -> list[dict]:

@@ -37,9 +37,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.configuration.settings import damping_settings
-from hubbeam.core.system_matrices import rotary_mass
 from hubbeam.model.damping import damping_matrices
-from hubbeam.model.linearised import axial_stretch, constant_speed_matrices
+from hubbeam.model.linearised import axial_stretch, spin_matrices
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import model as model_traits
 from hubbeam.model.modes import transverse_modes
@@ -147,37 +146,13 @@ def checked_damping(damping, n: int) -> np.ndarray:
     return C
 
 
-def stretch_foreshortening(sm, q1s: np.ndarray) -> np.ndarray:
-    """``E(q1s) = sum_k w_k (f1(x_k) q1s) S(x_k)`` over the point cloud: the foreshortening of the
-    exact kinetic energy (Eqs. 8-9) weighted by the stretch; CFOAM's ``K22`` gains ``Omega^2 E``."""
-    return np.einsum("k,k,kij->ij", sm.w, sm.F1 @ q1s, sm.S)
-
-
 def second_order(sm, traits, speed: float, damping=None):
-    """``(M, G, C, K, q1s)`` of ``M z'' + (G + C) z' + K z = e_theta tau`` (module docstring)."""
+    """``(M, G, C, K, q1s)`` of ``M z'' + (G + C) z' + K z = e_theta tau`` (module docstring;
+    ``hubbeam.model.linearised.spin_matrices``)."""
     n = sm.M2.shape[0]
     Cd = checked_damping(damping, n)
     q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(n)
-    Me, Ge, Ke = constant_speed_matrices(sm, traits.linearisation, speed, axial=traits.keeps_axial)
-    Ke = np.array(Ke)
-    if traits.exact_kinetic_energy:  # Eqs. 8-9
-        Ke[-n:, -n:] += speed**2 * stretch_foreshortening(sm, q1s)
-    Ce = np.zeros_like(Me)
-    if traits.keeps_axial:
-        Ce[:n, :n] = Cd[0]
-    Ce[-n:, -n:] = Cd[1]
-    N = 1 + Me.shape[0]
-    M, G, C, K = (np.zeros((N, N)) for _ in range(4))
-    M[1:, 1:], G[1:, 1:], C[1:, 1:], K[1:, 1:] = Me, Ge, Ce, Ke
-    hub, coupling, _ = rotary_mass(sm)  # the q2 block has it already (constant_speed_matrices)
-    M[0, 0] = sm.Jh + sm.Jb + 2.0 * sm.V1 @ q1s + q1s @ sm.M1 @ q1s + hub
-    M[0, -n:] = M[-n:, 0] = sm.V2 + sm.R.T @ q1s + coupling
-    if traits.keeps_axial:
-        p = sm.V1 + sm.M1 @ q1s
-        G[1:1 + n, 0] = -2.0 * speed * p
-        if traits.hub_velocity_force:
-            G[0, 1:1 + n] = 2.0 * speed * p
-    return M, G, C, K, q1s
+    return (*spin_matrices(sm, traits, speed, Cd, q1s), q1s)
 
 
 def accelerations(M, G, C, K, hub: str):

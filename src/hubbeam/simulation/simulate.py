@@ -51,10 +51,12 @@ from hubbeam.model.maneuvers import FeedbackLaw, Maneuver, SpinUp
 from hubbeam.model.matrices import SystemMatrices, assemble
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.root import RootSpring, checked_spring, joint_inputs
 from hubbeam.model.shapers import Shaper, shaped_stops
 from hubbeam.results.provenance import global_attributes
 from hubbeam.results.variables import (
     CUMULATIVE_VARIABLES,
+    JOINT_WORK,
     dataset_variables,
     output_count,
 )
@@ -68,10 +70,12 @@ class SimulationError(ValueError):
     """A case or the numerics cannot be simulated; the message names key, value and allowed."""
 
 
-def initial_state(case: Case, sm: SystemMatrices) -> State:
+def initial_state(case: Case, sm: SystemMatrices, joint: bool = False) -> State:
     """The state ``(y, y')`` of ``y = (theta, q1, q2)`` at ``t = 0`` of a checked case (the
     configuration's checks, ``hubbeam.configuration.checks``), from its optional ``initial``
-    state (:class:`~hubbeam.configuration.settings.InitialState`; default: rest):
+    state (:class:`~hubbeam.configuration.settings.InitialState`; default: rest); with a
+    compliant root (``joint``, ``hubbeam.model.root``) of ``(theta, q1, q2, phi)``, the hub angle
+    ``phi = 0`` turning with the root (the spring relaxed):
 
     * ``hub_speed`` (rad s-1, default 0): a steady spin, ``theta = 0``, ``theta' = hub_speed``,
       with ``q1`` at its centrifugal stretch ``q1s`` for that speed
@@ -83,11 +87,13 @@ def initial_state(case: Case, sm: SystemMatrices) -> State:
     n = case.modes
     spec = case.initial
     if spec is None:
-        return State(np.zeros(1 + 2 * n), np.zeros(1 + 2 * n))
+        size = 2 + 2 * n if joint else 1 + 2 * n
+        return State(np.zeros(size), np.zeros(size))
     speed = spec.hub_speed or 0.0
     q1s = linearised.axial_stretch(sm, speed) if model(case.model).keeps_axial else np.zeros(n)
-    return State(np.concatenate([[0.0], q1s + spec.modal("q1", n), spec.modal("q2", n)]),
-                 np.concatenate([[speed], spec.modal("q1_dot", n), spec.modal("q2_dot", n)]))
+    hub = [0.0] if joint else []
+    return State(np.concatenate([[0.0], q1s + spec.modal("q1", n), spec.modal("q2", n), hub]),
+                 np.concatenate([[speed], spec.modal("q1_dot", n), spec.modal("q2_dot", n), [speed] * len(hub)]))
 
 
 def output_times(t_end: float, output_step: float) -> np.ndarray:
@@ -120,7 +126,7 @@ def case_matrices(case: Case, params: BeamParameters, numerics: Numerics,
 def simulate(case: Case | Mapping, params: BeamParameters, numerics: Numerics | Mapping,
              matrices: SystemMatrices | None = None, *,
              convergence_check: ConvergenceCheck | Mapping | None = None, feedback=None,
-             shaper: Shaper | None = None) -> xr.Dataset:
+             shaper: Shaper | None = None, root_spring: RootSpring | None = None) -> xr.Dataset:
     """Simulate one case from its initial state and return the labelled simulation dataset.
 
     Parameters
@@ -143,6 +149,13 @@ def simulate(case: Case | Mapping, params: BeamParameters, numerics: Numerics | 
         maneuver's command (``hubbeam.core.shaping``: the hub motion, the torque, or a
         controller's reference); None leaves it unshaped. Recorded as the attribute ``shaper``
         (JSON), present only when given.
+    root_spring : a compliant root (:class:`hubbeam.model.root.RootSpring`: a torsional spring and
+        damper between the hub and the beam's root, ``docs/compliant-root.md``); None, the
+        default, clamps the beam to the hub. With one ``theta`` is the beam's root angle, the
+        maneuver drives the hub (a prescribed maneuver prescribes the hub angle, a controller reads
+        and drives it; a state feedback's gains act on ``(theta, q1, q2, phi)`` and their rates),
+        and the dataset adds ``hub_angle``, ``hub_speed``, ``hub_acceleration``, ``spring_torque``
+        and the spring's attributes (:meth:`~hubbeam.model.root.RootSpring.attributes`).
 
     Objects are used as they are (the workflow's jobs get them from the one check of the
     configuration); mappings are checked once, by the same schema and checks
@@ -152,16 +165,19 @@ def simulate(case: Case | Mapping, params: BeamParameters, numerics: Numerics | 
     """
     if shaper is not None and not isinstance(shaper, Shaper):
         raise SimulationError(f"shaper = {shaper!r}; allowed: a hubbeam.model.shapers.Shaper, or None")
+    root_spring = checked_spring(root_spring)
     case, numerics = simulation_settings(case, numerics, params.L, convergence_check)
     sm = case_matrices(case, params, numerics, matrices)
-    ds = build_dataset(case, params, numerics, sm, *_integrate(case, params, numerics, sm, feedback, shaper=shaper))
+    ds = build_dataset(case, params, numerics, sm,
+                       *_integrate(case, params, numerics, sm, feedback, shaper=shaper, root_spring=root_spring),
+                       root_spring=root_spring)
     ds.attrs["quadrature_points"] = quadrature_points(sm)
     if case.maneuver.needs_law:
         ds.attrs.update(feedback(case, sm)[1])
     if shaper is not None:
         ds.attrs["shaper"] = json.dumps(shaper.to_dict())
     if numerics.convergence_check is not None:
-        found = convergence(ds, case, params, numerics, sm, feedback, shaper)
+        found = convergence(ds, case, params, numerics, sm, feedback, shaper, root_spring)
         notes = found.pop("warnings")
         ds.attrs.update(found)
         ds.attrs["warnings"] = "; ".join(filter(None, [ds.attrs["warnings"], *notes]))
@@ -173,29 +189,39 @@ def quadrature_points(sm: SystemMatrices) -> int:
     return int(np.size(sm.x) - 1)
 
 
-def _feedback_law(case: Case, sm: SystemMatrices, feedback) -> FeedbackLaw | None:
-    """The resolved law of a maneuver that needs one (``feedback`` as in :func:`simulate`)."""
+def _feedback_law(case: Case, sm: SystemMatrices, feedback, joint: bool = False) -> FeedbackLaw | None:
+    """The resolved law of a maneuver that needs one (``feedback`` as in :func:`simulate`; with a
+    compliant root, ``joint``, its gains on ``(theta, q1, q2, phi)`` and their rates)."""
     if not case.maneuver.needs_law:
         return None
     if feedback is None:
         raise SimulationError(f"cases.{case.label}.maneuver.kind = {case.maneuver.kind!r}; allowed here only "
                               "with its feedback (run it with hubbeam.control.feedback.simulate_case)")
-    return feedback(case, sm)[0]
+    law = feedback(case, sm)[0]
+    states = 2 * (2 + 2 * case.modes if joint else 1 + 2 * case.modes)
+    if np.size(law.gains) != states:
+        raise SimulationError(f"cases.{case.label}.maneuver: {np.size(law.gains)} feedback gains; allowed: "
+                              f"{states}, one per state of {case.modes} modes"
+                              + (" with the root spring's hub angle (theta, q1, q2, phi and their rates)"
+                                 if joint else ""))
+    return law
 
 
 def _integrate(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices, feedback=None,
-               drive: np.ndarray = NO_DRIVE, shaper: Shaper | None = None):
+               drive: np.ndarray = NO_DRIVE, shaper: Shaper | None = None, root_spring: RootSpring | None = None):
     """Run the kernel once: ``(t, out, status, t_stop, integrator)`` for :func:`build_dataset`
-    (``feedback`` and ``shaper`` as in :func:`simulate`; ``drive``: the hub's packed drive,
-    ``hubbeam.core.drive``)."""
-    kind, mp = case.maneuver.kernel_parameters(_feedback_law(case, sm, feedback))
+    (``feedback``, ``shaper`` and ``root_spring`` as in :func:`simulate`; ``drive``: the hub's
+    packed drive, ``hubbeam.core.drive``)."""
+    joint = root_spring is not None
+    kind, mp = case.maneuver.kernel_parameters(_feedback_law(case, sm, feedback, joint))
     t = output_times(case.t_end, numerics.output_step)
-    out = np.empty((t.size, n_output_columns(case.modes)))
+    out = np.empty((t.size, n_output_columns(case.modes, joint)))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
     start = time.perf_counter()
-    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm, drive,
-                              IDENTITY_SHAPER if shaper is None else shaper.kernel_array())
-    status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t, step_stops(case.maneuver, t, shaper),
+    link, root = joint_inputs(sm, root_spring)
+    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), link, drive,
+                              IDENTITY_SHAPER if shaper is None else shaper.kernel_array(), root)
+    status, t_stop = simulate_kernel(inputs, initial_state(case, sm, joint), t, step_stops(case.maneuver, t, shaper),
                                      integrator_settings(numerics, params.L), out, stats)
     wall = time.perf_counter() - start
     LOG.info("case %s (%s, %d modes): %s at t = %g s, %.3f s wall, %d steps (%d rejected), "
@@ -215,9 +241,10 @@ def integrator_settings(numerics: Numerics, length: float) -> IntegratorSettings
 
 
 def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Numerics,
-                sm: SystemMatrices, feedback=None, shaper: Shaper | None = None) -> dict:
-    """Check the run ``ds`` of ``case`` (made with matrices ``sm``, and ``shaper``) against two
-    reruns, with the settings ``numerics.convergence_check``.
+                sm: SystemMatrices, feedback=None, shaper: Shaper | None = None,
+                root_spring: RootSpring | None = None) -> dict:
+    """Check the run ``ds`` of ``case`` (made with matrices ``sm``, ``shaper`` and ``root_spring``)
+    against two reruns, with the settings ``numerics.convergence_check``.
 
     The reruns change one setting each: the tolerances ``rtol`` and ``atol`` multiplied by
     ``tolerance_factor`` (``rtol`` not below :data:`MIN_RTOL`), and the number of modes raised by
@@ -255,7 +282,7 @@ def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Nu
                         f"maximum of {MAX_MODES} modes")
     for label, (rerun_case, rerun_numerics, rerun_sm, what) in reruns.items():
         _, out, status, rerun_stop, _ = _integrate(rerun_case, params, rerun_numerics, rerun_sm, feedback,
-                                                   shaper=shaper)
+                                                   shaper=shaper, root_spring=root_spring)
         rerun_tip = out[:, output_columns(rerun_case.modes)["tip_transverse"]]
         both = np.isfinite(tip) & np.isfinite(rerun_tip)
         difference = float(np.max(np.abs(tip - rerun_tip)[both])) if both.any() else math.nan
@@ -277,21 +304,26 @@ def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Nu
 
 def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatrices,
                   t: np.ndarray, out: np.ndarray, status: int, t_stop: float,
-                  integrator: Mapping) -> xr.Dataset:
+                  integrator: Mapping, root_spring: RootSpring | None = None) -> xr.Dataset:
     """The simulation dataset of ``docs/architecture.md`` from the kernel's output array.
 
     ``sm`` are the case's matrices (their ``K22`` of Eq. 31 tells a divergence from a run that
     left the range of the models, :mod:`hubbeam.model.validity`); ``status`` and ``t_stop`` are the
     kernel's return values; ``integrator`` holds the integrator attributes (name, tolerances and
-    statistics, including ``n_steps``).
+    statistics, including ``n_steps``); ``root_spring`` the run's compliant root (None: rigid),
+    whose variables and attributes join (:func:`simulate`), the work then the hub torque's on the
+    hub's rate.
     """
     n = case.modes
-    columns = output_columns(n)
-    variables = dataset_variables(case.model)
+    joint = root_spring is not None
+    columns = output_columns(n, joint)
+    variables = dataset_variables(case.model, joint)
     data_vars = {name: (dims, np.ascontiguousarray(out[:, columns[name]]),
                         {"units": units, "long_name": long_name})
                  for name, (dims, units, long_name) in variables.items()}
     for name, (factors, units, long_name) in CUMULATIVE_VARIABLES.items():
+        if joint and factors == CUMULATIVE_VARIABLES["work"][0]:
+            factors = JOINT_WORK
         integrand = np.prod([out[:, columns[factor]] for factor in factors], axis=0)
         data_vars[name] = ("time", cumulative_integral(integrand, t),
                            {"units": units, "long_name": long_name})
@@ -324,6 +356,7 @@ def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: Sy
                                                "tip_offset_m": case.tip_mass.offset}),
         "n_modes": int(n),
         **beam_attributes(params),
+        **(root_spring.attributes() if joint else {}),
         **found,
         "integrator_status": radau.STATUS_NAMES[status],
         "stopped_at_s": float(t_stop),

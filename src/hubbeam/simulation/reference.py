@@ -34,6 +34,7 @@ from hubbeam.model.damping import damping_matrices
 from hubbeam.model.matrices import SystemMatrices
 from hubbeam.model.models import model
 from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.root import RootSpring, checked_spring, joint_inputs
 from hubbeam.model.shapers import Shaper
 from hubbeam.simulation.simulate import (
     build_dataset,
@@ -72,7 +73,8 @@ def pure_python(func, _done=None):
 def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics: Numerics | Mapping,
                          matrices: SystemMatrices | None = None, *, method: str = "Radau",
                          rtol: float = 1e-12, atol: float = 1e-14,
-                         pure_python_rhs: bool = True, shaper: Shaper | None = None) -> xr.Dataset:
+                         pure_python_rhs: bool = True, shaper: Shaper | None = None,
+                         root_spring: RootSpring | None = None) -> xr.Dataset:
     """The simulation dataset of ``case`` computed with ``scipy.integrate.solve_ivp``.
 
     Arguments as :func:`hubbeam.simulation.simulate.simulate` (``numerics`` gives the output grid and the
@@ -81,23 +83,29 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
     path (and at every row of a maneuver's table). Integrator attributes name scipy, the method and
     its counts (``n_steps`` is not known to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
     The run starts from the case's initial state (:func:`hubbeam.simulation.simulate.initial_state`);
-    ``shaper`` shapes the maneuver's command as in :func:`hubbeam.simulation.simulate.simulate`.
+    ``shaper`` shapes the maneuver's command and ``root_spring`` makes the root compliant, as in
+    :func:`hubbeam.simulation.simulate.simulate`.
     """
+    root_spring = checked_spring(root_spring)
     case, numerics = simulation_settings(case, numerics, params.L)
     if method not in METHODS:
         raise ValueError(f"method = {method!r}; allowed: one of {', '.join(METHODS)}")
     sm = case_matrices(case, params, numerics, matrices)
     kind, mp = case.maneuver.kernel_parameters()
-    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm)
+    link, root = joint_inputs(sm, root_spring)
+    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), link,
+                              root=root)
     if shaper is not None:
         inputs = inputs._replace(shaper=shaper.kernel_array())
     n = case.modes
-    free = eom.free_dofs(inputs.traits, kind, n)
+    joint = root_spring is not None
+    free = eom.free_coordinates(inputs)
     nf = free.size
     accelerations = pure_python(eom.accelerations) if pure_python_rhs else eom.accelerations
-    y = np.zeros(1 + 2 * n)
-    v = np.zeros(1 + 2 * n)
-    a = np.zeros(1 + 2 * n)
+    y = np.zeros(eom.coordinate_count(inputs))
+    v = np.zeros_like(y)
+    a = np.zeros_like(y)
+    watched = np.isin(free, np.arange(1 + n, 1 + 2 * n))  # the q2 among the free coordinates
 
     def rhs(t, z):
         y[free] = z[:nf]
@@ -107,14 +115,14 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
 
     tip_limit = float(numerics.divergence_limit) * params.L
 
-    def tip_event(t, z):  # q2 are the last n free coordinates
-        return tip_limit - abs(sm.f2L @ z[nf - n:nf])
+    def tip_event(t, z):
+        return tip_limit - abs(sm.f2L @ z[:nf][watched])
 
     tip_event.terminal = True
 
     t = output_times(case.t_end, numerics.output_step)
     edges = [t[0], *step_stops(case.maneuver, t, shaper), t[-1]]
-    start = initial_state(case, sm)
+    start = initial_state(case, sm, joint)
     z = np.concatenate([start.y[free], start.v[free]])
     states = np.full((t.size, 2 * nf), np.nan)
     status, t_stop, nfev, njev, nlu = SUCCESS, t[-1], 0, 0, 0
@@ -141,12 +149,12 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
             break
         z = result.y[:, -1]
     wall = time.perf_counter() - start
-    out = np.empty((t.size, n_output_columns(n)))
+    out = np.empty((t.size, n_output_columns(n, joint)))
     fill_outputs(inputs, free, Trajectory(t, np.ascontiguousarray(states[:, :nf]),
                                           np.ascontiguousarray(states[:, nf:])), out)
     integrator = {"integrator": f"scipy.integrate.solve_ivp {method} (hubbeam.simulation.reference)",
                   "rtol": float(rtol), "atol": float(atol), "n_rhs": int(nfev),
                   "n_jacobian": int(njev), "n_lu": int(nlu), "wall_time_s": float(wall),
                   "pure_python_rhs": int(pure_python_rhs)}
-    return build_dataset(case, params, numerics, sm, t, out, status, t_stop, integrator)
+    return build_dataset(case, params, numerics, sm, t, out, status, t_stop, integrator, root_spring)
 

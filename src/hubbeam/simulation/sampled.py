@@ -29,8 +29,9 @@ import numpy as np
 from hubbeam.configuration.settings import Case, Numerics, simulation_settings
 from hubbeam.core import maneuver as kernel_maneuvers
 from hubbeam.core import radau
-from hubbeam.core.eom import free_dofs
+from hubbeam.core.eom import free_coordinates
 from hubbeam.core.inputs import (
+    IDENTITY_SHAPER,
     NO_DRIVE,
     LoopArrays,
     LoopMatrices,
@@ -47,6 +48,7 @@ from hubbeam.model.maneuvers import MANEUVERS, Tracking
 from hubbeam.model.matrices import SystemMatrices
 from hubbeam.model.models import model
 from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.root import RootSpring, checked_spring, joint_inputs
 from hubbeam.simulation.simulate import (
     INTEGRATOR,
     SimulationError,
@@ -281,7 +283,7 @@ def reference_array(maneuver: Tracking) -> np.ndarray:
 def loop_arrays(loop: SampledLoop, free: np.ndarray, t_end: float,
                 reference: np.ndarray) -> tuple[LoopArrays, np.ndarray, np.ndarray]:
     """The kernel's :class:`~hubbeam.core.inputs.LoopArrays` of ``loop`` for the integrated
-    coordinates ``free`` (``hubbeam.core.eom.free_dofs``), the last output time ``t_end`` and the
+    coordinates ``free`` (``hubbeam.core.eom.free_coordinates``), the last output time ``t_end`` and the
     packed ``reference`` (:func:`reference_array`), with NaN records; the stops of the
     integration (every sample and switch time in ``(0, t_end]``); the noise drawn."""
     N = loop.sensors[0].row.size // 2
@@ -325,7 +327,7 @@ def _loop_case(case: Case) -> None:
 
 def simulate_rig(case: Case | Mapping, params: BeamParameters, numerics: Numerics | Mapping, *,
                  motor: DcMotor | None = None, loop: SampledLoop | None = None, matrices: SystemMatrices | None = None,
-                 feedback=None) -> RigRun:
+                 feedback=None, root_spring: RootSpring | None = None) -> RigRun:
     """Run ``case`` with the hub's drive ``motor`` and/or the sampled controller ``loop``.
 
     ``case``, ``params``, ``numerics``, ``matrices`` and ``feedback`` as in
@@ -334,8 +336,12 @@ def simulate_rig(case: Case | Mapping, params: BeamParameters, numerics: Numeric
     drive. With a loop the case's maneuver must track a reference (``pd``, ``state_feedback``): the
     loop replaces its law (the maneuver's gains are not used) and samples its reference; the
     sensors' rows must have the length ``2 N`` of the case's model. The rotor's reflected inertia
-    joins the hub inertia (:func:`drive_matrices`).
+    joins the hub inertia (:func:`drive_matrices`). With a compliant root ``root_spring`` (as in
+    ``simulate``) the drive and the loop act on the hub angle ``phi``, the state is that of
+    ``(theta, q1, q2, phi)`` (sensor rows of length ``2 (N + 1)``) and the rotor stays on the hub's
+    side of the spring.
     """
+    root_spring = checked_spring(root_spring)
     case, numerics = simulation_settings(case, numerics, params.L)
     if loop is not None:
         if not isinstance(loop, SampledLoop):
@@ -344,22 +350,25 @@ def simulate_rig(case: Case | Mapping, params: BeamParameters, numerics: Numeric
     drive = packed_drive(motor)
     sm = drive_matrices(case_matrices(case, params, numerics, matrices), motor)
     if loop is None:
-        return RigRun(*_integrate(case, params, numerics, sm, feedback, drive), sm)
+        return RigRun(*_integrate(case, params, numerics, sm, feedback, drive, root_spring=root_spring), sm)
     n = case.modes
-    N = 1 + 2 * n
+    joint = root_spring is not None
+    N = 2 + 2 * n if joint else 1 + 2 * n
     if loop.sensors[0].row.size != 2 * N:
         raise SimulationError(f"SampledLoop.sensors: rows of length {loop.sensors[0].row.size}; allowed: "
-                              f"2 N = {2 * N}, the state (y, y') of {case.model} with {n} modes")
+                              f"2 N = {2 * N}, the state (y, y') of {case.model} with {n} modes"
+                              + (" and the root spring's hub angle" if joint else ""))
     traits = model(case.model).traits
     t = output_times(case.t_end, numerics.output_step)
-    free = free_dofs(traits, kernel_maneuvers.HELD, n)
-    arrays, stops, noise = loop_arrays(loop, free, t[-1], reference_array(case.maneuver))
-    inputs = SimulationInputs(traits, kernel_maneuvers.HELD, held_table(arrays.timing.sample_times.size, loop.u_init),
-                              damping_matrices(case.damping, sm), sm, drive)
-    out = np.empty((t.size, n_output_columns(n)))
+    link, root = joint_inputs(sm, root_spring)
+    inputs = SimulationInputs(traits, kernel_maneuvers.HELD, held_table(0, loop.u_init),
+                              damping_matrices(case.damping, sm), link, drive, IDENTITY_SHAPER, root)
+    arrays, stops, noise = loop_arrays(loop, free_coordinates(inputs), t[-1], reference_array(case.maneuver))
+    inputs = inputs._replace(mp=held_table(arrays.timing.sample_times.size, loop.u_init))
+    out = np.empty((t.size, n_output_columns(n, joint)))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
     start = time.perf_counter()
-    status, t_stop = simulate_sampled_kernel(inputs, initial_state(case, sm), t, stops,
+    status, t_stop = simulate_sampled_kernel(inputs, initial_state(case, sm, joint), t, stops,
                                              integrator_settings(numerics, params.L), arrays, out, stats)
     LOG.info("case %s (%s, %d modes) under a sampled loop at %g s: %s at t = %g s, %.3f s wall, %d steps "
              "(%d rejected)", case.label, case.model, n, loop.Ts,

@@ -67,14 +67,10 @@ _GRID_STEP = math.pi / 256
 _GRID_START = 1e-2
 
 
-def frequency_determinant(z: float, mass_ratio: float, inertia_ratio: float, offset_ratio: float) -> float:
-    """The 4x4 determinant of the boundary conditions (module docstring) at ``z = beta L``.
-
-    Evaluated in the basis ``exp(z (xi - 1))``, ``exp(-z xi)``, ``cos(z xi)``, ``sin(z xi)`` of
-    the same solutions (``cosh`` and ``sinh`` would make two columns equal to ``e^-z`` at large
-    ``z``), each row divided by its largest entry: positive factors, which move no root and keep
-    the determinant's rounding error near the machine epsilon.
-    """
+def end_rows(z: float, mass_ratio: float, inertia_ratio: float, offset_ratio: float) -> np.ndarray:
+    """The two boundary conditions at the loaded end ``xi = 1`` (module docstring) as rows on the
+    solutions ``exp(z (xi - 1))``, ``exp(-z xi)``, ``cos(z xi)``, ``sin(z xi)``: the end shear against
+    the centre's inertia and the end moment against both inertias (a free end without a body)."""
     mu, j, eps = mass_ratio, inertia_ratio, offset_ratio
     decay = math.exp(-z)
     c, s = math.cos(z), math.sin(z)
@@ -84,35 +80,37 @@ def frequency_determinant(z: float, mass_ratio: float, inertia_ratio: float, off
     W2 = z**2 * np.array([1.0, decay, -c, -s])
     W3 = z**3 * np.array([1.0, -decay, s, -c])
     centre = W + eps * W1
-    rows = np.array([
+    return np.array([W3 + mu * z**4 * centre, -W2 + z**4 * (mu * eps * centre + j * W1)])
+
+
+def scaled_determinant(rows: np.ndarray) -> float:
+    """The determinant of ``rows``, each divided by its largest entry: positive factors, which move
+    no root and keep the determinant's rounding error near the machine epsilon."""
+    return float(np.linalg.det(rows / np.max(np.abs(rows), axis=1, keepdims=True)))
+
+
+def frequency_determinant(z: float, mass_ratio: float, inertia_ratio: float, offset_ratio: float) -> float:
+    """The 4x4 determinant of the boundary conditions (module docstring) at ``z = beta L``.
+
+    Evaluated in the basis ``exp(z (xi - 1))``, ``exp(-z xi)``, ``cos(z xi)``, ``sin(z xi)`` of
+    the same solutions (``cosh`` and ``sinh`` would make two columns equal to ``e^-z`` at large
+    ``z``), each row divided by its largest entry (:func:`scaled_determinant`).
+    """
+    decay = math.exp(-z)
+    clamped = np.array([
         [decay, 1.0, 1.0, 0.0],  # W(0) = 0
         [decay, -1.0, 0.0, 1.0],  # W'(0) / z = 0
-        W3 + mu * z**4 * centre,  # end shear against the centre's inertia
-        -W2 + z**4 * (mu * eps * centre + j * W1),  # end moment against both inertias
     ])
-    rows /= np.max(np.abs(rows), axis=1, keepdims=True)
-    return float(np.linalg.det(rows))
+    return scaled_determinant(np.vstack([clamped, end_rows(z, mass_ratio, inertia_ratio, offset_ratio)]))
 
 
-def body_frequency_roots(mass_ratio: float, inertia_ratio: float, offset_ratio: float,
-                         count: int) -> np.ndarray:
-    """The first ``count`` roots ``z = beta L`` of :func:`frequency_determinant`, ascending.
-
-    Each sign change of the determinant on a grid of step :data:`_GRID_STEP` is refined by
+def determinant_roots(equation, count: int) -> np.ndarray:
+    """The first ``count`` roots ``z`` of ``equation(z)`` (a frequency determinant), ascending:
+    each sign change on a grid of step :data:`_GRID_STEP` from :data:`_GRID_START`, refined by
     Brent's method to ``xtol = 1e-15`` (about 1e-15 relative for ``z`` of order 1 to 100; the
-    rounding of the determinant allows about 1e-14).
-    """
+    rounding of the determinant allows about 1e-14)."""
     if not (isinstance(count, (int, np.integer)) and count >= 1):
         raise ValueError(f"count = {count!r}: expected an integer >= 1")
-    for name, value in (("mass_ratio", mass_ratio), ("inertia_ratio", inertia_ratio)):
-        if not (math.isfinite(value) and value >= 0.0):
-            raise ValueError(f"{name} = {value!r}: expected a finite ratio >= 0")
-    if not math.isfinite(offset_ratio):
-        raise ValueError(f"offset_ratio = {offset_ratio!r}: expected a finite ratio")
-
-    def equation(z):
-        return frequency_determinant(z, mass_ratio, inertia_ratio, offset_ratio)
-
     roots = []
     a, fa = _GRID_START, equation(_GRID_START)
     while len(roots) < count:
@@ -124,6 +122,25 @@ def body_frequency_roots(mass_ratio: float, inertia_ratio: float, offset_ratio: 
             roots.append(scipy.optimize.brentq(equation, a, b, xtol=1e-15, rtol=4 * np.finfo(float).eps))
         a, fa = b, fb
     return np.array(roots)
+
+
+def check_ratios(**ratios) -> None:
+    """``ValueError`` naming the first ratio that is not finite and ``>= 0``."""
+    for name, value in ratios.items():
+        if not (math.isfinite(value) and value >= 0.0):
+            raise ValueError(f"{name} = {value!r}: expected a finite ratio >= 0")
+
+
+def body_frequency_roots(mass_ratio: float, inertia_ratio: float, offset_ratio: float,
+                         count: int) -> np.ndarray:
+    """The first ``count`` roots ``z = beta L`` of :func:`frequency_determinant`, ascending
+    (:func:`determinant_roots`)."""
+    if not (isinstance(count, (int, np.integer)) and count >= 1):
+        raise ValueError(f"count = {count!r}: expected an integer >= 1")
+    check_ratios(mass_ratio=mass_ratio, inertia_ratio=inertia_ratio)
+    if not math.isfinite(offset_ratio):
+        raise ValueError(f"offset_ratio = {offset_ratio!r}: expected a finite ratio")
+    return determinant_roots(lambda z: frequency_determinant(z, mass_ratio, inertia_ratio, offset_ratio), count)
 
 
 def body_frequencies(beam: UniformBeam, tip: TipMass, count: int) -> np.ndarray:

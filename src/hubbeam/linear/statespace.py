@@ -45,7 +45,7 @@ import numpy as np
 from hubbeam.configuration.settings import damping_settings
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.linearised import axial_stretch, spin_matrices
-from hubbeam.model.matrices import assemble
+from hubbeam.model.matrices import assemble, functions_load
 from hubbeam.model.models import model as model_traits
 from hubbeam.model.modes import transverse_modes
 from hubbeam.model.root import RootSpring, checked_spring, joint_second_order, state_names
@@ -197,13 +197,12 @@ def accelerations(M, G, C, K, hub: str, index: int = 0):
 
 
 def check_matrices(beam, sm) -> None:
-    """``ValueError`` unless ``sm`` was assembled for ``beam`` (its hub radius and tip modes)."""
-    n = sm.M2.shape[0]
-    same = (float(sm.rA) == float(beam.rA)
-            and np.allclose(sm.f2L, transverse_modes(beam.L, n, beam)[0], rtol=1e-12, atol=0.0))
-    if not same:
+    """``ValueError`` unless ``sm`` was assembled for ``beam`` (its hub radius and tip modes, in
+    either transverse functions, ``hubbeam.model.matrices.functions_load``)."""
+    if float(sm.rA) != float(beam.rA):
         raise ValueError("sm: system matrices assembled for another beam; allowed: "
                          "hubbeam.model.matrices.assemble(beam, tip, n_modes) of this beam")
+    functions_load(beam, sm)
 
 
 @dataclass(frozen=True)
@@ -257,7 +256,8 @@ def _tip_arc(c: RowContext, z, v, a) -> None:
 
 def _root_moment(c: RowContext, z, v, a) -> None:
     n = c.sm.M2.shape[0]
-    z[c.q2] = float(c.beam.EI_at(0.0)) * transverse_modes(0.0, n, c.beam, derivative=2)[0]
+    load = functions_load(c.beam, c.sm)
+    z[c.q2] = float(c.beam.EI_at(0.0)) * transverse_modes(0.0, n, c.beam, derivative=2, load=load)[0]
 
 
 def _tip_acceleration(c: RowContext, z, v, a) -> None:

@@ -14,7 +14,8 @@ second route.
   free and a prescribed hub, the controllers on the hub's angle);
 * simulations: energy and angular momentum conserved, the work-energy balance with the damper, the
   rigid limit in time, the outputs and what the dataset records;
-* the linear models of both routes with the spring; bad input named.
+* the linear models of both routes with the spring; the drive and a sampled controller on the
+  hub; bad input named.
 """
 
 from __future__ import annotations
@@ -28,18 +29,20 @@ from test_eom import exact_kinetic_energy, make_cloud, truncated_kinetic_energy
 
 from hubbeam.core import eom
 from hubbeam.core.inputs import SimulationInputs
-from hubbeam.core.integrate import integration_problem
+from hubbeam.core.integrate import integration_problem, output_columns
 from hubbeam.core.radau import problem_rhs
 from hubbeam.linear.jacobian import RELATIVE_STEP, jacobian_model
 from hubbeam.linear.statespace import linear_model
 from hubbeam.model import eigen
 from hubbeam.model.damping import damping_matrices
+from hubbeam.model.drive import QUANSER_SRV02
 from hubbeam.model.maneuvers import FeedbackLaw, maneuver_from_dict
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import MODELS
 from hubbeam.model.modes import clamped_free_roots
 from hubbeam.model.parameters import BeamParameters, BeamProducts, TipMass
 from hubbeam.model.root import RootSpring, joint_inputs, joint_second_order
+from hubbeam.simulation.sampled import SampledLoop, Sensor, simulate_rig
 from hubbeam.simulation.simulate import SimulationError, simulate
 from hubbeam.validation import root_spring as closed
 from hubbeam.validation.tip_body import body_frequency_roots
@@ -555,3 +558,66 @@ def test_a_state_feedback_without_the_hub_s_gains_is_refused(_study_config, pape
                                               "root spring's hub angle"):
         simulate(_case("FOAM", maneuver, 0.1, modes=n), paper_beam, _study_config["numerics"],
                  feedback=feedback, root_spring=RootSpring(1.0))
+
+
+# --- the rig: the drive and a sampled controller on the hub ---------------------------------------
+
+
+#: tight tolerances: the closed forms below hold to the integrator's error
+RIG_NUMERICS = {"rtol": 1e-10, "atol": 1e-12, "output_step": 0.01, "max_steps": 10**6, "step_warning": 10**6,
+                "divergence_limit": 0.5, "quadrature_points": 40}
+#: the beam's modes and the root's damper decay to 1e-12 of their start by t_end = 12 s
+RIG_DAMPED = {"kind": "modal", "axial": 0.1, "transverse": 0.1}
+
+
+def test_a_constant_voltage_spins_hub_and_link_at_the_drive_s_speed(flexible_link):
+    """The SRV02 drive at a constant 3 V on the hub, the link on a damped root spring: hub and root
+    settle at ``torque_gain V / hub_damping`` (the beam in steady spin needs no torque, so the spring
+    is relaxed and the hub torque zero, to 1e-9 of the motor's), the rotor's reflected inertia stays
+    on the hub's side (the run's matrices), the motor reads the hub's speed."""
+    motor = dataclasses.replace(QUANSER_SRV02, rotor_inertia=3.9e-7)
+    spring = RootSpring(0.5, 0.01, 2e-5)
+    case = {"name": "rig", "model": "CFOAM", "modes": 2, "t_end": 12.0, "damping": RIG_DAMPED,
+            "maneuver": {"kind": "torque_table", "time": [0.0, 1.0], "torque": [3.0, 3.0]}}
+    run = simulate_rig(case, flexible_link, RIG_NUMERICS, motor=motor, root_spring=spring)
+    columns = output_columns(2, joint=True)
+    end = run.out[-1]
+    expected = motor.torque_gain * 3.0 / motor.hub_damping
+    assert run.status == 0
+    assert end[columns["hub_speed"]] == pytest.approx(expected, rel=1e-9)
+    assert end[columns["theta_dot"]] == pytest.approx(expected, rel=1e-9)
+    assert abs(end[columns["spring_torque"]]) < 1e-9 * motor.torque_gain * 3.0
+    assert abs(end[columns["hub_torque"]]) < 1e-9 * motor.torque_gain * 3.0
+    assert end[columns["motor_torque"]] == pytest.approx(float(motor.friction(end[columns["hub_speed"]])), rel=1e-9)
+    assert run.matrices.Jh == pytest.approx(flexible_link.Jh + motor.reflected_inertia, rel=1e-15)
+
+
+def test_a_sampled_loop_reads_and_drives_the_hub(flexible_link):
+    """A sampled PD loop on the hub's encoder (a sensor row on ``phi``, rows of ``2 (N + 1)``) with
+    the root spring: its sensed values are the hub's angle at the samples (to 1e-12 rad, the dense
+    output's error there) and its applied commands ``-K (m - R_m rho)`` reach the hub (no delay:
+    ``hub_torque`` at every sample time is that sample's command, bit for bit)."""
+    n = 2
+    N = 2 + 2 * n
+    row = np.zeros(2 * N)
+    row[N - 1] = 1.0
+    rate = np.zeros(2 * N)
+    rate[2 * N - 1] = 1.0
+    Ts = 0.01
+    loop = SampledLoop([Sensor("encoder", row), Sensor("tachometer", rate)], np.zeros((0, 0)), np.zeros((0, 2)),
+                       np.zeros(0), np.zeros((2, 0)), np.eye(2), np.array([0.05, 0.005]),
+                       np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]), np.zeros(3), np.zeros(0), Ts=Ts)
+    case = {"name": "rig", "model": "FOAM", "modes": n, "t_end": 1.0, "damping": RIG_DAMPED,
+            "maneuver": {"kind": "pd", "kp": 0.0, "kd": 0.0,
+                         "reference": {"kind": "prescribed", "wf": 2.0, "tf": 0.5}}}
+    run = simulate_rig(case, flexible_link, dict(RIG_NUMERICS, output_step=Ts), loop=loop,
+                       root_spring=RootSpring(0.5, 0.01, 2e-5))
+    columns = output_columns(n, joint=True)
+    records = run.records
+    assert run.status == 0 and float(np.max(np.abs(records.applied))) > 1e-3
+    np.testing.assert_allclose(records.sensed[:, 0], run.out[:, columns["hub_angle"]], rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(run.out[:, columns["hub_torque"]], records.applied)
+    rigid_rows = dataclasses.replace(loop, sensors=[Sensor("encoder", row[:10]), Sensor("tachometer", rate[:10])])
+    with pytest.raises(SimulationError, match="rows of length 10; allowed: 2 N = 12, the state .* and the root "
+                                              "spring's hub angle"):
+        simulate_rig(case, flexible_link, RIG_NUMERICS, loop=rigid_rows, root_spring=RootSpring(0.5))

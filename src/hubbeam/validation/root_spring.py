@@ -51,6 +51,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import scipy.optimize
 
 from hubbeam.model.parameters import TipMass, UniformBeam, check_tip
 from hubbeam.model.root import RootSpring, checked_spring
@@ -125,3 +126,49 @@ def two_mass_frequency(beam: UniformBeam, spring: RootSpring, tip: TipMass | Non
     a, S, I = beam.rA, link["S"], link["I"]
     hub = beam.Jh + a * a * link["mass"]
     return math.sqrt(spring.stiffness * (hub + 2.0 * a * S + I) / (hub * I - (a * S) ** 2))
+
+
+def main() -> None:
+    """Print the checks of the compliant root on De Luca and Siciliano's link (``rho A = 0.2 kg/m``,
+    ``L = 0.5 m``, ``EI = 1 N m2``, a 2 cm hub): hubbeam's frequencies at rest, hub held, against the
+    restrained root's closed form (5 to 20 modes), the approach to the clamped beam as ``1 / k``, the
+    stiffness that lowers the first frequency by 4 %, the lag hinge of the link made rigid at speed
+    and its two-mass frequency on a free hub."""
+    from hubbeam.model.eigen import natural_frequencies, root_frequencies
+    from hubbeam.model.matrices import assemble
+    from hubbeam.model.parameters import BeamProducts
+
+    link = BeamProducts(L=0.5, rhoA=0.2, EI=1.0, EA=1.0e4, Jh=0.01, rA=0.02)
+    hz = 1.0 / (2.0 * math.pi)
+    print("De Luca and Siciliano's link on a root spring, hub held, at rest (clamp 1e-4 kg m2)")
+    for k in (0.5, 5.0, 50.0):
+        spring = RootSpring(k, 0.0, 1e-4)
+        exact = restrained_frequencies(link, spring, 3)
+        print(f"  k = {k:g} N m/rad: closed form " + ", ".join(f"{f * hz:.6f}" for f in exact) + " Hz")
+        for n in (5, 10, 20):
+            ritz = natural_frequencies(assemble(link, None, n), spring)[:3]
+            print(f"    hubbeam, {n:2d} modes: " + ", ".join(f"{r / e - 1:+.2e}" for r, e in zip(ritz, exact)))
+    clamped = restrained_frequencies(link, RootSpring(1e15), 3)
+    print(f"  towards the clamped beam, k (omega / omega_c - 1) -> -2 EI / L = {-2 * link.EI / link.L:g}:")
+    for k in (1e2, 1e3, 1e4, 1e5):
+        gap = restrained_frequencies(link, RootSpring(k), 3) / clamped - 1.0
+        print(f"    k = {k:g}: " + ", ".join(f"{k * g:.5f}" for g in gap))
+    four = scipy.optimize.brentq(lambda k: restrained_frequencies(link, RootSpring(k), 1)[0] / clamped[0] - 0.96,
+                                 1.0, 1e4)
+    print(f"  a root stiffness of {four:.4g} N m/rad = {four * link.L / link.EI:.4g} EI / L lowers the first "
+          "frequency by 4 %")
+    stiff = BeamProducts(L=0.5, rhoA=0.2, EI=1.0e6, EA=1.0e12, Jh=0.01, rA=0.02)
+    spring = RootSpring(2.0, 0.0, 1e-4)
+    sm = assemble(stiff, None, 4)
+    print("the link made rigid (EI = 1e6 N m2) on a 2 N m/rad spring:")
+    for speed in (0.0, 10.0, 30.0):
+        lag = lag_frequency(stiff, spring, speed)
+        ritz = root_frequencies(sm, spring, "CFOAM", speed, "held")[0]
+        print(f"  hub held at {speed:g} rad/s: lag hinge {lag:.8f} rad/s, hubbeam (CFOAM) {ritz / lag - 1:+.2e}")
+    free = root_frequencies(sm, spring, "FOAM", 0.0, "free")[1]
+    two_mass = two_mass_frequency(stiff, spring)
+    print(f"  free hub at rest: two-mass frequency {two_mass:.8f} rad/s, hubbeam {free / two_mass - 1:+.2e}")
+
+
+if __name__ == "__main__":
+    main()

@@ -44,9 +44,10 @@ import math
 import numpy as np
 import scipy.optimize
 
-from hubbeam.model.eigen import natural_frequencies
+from hubbeam.model.eigen import natural_frequencies, transverse_frequencies
 from hubbeam.model.matrices import assemble
 from hubbeam.model.parameters import BeamProducts, TipMass, UniformBeam, check_tip
+from hubbeam.validation import fe_beam
 
 #: De Luca, A. and Siciliano, B. (1991), "Closed-form dynamic model of planar multilink
 #: lightweight robots", IEEE Transactions on Systems, Man, and Cybernetics 21(4), 826-839: the
@@ -158,30 +159,55 @@ def body_frequencies(beam: UniformBeam, tip: TipMass, count: int) -> np.ndarray:
     return z**2 * math.sqrt(beam.EI / (rhoA * L**4))
 
 
-def ritz_convergence(beam: UniformBeam, tip: TipMass, modes, count: int = 3):
+def ritz_convergence(beam: UniformBeam, tip: TipMass, modes, count: int = 3, functions: str = "clamped_free"):
     """The closed-form frequencies (rad s-1) of ``beam`` with ``tip`` at its end (hub held) and
-    hubbeam's (``hubbeam.model.eigen.natural_frequencies`` of ``assemble(beam, tip, n)``) for
-    each ``n`` of ``modes``: ``(exact, ritz)`` of shapes ``(count,)`` and ``(len(modes), count)``.
+    hubbeam's (``hubbeam.model.eigen.natural_frequencies`` of ``assemble(beam, tip, n, functions=
+    functions)``) for each ``n`` of ``modes``: ``(exact, ritz)`` of shapes ``(count,)`` and
+    ``(len(modes), count)``.
     """
     exact = body_frequencies(beam, tip, count)
-    ritz = np.array([natural_frequencies(assemble(beam, tip, int(n)))[:count] for n in modes])
+    ritz = np.array([natural_frequencies(assemble(beam, tip, int(n), functions=functions))[:count] for n in modes])
     return exact, ritz
+
+
+def speed_convergence(beam: UniformBeam, tip: TipMass, speeds, modes, functions: str, count: int = 3,
+                      n_elements: int = 80) -> np.ndarray:
+    """Relative errors of FOAM's first ``count`` in-plane frequencies at ``speeds`` (rad s-1) with
+    ``modes`` assumed modes of the transverse ``functions``, against the finite-element model with
+    the body (``hubbeam.validation.fe_beam``, ``n_elements``): shape ``(len(modes), len(speeds),
+    count)``."""
+    speeds = np.asarray(speeds, dtype=float)
+    fe = fe_beam.frequencies(beam, speeds, "inplane", tip, n_elements, count)
+    return np.array([transverse_frequencies(assemble(beam, tip, int(n), functions=functions), "FOAM", speeds)
+                     [:, :count] / fe - 1.0 for n in modes])
 
 
 def main() -> None:
     """Print the De Luca and Siciliano link's frequencies: published, closed form, and hubbeam's
-    with 5 to 20 modes, for the payload and for the payload as a point mass."""
+    with 5 to 20 modes of the clamped-free functions and of the functions loaded by the body, for
+    the payload and for the payload as a point mass; then, with the payload 3 cm beyond the tip on
+    a 5 cm hub, FOAM's errors at speed against the finite-element model in both functions."""
     link = DE_LUCA_SICILIANO
     beam = BeamProducts(L=link["L"], rhoA=link["rhoA"], EI=link["EI"], EA=1.0e4, Jh=0.1, rA=0.0)
     modes = (5, 10, 15, 20)
     hz = 1.0 / (2.0 * math.pi)
     print(f"De Luca and Siciliano (1991) link, clamped at the hub; published: {link['frequencies_hz']} Hz")
     for label, inertia in (("payload", link["inertia"]), ("point mass", 0.0)):
-        exact, ritz = ritz_convergence(beam, TipMass(link["mass"], link["L"], inertia), modes)
-        print(f"{label}: closed form " + ", ".join(f"{f:.6f}" for f in exact * hz) + " Hz")
-        for n, row in zip(modes, ritz):
-            print(f"  hubbeam, {n:2d} modes: " + ", ".join(f"{f:.6f} ({f / e - 1:+.2e})"
-                                                         for f, e in zip(row * hz, exact * hz)))
+        for functions in ("clamped_free", "tip_body"):
+            exact, ritz = ritz_convergence(beam, TipMass(link["mass"], link["L"], inertia), modes, functions=functions)
+            print(f"{label}: closed form " + ", ".join(f"{f:.6f}" for f in exact * hz) + " Hz")
+            for n, row in zip(modes, ritz):
+                print(f"  hubbeam, {n:2d} modes ({functions} functions): "
+                      + ", ".join(f"{f:.6f} ({f / e - 1:+.2e})" for f, e in zip(row * hz, exact * hz)))
+    spinning = BeamProducts(L=link["L"], rhoA=link["rhoA"], EI=link["EI"], EA=1.0e4, Jh=0.1, rA=0.05)
+    body = TipMass(link["mass"], link["L"], link["inertia"], 0.03)
+    speeds = (10.0, 25.0, 50.0)
+    print("FOAM at speed, the payload 3 cm beyond the tip on a 5 cm hub, against 80 finite elements")
+    for functions in ("clamped_free", "tip_body"):
+        errors = speed_convergence(spinning, body, speeds, modes, functions)
+        for n, rows in zip(modes, errors):
+            print(f"  {functions}, {n:2d} modes: " + "; ".join(
+                f"{speed:g} rad/s " + ", ".join(f"{e:+.1e}" for e in row) for speed, row in zip(speeds, rows)))
 
 
 if __name__ == "__main__":

@@ -27,16 +27,16 @@ from hubbeam.core.drive import drive_torque
 from hubbeam.core.eom import add_damping, solve_spd
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.radau import register_rhs
-from hubbeam.core.root import add_joint, has_joint
+from hubbeam.core.root import add_joint, has_joint, joint_rows, packed_joint, unpacked_joint
 from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 #: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, damping matrices ``C``,
 #: the tensors ``ct``, and work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F``
 #: of Eq. (24); ``drive`` the hub's packed drive (``hubbeam.core.drive``; empty: none); ``shaper``
-#: the command shaper (``hubbeam.core.shaping``); ``traits`` the model's, ``root`` the compliant
-#: root (``hubbeam.core.inputs.RootJoint``, empty: rigid) and ``joint`` the rows its terms pass
-#: through (``hubbeam.core.root.add_joint``).
-CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F drive shaper traits root joint")
+#: the command shaper (``hubbeam.core.shaping``); ``joint`` the compliant root packed
+#: (``hubbeam.core.root.packed_joint``; empty: rigid) with the two rows its terms pass through
+#: (``hubbeam.core.root.add_joint``).
+CfoamProblem = namedtuple("CfoamProblem", "kind mp C ct y v M F drive shaper joint")
 
 
 @kernel
@@ -47,11 +47,12 @@ def cfoam_problem(inputs):
     sm = inputs.sm
     n = sm.M1.shape[0]
     N = 1 + 2 * n
+    joint = np.zeros((0, 0))
     if has_joint(inputs.root):
         N += 1
+        joint = packed_joint(inputs.traits, inputs.root, 2)
     return CfoamProblem(inputs.kind, inputs.mp, inputs.C, cfoam_tensors(sm), np.zeros(N), np.zeros(N),
-                        np.empty((N, N)), np.empty(N), inputs.drive, inputs.shaper, inputs.traits,
-                        inputs.root, np.empty((2, 2 * n)))
+                        np.empty((N, N)), np.empty(N), inputs.drive, inputs.shaper, joint)
 
 
 @borrowing_kernel
@@ -72,7 +73,9 @@ def joint_cfoam_rhs(t, yf, vf, af, problem):
         y[i] = yf[i]
         v[i] = vf[i]
     cfoam_system(y, v, 0.0, problem.ct, M, F)
-    add_joint(problem.traits, problem.root, y, v, tau, M, F, problem.joint)
+    traits, root = unpacked_joint(problem.joint)
+    first = joint_rows(problem.joint)
+    add_joint(traits, root, y, v, tau, M, F, problem.joint[first:first + 2])
     add_damping(problem.C, v, F)
     for i in range(nf):
         af[i] = F[i] - M[i, hub] * phdd
@@ -85,7 +88,7 @@ def joint_cfoam_rhs(t, yf, vf, af, problem):
 def cfoam_rhs(t, yf, vf, af, problem):
     """Accelerations ``af`` of the free coordinates (theta first unless prescribed, then q1, q2;
     with a compliant root :func:`joint_cfoam_rhs`)."""
-    if has_joint(problem.root):
+    if problem.joint.shape[0] > 0:
         joint_cfoam_rhs(t, yf, vf, af, problem)
         return
     y, v, M, F = problem.y, problem.v, problem.M, problem.F

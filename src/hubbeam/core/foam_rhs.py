@@ -54,26 +54,32 @@ import numpy as np
 
 from hubbeam.core.drive import drive_torque
 from hubbeam.core.eom import cholesky_factor, cholesky_solve, free_coordinates
-from hubbeam.core.jit import borrowing_kernel, kernel
+from hubbeam.core.jit import borrowing_kernel, inline_kernel, kernel
 from hubbeam.core.maneuver import prescribed
 from hubbeam.core.radau import register_rhs
-from hubbeam.core.root import DAMPING, HINGE_MASS, HUB_INERTIA, STIFFNESS, has_joint, hinge_terms
+from hubbeam.core.root import (
+    DAMPING,
+    HINGE_MASS,
+    HUB_INERTIA,
+    STIFFNESS,
+    has_joint,
+    hinge_terms,
+    joint_rows,
+    packed_joint,
+    unpacked_joint,
+)
 from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 #: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1, P3, Me`` and ``b``
 #: stacks ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
 #: ``scalars = (J0, q_theta_factor)``; ``kind`` and ``mp`` the maneuver; ``work`` holds ``u, r``;
 #: ``drive`` the hub's packed drive (``hubbeam.core.drive``; empty: the maneuver gives the torque);
-#: ``shaper`` the command shaper (``hubbeam.core.shaping``); ``traits`` the model's, ``root`` the
-#: compliant root (``hubbeam.core.inputs.RootJoint``, empty: rigid) and ``joint`` its
-#: :data:`JointWork`.
-FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work drive shaper traits root joint")
-
-#: The work of :func:`joint_rhs`: the Cholesky factor of ``Me`` on the free elastic coordinates,
-#: their indices in ``(q1, q2)``, the full-length state ``(theta, q1, q2, phi)`` and four rows:
-#: the hinge's coupling and force on ``(q1, q2)``, then ``Me^-1 w`` and ``Me^-1 f`` on the free
-#: elastic coordinates (empty arrays for a rigid root).
-JointWork = namedtuple("JointWork", "factor elastic y v rows")
+#: ``shaper`` the command shaper (``hubbeam.core.shaping``); ``joint`` the compliant root packed
+#: (``hubbeam.core.root.packed_joint``; empty: rigid) with the rows of :func:`joint_rhs` after it:
+#: the Cholesky factor of ``Me`` on the free elastic coordinates (``ne`` rows), their indices in
+#: ``(q1, q2)``, the full-length state ``(theta, q1, q2, phi)`` (positions, rates), the hinge's
+#: coupling and force on ``(q1, q2)``, ``Me^-1 w`` and ``Me^-1 f``.
+FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work drive shaper joint")
 
 P0, P1, P2, G, C1, P3, ME = range(7)
 B0, B1, G_VEC, C0 = range(4)
@@ -153,14 +159,16 @@ def foam_problem(inputs):
             P[ME, i, j] = A[4, r, c]
     q_theta_factor = 1.0 if traits.hub_velocity_force else 0.0
     scalars = np.array([sm.Jh + sm.Jb + sm.Jt, q_theta_factor])
+    joint = np.zeros((0, 0))
     if has_joint(inputs.root):
-        factor = P[ME].copy()
+        joint = packed_joint(traits, inputs.root, ne + 7)
+        first = joint_rows(joint)
+        factor = joint[first:first + ne, :ne]
+        factor[:, :] = P[ME]
         cholesky_factor(factor)
-        joint = JointWork(factor, elastic, np.zeros(m + 2), np.zeros(m + 2), np.zeros((4, m)))
-    else:
-        joint = JointWork(np.zeros((0, 0)), elastic[:0], np.zeros(0), np.zeros(0), np.zeros((4, 0)))
-    return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)), inputs.drive, inputs.shaper, traits,
-                       inputs.root, joint)
+        for i in range(ne):
+            joint[first + ne, i] = elastic[i]
+    return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)), inputs.drive, inputs.shaper, joint)
 
 
 @borrowing_kernel
@@ -188,7 +196,7 @@ def _hub_row(y, v, o, thd, x1, x2, ox, problem):
     return m00, -2.0 * thd * gee * problem.scalars[1], c_1, c_2
 
 
-@borrowing_kernel
+@inline_kernel
 def _elastic_rates(y, v, o, thd, problem):
     """``u`` and ``r`` of ``e'' = u + theta_ddot r`` (module docstring) into ``problem.work`` at the
     free elastic coordinates ``e = y[o:o + ne]``."""
@@ -215,15 +223,21 @@ def joint_rhs(t, y, v, a, problem):
     prescribed, the hub angle phi (the last free coordinate), from the two hub rows (module
     docstring)."""
     joint = problem.joint
-    root = problem.root
     u = problem.work[0]
     r = problem.work[1]
-    rows = joint.rows
-    w_hat = rows[2]
-    f_hat = rows[3]
     nf = y.shape[0]
     ne = u.shape[0]
-    m = rows.shape[1]
+    traits, root = unpacked_joint(joint)
+    m = 2 * root.p1.shape[0]
+    first = joint_rows(joint)
+    factor = joint[first:first + ne, :ne]
+    elastic = joint[first + ne]
+    yf = joint[first + ne + 1]
+    vf = joint[first + ne + 2]
+    coupling = joint[first + ne + 3]
+    force = joint[first + ne + 4]
+    w_hat = joint[first + ne + 5]
+    f_hat = joint[first + ne + 6]
     free_hub = nf == ne + 2
     thd = v[0]
     if free_hub:
@@ -234,29 +248,27 @@ def joint_rhs(t, y, v, a, problem):
         phi, phd, phdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)
     _elastic_rates(y, v, 1, thd, problem)
     # the full-length state (theta, q1, q2, phi); q1 held at zero where not integrated
-    yf = joint.y
-    vf = joint.v
     for i in range(m):
         yf[1 + i] = 0.0
         vf[1 + i] = 0.0
     for i in range(ne):
-        yf[1 + joint.elastic[i]] = y[1 + i]
-        vf[1 + joint.elastic[i]] = v[1 + i]
+        yf[1 + int(elastic[i])] = y[1 + i]
+        vf[1 + int(elastic[i])] = v[1 + i]
     yf[0] = y[0]
     vf[0] = thd
     yf[m + 1] = phi
     vf[m + 1] = phd
-    root_hub, root_force, hub_force = hinge_terms(problem.traits, root, yf, vf, rows[0], rows[1])
+    root_hub, root_force, hub_force = hinge_terms(traits, root, yf[:m + 2], vf[:m + 2], coupling, force)
     for i in range(ne):
-        w_hat[i] = rows[0, joint.elastic[i]]
-        f_hat[i] = rows[1, joint.elastic[i]]
-    cholesky_solve(joint.factor, w_hat[:ne])
-    cholesky_solve(joint.factor, f_hat[:ne])
+        w_hat[i] = coupling[int(elastic[i])]
+        f_hat[i] = force[int(elastic[i])]
+    cholesky_solve(factor, w_hat[:ne])
+    cholesky_solve(factor, f_hat[:ne])
     m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, r, 0, problem)
     _, _, c_w, c_f = _hub_row(y, v, 1, thd, w_hat, f_hat, 0, problem)
     w_u = w_r = w_w = w_f = 0.0  # w . u, w . r, w . Me^-1 w, w . Me^-1 f
     for i in range(ne):
-        wi = rows[0, joint.elastic[i]]
+        wi = coupling[int(elastic[i])]
         w_u += wi * u[i]
         w_r += wi * r[i]
         w_w += wi * w_hat[i]
@@ -286,7 +298,7 @@ def joint_rhs(t, y, v, a, problem):
 def foam_rhs(t, y, v, a, problem):
     """Accelerations ``a`` of the free coordinates (theta first unless prescribed, then ``e``;
     with a compliant root :func:`joint_rhs`)."""
-    if has_joint(problem.root):
+    if problem.joint.shape[0] > 0:
         joint_rhs(t, y, v, a, problem)
         return
     u = problem.work[0]

@@ -52,7 +52,10 @@ the clamp's inertia ``J_c``, its hub radius zero).
 
 import math
 
-from hubbeam.core.jit import borrowing_kernel
+import numpy as np
+
+from hubbeam.core.inputs import ModelTraits, RootJoint
+from hubbeam.core.jit import borrowing_kernel, kernel
 
 #: slots of ``RootJoint.scalars``: the spring's stiffness and damping, the hub's inertia (the motor
 #: side), ``a^2 m`` and ``a s0`` (the beam's mass carried at the hinge and its first moment about
@@ -167,3 +170,45 @@ def add_joint(traits, root, y, v, tau, M, F, work):
         F[1 + i] += force[i]
     F[0] += root_force + twist
     F[hub] = tau + hub_force - twist
+
+
+#: A compliant root packed into one array, for the integrator's problems (each field of a problem
+#: travels with every call of the integrator's kernels, so one array costs a rigid root's runs
+#: nothing measurable where three fields more cost 6 %): rows of ``max(2 n + 2, 8)`` values, the
+#: first holding the ``RootJoint``'s scalars, the model's foreshortening and hub-velocity flags
+#: (1 or 0) and the number of modes ``n``; then ``p1``, ``p2`` and the ``n`` rows of ``E``; then the
+#: problem's own rows from :func:`joint_rows`.
+SOFTENING_FLAG, VELOCITY_FLAG, MODES = JOINT_SCALARS, JOINT_SCALARS + 1, JOINT_SCALARS + 2
+LEVER_P1, LEVER_P2, LEVER_E = 1, 2, 3
+
+
+@kernel
+def packed_joint(traits, root, extra):
+    """The compliant root ``root`` of a model with ``traits`` packed (layout above), with ``extra``
+    rows of zeros after it for the problem's own work."""
+    n = root.p1.shape[0]
+    joint = np.zeros((LEVER_E + n + extra, max(2 * n + 2, MODES + 1)))
+    joint[0, :JOINT_SCALARS] = root.scalars
+    joint[0, SOFTENING_FLAG] = 1.0 if traits.softening_terms else 0.0
+    joint[0, VELOCITY_FLAG] = 1.0 if traits.hub_velocity_force else 0.0
+    joint[0, MODES] = n
+    joint[LEVER_P1, :n] = root.p1
+    joint[LEVER_P2, :n] = root.p2
+    joint[LEVER_E:LEVER_E + n, :n] = root.Ea
+    return joint
+
+
+@borrowing_kernel
+def joint_rows(joint):
+    """The index of the first of a packed joint's own rows (after its root's)."""
+    return LEVER_E + int(joint[0, MODES])
+
+
+@borrowing_kernel
+def unpacked_joint(joint):
+    """``(traits, root)`` of a packed joint: the flags :func:`hinge_terms` reads, as
+    ``ModelTraits``, and the ``RootJoint`` (views of the array)."""
+    n = int(joint[0, MODES])
+    traits = ModelTraits(True, joint[0, SOFTENING_FLAG] != 0.0, joint[0, VELOCITY_FLAG] != 0.0, False)
+    root = RootJoint(joint[0, :JOINT_SCALARS], joint[LEVER_P1, :n], joint[LEVER_P2, :n], joint[LEVER_E:LEVER_E + n, :n])
+    return traits, root

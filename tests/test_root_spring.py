@@ -31,6 +31,7 @@ from hubbeam.core import eom
 from hubbeam.core.inputs import SimulationInputs
 from hubbeam.core.integrate import integration_problem, output_columns
 from hubbeam.core.radau import problem_rhs
+from hubbeam.linear.datasets import tracked_modes
 from hubbeam.linear.jacobian import RELATIVE_STEP, jacobian_model
 from hubbeam.linear.statespace import linear_model
 from hubbeam.model import eigen
@@ -621,3 +622,22 @@ def test_a_sampled_loop_reads_and_drives_the_hub(flexible_link):
     with pytest.raises(SimulationError, match="rows of length 10; allowed: 2 N = 12, the state .* and the root "
                                               "spring's hub angle"):
         simulate_rig(case, flexible_link, RIG_NUMERICS, loop=rigid_rows, root_spring=RootSpring(0.5))
+
+
+def test_the_tracked_modes_carry_the_spring(paper_beam):
+    """The tracked eigen-analysis (``linear.datasets.tracked_modes``) with the spring, the hub held
+    and free over a speed grid: undamped, its frequencies at each speed are the eigen-analysis's
+    (``eigen.root_frequencies``: the same equations through the state matrix and through the
+    quadratic pencil, to 1e-9; on the free hub the hub's swing against the link among them), and
+    the states name the hub angle."""
+    sm = assemble(paper_beam, None, 3)
+    spring = RootSpring(2e3, 0.0, paper_beam.Jh / 2.0)
+    speeds = np.array([0.0, 1.0, 2.0])
+    for hub, held in (("prescribed", "held"), ("free", "free")):
+        modes, names = tracked_modes(paper_beam, sm, "FOAM", hub, speeds, root_spring=spring)
+        assert names[0] == "theta" and names[-1] == "phi"
+        for k, speed in enumerate(speeds):
+            pencil = eigen.root_frequencies(sm, spring, "FOAM", speed, held)
+            state = np.sort(modes.frequency[k])
+            vibrating = pencil > 1e-6 * pencil.max()
+            np.testing.assert_allclose(state[-vibrating.sum():], pencil[vibrating], rtol=1e-9)

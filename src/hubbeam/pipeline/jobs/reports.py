@@ -17,6 +17,7 @@ from hubbeam.pipeline.runner import Job
 from hubbeam.reporting.archive import build_archive, verify_archive
 from hubbeam.reporting.document import markdown_to_html
 from hubbeam.results.io import open_result, staged, write_text
+from hubbeam.study.frequencies import case_frequencies
 from hubbeam.study.report import study_html, study_markdown
 from hubbeam.study.summary import COLUMNS, case_summary
 from hubbeam.study.trust import design_table
@@ -50,14 +51,18 @@ def reproduction_report(job: Job) -> None:
 
 def study_report(job: Job) -> None:
     """A study's report (Markdown, HTML) and its summary.csv, a row per case (``input.simulations``
-    of ``params.cases``); its figures by section of the report (``params.figures``)."""
+    of ``params.cases``); the natural frequencies of each case (``params.case_settings``) from its
+    matrices (``input.matrices``); its figures by section of the report (``params.figures``)."""
     p, out = job.params, job.output
     report_dir = Path(out["markdown"]).parent
     datasets = {case: open_result(path) for case, path in zip(p["cases"], job.input["simulations"])}
     rows = [case_summary(case, ds) for case, ds in datasets.items()]
+    frequencies = [case_frequencies(name, case, open_result(path))
+                   for name, case, path in zip(p["cases"], p["case_settings"], job.input["matrices"])]
     figures = {name: {label: os.path.relpath(path, report_dir) for label, path in shown.items()}
                for name, shown in p["figures"].items()}
-    markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets))
+    markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets),
+                              frequencies=frequencies)
     write_text(out["markdown"], markdown)
     write_text(out["html"], study_html(markdown, p["study"].get("title", p["study"]["name"]), report_dir))
     with staged(out["summary"]) as (summary,), open(summary, "w", newline="") as handle:

@@ -72,13 +72,14 @@ BOUNDARY_XTOL = 1e-6
 
 def truth_model(case: Case, beam, sm):
     """The truth's continuous linear model of the sampled ``case`` (module docstring): its model with
-    the matrices ``sm`` about its design speed, free hub, its damping, the voltage of its drive as
-    the input (or the hub torque without one), the measured signals as outputs."""
+    the matrices ``sm`` about its design speed, free hub, its damping and root spring, the voltage of
+    its drive as the input (or the hub torque without one), the measured signals as outputs."""
     speed = case.maneuver.design.speed
     damping = damping_matrices(case.damping, sm)
     if case.drive is not None:
-        return voltage_model(beam, sm, case.model, case.drive, speed, damping, list(MEASURED_SIGNALS))
-    return linear_model(beam, sm, case.model, speed, "free", damping, list(MEASURED_SIGNALS))
+        return voltage_model(beam, sm, case.model, case.drive, speed, damping, list(MEASURED_SIGNALS),
+                             case.root_spring)
+    return linear_model(beam, sm, case.model, speed, "free", damping, list(MEASURED_SIGNALS), case.root_spring)
 
 
 @dataclass(frozen=True, eq=False)
@@ -163,16 +164,19 @@ def state_feedback(case: Case, beam, sm, truth, Ts: float, delay: float, gain: s
     return state_controller(lqr, truth, u_max)
 
 
-def loop_matrix(truth, controller) -> tuple[np.ndarray, int]:
+def loop_matrix(truth, controller, rows: np.ndarray | None = None) -> tuple[np.ndarray, int]:
     """The sampled loop of ``controller`` (a ``SampledController``) with the continuous ``truth`` sampled
     at its ``Ts`` and delay (state: the truth's, its delayed commands, the controller's), and the
-    number of the truth's own states (the plant part of the loop's eigenvectors)."""
+    number of the truth's own states (the plant part of the loop's eigenvectors). ``rows``: the
+    sensors' rows on the truth's kernel state (default the controller's own, of the model it was
+    built for; :func:`hubbeam.control.robustness.truth_rows` for another truth)."""
     dm = discretise(truth, controller.Ts, controller.D)
     layout = kernel_layout(truth)
     columns = [layout.index(name) for name in truth.states]
+    rows = controller.sensor_rows if rows is None else rows
     gains = np.array([sensor.gain for sensor in controller.sensors])
     Cm = np.zeros((len(controller.sensors), dm.A.shape[0]))
-    Cm[:, :len(columns)] = gains[:, None] * controller.sensor_rows[:, columns]
+    Cm[:, :len(columns)] = gains[:, None] * rows[:, columns]
     c = controller
     return closed_loop_matrix(dm, Cm, c.Ac, c.Bc, c.Bu, c.E, c.F, c.K), dm.plant_states
 
@@ -187,9 +191,9 @@ class LoopRadius:
     mode: str
 
 
-def loop_radius(truth, controller, modes: PlantModes | None = None) -> LoopRadius:
-    """The :class:`LoopRadius` of ``controller`` on the ``truth`` (:func:`loop_matrix`)."""
-    A, n = loop_matrix(truth, controller)
+def loop_radius(truth, controller, modes: PlantModes | None = None, rows: np.ndarray | None = None) -> LoopRadius:
+    """The :class:`LoopRadius` of ``controller`` on the ``truth`` (:func:`loop_matrix`, ``rows`` as there)."""
+    A, n = loop_matrix(truth, controller, rows)
     values, vectors = np.linalg.eig(A)
     k = int(np.argmax(np.abs(values)))
     vector = vectors[:, k]

@@ -168,3 +168,71 @@ def test_the_exported_controller_closes_the_designed_loop(settings, tmp_path):
         loop = ct.feedback(P, K[:, list(range(p))], sign=1)
         poles = ct.poles(loop)
         assert max(np.min(np.abs(poles - pole)) for pole in controller.poles) < 1e-8, path
+
+
+# --- the report's section, from synthetic results ----------------------------------------------------
+
+def synthetic_runs() -> dict:
+    """A held-hub run whose tip rings at 3.5 Hz with 1 % damping and a sampled run of the SRV02 whose
+    command reaches 12.5 V (beyond the 10 V limit) and whose hub ends 0.01 rad short of 0.5 rad."""
+    import json
+
+    import xarray as xr
+
+    from hubbeam.model.drive import QUANSER_SRV02
+
+    t = np.arange(0.0, 3.0, 0.002)
+    f, zeta = 3.5, 0.01
+    omega = 2.0 * math.pi * f
+    sigma = zeta * omega / math.sqrt(1.0 - zeta**2)
+    held = xr.Dataset({"tip_transverse": ("time", 0.01 * np.exp(-sigma * t) * np.cos(omega * t))},
+                      coords={"time": t},
+                      attrs={"model": "CFOAM", "case_config": json.dumps(
+                          {"maneuver": {"kind": "speed_table", "time": [0, 3], "speed": [0, 0]}})})
+    samples = np.linspace(0.0, 2.0, 1001)
+    reference = {"kind": "angle_table", "time": [0.0, 0.5], "angle": [0.0, 0.5]}
+    tip = np.where(t < 1.0, 0.02 * np.sin(omega * t), 0.001 * np.sin(omega * t))
+    run = xr.Dataset({"tip_transverse": ("time", tip), "theta": ("time", np.full(t.size, 0.49)),
+                      "applied": ("sample", np.where(samples < 0.1, 12.5, 1.0))},
+                     coords={"time": t, "sample_time": ("sample", samples)},
+                     attrs={"model": "CFOAM", "drive": json.dumps(QUANSER_SRV02.to_dict()),
+                            "controller_kind": "LQR on the true state", "integrator_status": "success",
+                            "controller_poles_real": [0.99, 0.5], "controller_poles_imag": [0.0, 0.1],
+                            "case_config": json.dumps({"maneuver": {
+                                "reference": reference, "design": {"model": "lumped", "held_frequency": 3.0}}})})
+    return {"held": held, "move": run}
+
+
+def test_the_report_section_reads_its_numbers_from_the_results():
+    from hubbeam.reporting.formatting import number
+    from hubbeam.study.controllers import controllers_markdown, held_frequency_rows, performance_rows
+
+    runs = synthetic_runs()
+    rows = held_frequency_rows(runs)
+    assert math.isclose(rows[0]["frequency_hz"], 3.5, rel_tol=1e-6) and math.isclose(rows[0]["damping"], 0.01,
+                                                                                     rel_tol=1e-4)
+    assert rows[0]["source"].startswith("model") and rows[1]["source"].startswith("measured")
+    assert rows[1]["frequency_hz"] == 3.0
+    sweep = st.sweep_dataset([st.SampleTimeSweep(
+        design="move", sample_times=np.array([0.002, 0.05]), gains=("continuous",), delays=(0.0,),
+        radius=np.array([[[0.99, 1.2]]]), pole=np.array([[[0.99, -1.2]]], dtype=complex),
+        mode=np.array([[["bending 2", "drive"]]], dtype=object), boundary=np.array([[0.0377]]),
+        boundary_mode=np.array([["drive"]], dtype=object), design_frequencies=np.array([3.75]))],
+        st.PlantModes(values=np.array([]), vectors=np.zeros((0, 0)), labels=(), names=("bending 1", "bending 2"),
+                      frequencies=np.array([4.6, 22.3])))
+    robustness = rb.robustness_dataset([rb.RobustnessMap(
+        case="move", values={"tip_mass": np.array([0.0, 0.1, 0.2])}, radius={"tip_mass": np.array([0.99, 0.995, 1.01])},
+        mode={"tip_mass": np.array(["drive"] * 3, dtype=object)}, nominal={"tip_mass": 0.0},
+        margins={"tip_mass": (0.0, 0.15)}, nominal_radius=1.002)])
+    text = controllers_markdown(runs, sweep, robustness, {"move": ("../control/move.mat", "../control/move.json")})
+    performance = performance_rows(runs, robustness)[0]
+    assert math.isclose(performance["final_error_rad"], -0.01, abs_tol=1e-12)
+    assert performance["saturated"] and performance["peak_voltage"] == 12.5
+    assert math.isclose(performance["predicted_radius"], 0.99) and performance["truth_radius"] == 1.002
+    assert math.isclose(performance["residual_tip_m"], 0.001, rel_tol=1e-2)  # after 0.5 + 0.5 s
+    # the drive's record: 0.069 N m s/rad of back-EMF damping against Beq = 0.015 (Quanser's numbers)
+    assert f"= {number(0.06902982498461538, 3)} N m s/rad" in text and "0.069 N m s/rad" in text
+    assert "wrong: predicted stable, unstable on the truth" in text  # prediction apart from performance
+    assert "37.7 ms" in text and "lacks the truth's bending 2 (22.3 Hz)" in text
+    assert "0 .. 0.15*" in text and "[move.mat](../control/move.mat)" in text
+    assert text.index("### Prediction") < text.index("### Performance")

@@ -640,9 +640,10 @@ class _Planner:
                 "study_report.py", output={"markdown": paths.study_report("md"), "html": paths.study_report("html"),
                                            "summary": paths.summary()},
                 log=paths.log("report", "report.log"),
-                input={"simulations": self.simulations(self.cases), "figures": list(self.figure_files("png").values())},
+                input={"simulations": self.simulations(self.cases), "figures": list(self.figure_files("png").values()),
+                       **self.control_report_inputs()},
                 params={"study": cfg.get("study"), "beam": cfg["beam"], "cases": list(self.cases),
-                        "figures": self.report_figures()}),
+                        "figures": self.report_figures(), "control_cases": self.control_cases()}),
             "archive": self.step(
                 "archive.py", output={"archive": paths.archive()}, log=paths.log("report", "archive.log"),
                 input={"files": self.archived()},
@@ -836,6 +837,12 @@ class _Planner:
     def control_cases(self) -> list[str]:
         """The sampled cases whose controllers are exported: all of them, with a ``control`` section."""
         return sampled_cases(self.settings) if "control" in self.cfg else []
+
+    def control_report_inputs(self) -> dict:
+        """What the study report reads of the ``control`` section: its datasets and the exported controllers."""
+        control = self.cfg.get("control", {})
+        found = {part: self.result(CONTROL_NC[part]) for part in ("sample_time", "robustness") if part in control}
+        return found | ({"controllers": self.controller_files()} if self.control_cases() else {})
 
     def controller_files(self) -> list[str]:
         """The implementation files (``.mat``, ``.json``) of every exported controller."""

@@ -25,7 +25,7 @@ CONFIG_FILE = REPO_ROOT / "config" / "config.yaml"
 #: names of the calls and signals with which tests interrupt and kill processes
 KILL_NAMES = {"kill", "killpg", "SIGINT", "SIGTERM", "SIGKILL"}
 #: test modules whose every test is slow (but runs no workflow)
-SLOW_MODULES = {"test_reference", "test_config_install"}
+SLOW_MODULES = {"test_reference", "test_config_install", "test_quanser_plan"}
 
 
 def _names(code: CodeType) -> set[str]:

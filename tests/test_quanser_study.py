@@ -236,3 +236,4 @@ def test_the_report_section_reads_its_numbers_from_the_results():
     assert "37.7 ms" in text and "lacks the truth's bending 2 (22.3 Hz)" in text
     assert "0 .. 0.15*" in text and "[move.mat](../control/move.mat)" in text
     assert text.index("### Prediction") < text.index("### Performance")
+

@@ -223,7 +223,9 @@ def test_the_report_section_reads_its_numbers_from_the_results():
     robustness = rb.robustness_dataset([rb.RobustnessMap(
         case="move", values={"tip_mass": np.array([0.0, 0.1, 0.2])}, radius={"tip_mass": np.array([0.99, 0.995, 1.01])},
         mode={"tip_mass": np.array(["drive"] * 3, dtype=object)}, nominal={"tip_mass": 0.0},
-        margins={"tip_mass": (0.0, 0.15)}, nominal_radius=1.002)])
+        margins={"tip_mass": (0.0, 0.15)}, nominal_radius=1.002)],
+        [rb.MarginRun("move", "tip_mass", "highest", where, value, radius, math.log(radius) / 0.002, rate, "success")
+         for where, value, radius, rate in (("inside", 0.1425, 0.9995, -0.21), ("outside", 0.1575, 1.0004, 0.17))])
     text = controllers_markdown(runs, sweep, robustness, {"move": ("../control/move.mat", "../control/move.json")})
     performance = performance_rows(runs, robustness)[0]
     assert math.isclose(performance["final_error_rad"], -0.01, abs_tol=1e-12)
@@ -235,5 +237,6 @@ def test_the_report_section_reads_its_numbers_from_the_results():
     assert "wrong: predicted stable, unstable on the truth" in text  # prediction apart from performance
     assert "37.7 ms" in text and "lacks the truth's bending 2 (22.3 Hz)" in text
     assert "0 .. 0.15*" in text and "[move.mat](../control/move.mat)" in text
+    assert "| move | tip_mass | highest | outside | 0.1575 | 1.0004 | 0.2 | 0.17 | success |" in text
     assert text.index("### Prediction") < text.index("### Performance")
 

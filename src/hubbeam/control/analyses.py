@@ -18,7 +18,7 @@ import numpy as np
 from hubbeam.configuration.schema import Problem
 from hubbeam.configuration.settings import Settings
 from hubbeam.control.cases import sampling_of
-from hubbeam.control.robustness import PARAMETERS, robustness_dataset, robustness_map
+from hubbeam.control.robustness import PARAMETERS, confirm_margins, robustness_dataset, robustness_map
 from hubbeam.control.sample_time import (
     confirm_boundary,
     plant_modes,
@@ -101,13 +101,19 @@ def sample_time_analysis(settings: Settings, spec: Mapping, confirm: bool = True
     return sweep_dataset(sweeps, truth, confirmation)
 
 
-def robustness_analysis(settings: Settings, spec: Mapping):
+def robustness_analysis(settings: Settings, spec: Mapping, confirm: bool = True):
     """The robustness maps of ``control.robustness`` as a dataset
-    (:func:`hubbeam.control.robustness.robustness_dataset`)."""
+    (:func:`hubbeam.control.robustness.robustness_dataset`); with ``confirm``, every margin inside
+    its swept range confirmed by nonlinear runs (:func:`hubbeam.control.robustness.confirm_margins`)."""
     ranges = {name: tuple(map(float, bounds)) for name, bounds in spec["ranges"].items()}
     points = int(spec.get("points", DEFAULT_POINTS))
-    return robustness_dataset([robustness_map(settings.cases[name], settings.beam, settings.numerics, ranges, points)
-                               for name in spec["cases"]])
+    maps, runs = [], []
+    for name in spec["cases"]:
+        case = settings.cases[name]
+        maps.append(robustness_map(case, settings.beam, settings.numerics, ranges, points))
+        if confirm:
+            runs += confirm_margins(case, settings.beam, settings.numerics, maps[-1])
+    return robustness_dataset(maps, runs)
 
 
 __all__ = ["DEFAULT_DELAYS", "DEFAULT_POINTS", "DRIVE_PARAMETERS", "control_problems", "robustness_analysis",

@@ -17,7 +17,13 @@ its spectral radius is below 1 (Franklin, Powell and Workman, *Digital Control o
 :func:`stability_margin` finds, by Brent's method, the first value on each side of the nominal one
 where it reaches 1 (none within the range: NaN). At the nominal point the loop is the case's own
 (a test compares it with the design's closed-loop poles where the design model is the truth's).
-Everything is linear algebra on the models: no integration.
+The maps are linear algebra on the models: no integration.
+
+:func:`confirm_margins` checks every margin that lies inside its swept range by two nonlinear runs
+of the compiled sampled loop on the moved plant, just inside and just outside the margin, from a
+small tip deflection with the reference at rest and the sensors without noise and quantisation
+(so that the envelope's rate is the loop's): the growth rate of the applied command's envelope
+against the linear ``ln(rho) / Ts``.
 """
 
 from __future__ import annotations
@@ -33,7 +39,7 @@ import xarray as xr
 
 from hubbeam.configuration.settings import Case
 from hubbeam.control.cases import sampled_controller
-from hubbeam.control.sample_time import loop_radius, plant_modes, truth_model
+from hubbeam.control.sample_time import at_rest, loop_radius, nonlinear_rate, plant_modes, truth_model
 from hubbeam.control.sampled import StateReading, kernel_layout, sensor_rows
 from hubbeam.model.parameters import TipMass
 from hubbeam.results.provenance import global_attributes
@@ -49,6 +55,10 @@ PARAMETERS = {
 }
 #: relative tolerance of Brent's method on a margin
 MARGIN_XTOL = 1e-6
+#: the confirmation runs lie this fraction of a margin's value inside and outside it
+CONFIRM_STEP = 0.05
+#: a confirmation run lasts long enough for this many e-folds of the slower linear rate, within the bounds (s)
+CONFIRM_EFOLDS, CONFIRM_T_END = 3.0, (2.0, 20.0)
 
 
 def _check_parameter(name: str, case: Case) -> None:
@@ -167,11 +177,64 @@ def robustness_map(case: Case, beam, numerics, ranges: Mapping[str, Sequence[flo
                          margins=margins, nominal_radius=at_nominal)
 
 
-def robustness_dataset(maps: Sequence[RobustnessMap]) -> xr.Dataset:
+@dataclass(frozen=True)
+class MarginRun:
+    """A nonlinear run of a case's nominal controller on the plant with ``parameter`` at ``value``,
+    ``where`` (inside or outside) its ``side`` (lowest or highest) margin: the loop's linear spectral
+    ``radius`` and ``predicted_rate`` ``ln radius / Ts`` (s-1), the ``measured_rate`` of the applied
+    command's envelope and the integrator's ``status``."""
+
+    case: str
+    parameter: str
+    side: str
+    where: str
+    value: float
+    radius: float
+    predicted_rate: float
+    measured_rate: float
+    status: str
+
+
+def confirm_margins(case: Case, beam, numerics, found: RobustnessMap, deflection: float = 1e-3) -> list[MarginRun]:
+    """The :class:`MarginRun` pairs of every margin of ``found`` (the map of ``case``) that lies inside
+    its swept range (module docstring), :data:`CONFIRM_STEP` of its value inside and outside."""
+    controller = sampled_controller(case, beam, case_matrices(case, beam, numerics))
+    sampling = case.maneuver.sampling
+    quiet = tuple(dataclasses.replace(sensor, noise=0.0, quantum=0.0) for sensor in sampling.sensors)
+    runs = []
+    for name, (low, high) in found.margins.items():
+        grid, nominal = found.values[name], found.nominal[name]
+        for side, edge, end in (("lowest", low, grid[0]), ("highest", high, grid[-1])):
+            if not math.isfinite(edge) or math.isclose(edge, end):
+                continue
+            inward = 1.0 if side == "lowest" else -1.0
+            points = {"inside": edge + inward * min(CONFIRM_STEP * edge, 0.5 * abs(nominal - edge)),
+                      "outside": edge - inward * CONFIRM_STEP * edge}
+            linear = {}
+            for where, value in points.items():
+                moved_case, moved_beam, sm = moved_plant(case, beam, numerics, name, value)
+                truth = truth_model(moved_case, moved_beam, sm)
+                rows = truth_rows(truth, controller)
+                radius = loop_radius(truth, controller, plant_modes(truth), rows).radius
+                linear[where] = (moved_case, moved_beam, sm, dataclasses.replace(controller, sensor_rows=rows), radius)
+            slowest = min(abs(math.log(item[4])) for item in linear.values()) / controller.Ts
+            t_end = min(max(CONFIRM_EFOLDS / max(slowest, 1e-12), CONFIRM_T_END[0]), CONFIRM_T_END[1])
+            for where, (moved_case, moved_beam, sm, moved, radius) in linear.items():
+                rest = at_rest(moved_case, deflection, sm, t_end)
+                run = dataclasses.replace(rest, maneuver=dataclasses.replace(
+                    rest.maneuver, sampling=dataclasses.replace(sampling, sensors=quiet)))
+                rate, status = nonlinear_rate(run, moved_beam, numerics, sm, moved)
+                runs.append(MarginRun(case.label, name, side, where, float(points[where]), radius,
+                                      math.log(radius) / controller.Ts, rate, status))
+    return runs
+
+
+def robustness_dataset(maps: Sequence[RobustnessMap], confirmations: Sequence[MarginRun] = ()) -> xr.Dataset:
     """The maps of several cases (the same parameters and points) as one CF dataset: per parameter
     ``<name>`` (its grid, a coordinate ``<name>_value`` over ``<name>_point``), ``radius_<name>`` and
     ``mode_<name>`` over ``(case, <name>_point)``, ``nominal_<name>``, ``lowest_<name>`` and
-    ``highest_<name>`` over ``case``; ``nominal_radius`` over ``case``."""
+    ``highest_<name>`` over ``case``; ``nominal_radius`` over ``case``; the ``confirmations``
+    (:class:`MarginRun`) as ``confirmation_<field>`` over ``confirmation``."""
     first = maps[0]
     data, coords = {}, {"case": ("case", [m.case for m in maps], {"long_name": "sampled case"})}
     for name, grid in first.values.items():
@@ -188,10 +251,15 @@ def robustness_dataset(maps: Sequence[RobustnessMap]) -> xr.Dataset:
                 "units": unit, "long_name": f"{side} {what} of the range that keeps the loop stable (the range's "
                                             "end if stable up to there; NaN: the nominal loop is not stable)"})
     data["nominal_radius"] = ("case", [m.nominal_radius for m in maps], {"units": "1"})
+    for field in dataclasses.fields(MarginRun):
+        data[f"confirmation_{field.name}"] = ("confirmation", [getattr(run, field.name) for run in confirmations], {
+            "long_name": {"predicted_rate": "ln(spectral radius) / Ts of the linear loop, s-1",
+                          "measured_rate": "growth rate of the applied command's envelope in the nonlinear run, s-1"
+                          }.get(field.name, field.name.replace("_", " "))})
     title = "hubbeam robustness maps: spectral radius of sampled loops over plant parameters"
     attrs = global_attributes(title, extra={"parameters": ", ".join(first.values)})
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
-__all__ = ["PARAMETERS", "RobustnessMap", "moved_plant", "nominal_value", "robustness_dataset", "robustness_map",
-           "stability_margin", "truth_rows"]
+__all__ = ["PARAMETERS", "MarginRun", "RobustnessMap", "confirm_margins", "moved_plant", "nominal_value",
+           "robustness_dataset", "robustness_map", "stability_margin", "truth_rows"]

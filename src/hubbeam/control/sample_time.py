@@ -277,16 +277,34 @@ def sample_time_sweep(case: Case, beam, sm, sample_times: Sequence[float], delay
                            design_frequencies=frequencies[frequencies > 0.0])
 
 
+def at_rest(case: Case, deflection: float, sm, t_end: float) -> Case:
+    """``case`` with its reference at rest (no feedforward) until ``t_end``, started from the tip
+    deflection ``deflection`` (m) in its first mode (``sm``: its matrices)."""
+    q2 = (deflection / float(np.asarray(sm.f2L)[0]),) + (0.0,) * (case.modes - 1)
+    maneuver = dataclasses.replace(case.maneuver, reference=AngleTable(time=(0.0, t_end), angle=(0.0, 0.0)),
+                                   feedforward=False)
+    return dataclasses.replace(case, maneuver=maneuver, initial=InitialState(q2=q2), t_end=t_end)
+
+
 def _held_at_rest(case: Case, Ts: float, delay: float, gain: str, deflection: float, sm, t_end: float) -> Case:
-    """``case`` with its reference at rest, started from the tip deflection ``deflection`` (m) in its
-    first mode, its controller sampled every ``Ts`` with ``delay`` and ``gain`` on exact readings."""
-    n = case.modes
-    q2 = (deflection / float(np.asarray(sm.f2L)[0]),) + (0.0,) * (n - 1)
+    """:func:`at_rest` with the controller sampled every ``Ts`` with ``delay`` and ``gain`` on exact readings."""
     sampling = dataclasses.replace(case.maneuver.sampling, sample_time=Ts, delay=delay, gain=gain, reduce=False,
                                    estimator=Estimator("exact"), sensors=())
-    maneuver = dataclasses.replace(case.maneuver, reference=AngleTable(time=(0.0, t_end), angle=(0.0, 0.0)),
-                                   sampling=sampling, feedforward=False)
-    return dataclasses.replace(case, maneuver=maneuver, initial=InitialState(q2=q2), t_end=t_end)
+    rest = at_rest(case, deflection, sm, t_end)
+    return dataclasses.replace(rest, maneuver=dataclasses.replace(rest.maneuver, sampling=sampling))
+
+
+def nonlinear_rate(case: Case, beam, numerics, sm, controller) -> tuple[float, str]:
+    """The growth rate (s-1) of the applied command's envelope in the nonlinear run of ``case`` (its
+    own model, matrices ``sm``) under the sampled ``controller`` with ``case``'s sensors
+    (:func:`hubbeam.results.measures.envelope_growth_rate` after the first sixth of the run, up to
+    the drive's limit), and the integrator's status."""
+    loop = sampled_loop(case, controller)
+    ds = simulate(case, beam, numerics, sm, resolve=lambda _case, _sm: Resolved(loop=loop, attributes={}))
+    u_max = math.inf if case.drive is None else case.drive.voltage_limit
+    rate = measures.envelope_growth_rate(ds["sample_time"].values, ds["applied"].values, case.t_end / 6.0,
+                                         limit=0.99 * u_max)
+    return rate, str(ds.attrs["integrator_status"])
 
 
 @dataclass(frozen=True)
@@ -326,15 +344,10 @@ def confirm_boundary(case: Case, beam, numerics, sm, boundary: float, delay: flo
     runs = []
     for Ts in ((1.0 - margin) * boundary, (1.0 + margin) * boundary):
         controller = state_feedback(case, beam, sm, truth, Ts, delay, gain)
-        held = _held_at_rest(case, Ts, delay, gain, deflection, sm, t_end)
-        loop = sampled_loop(held, controller)
-        ds = simulate(held, beam, numerics, sm,
-                      resolve=lambda _case, _sm, loop=loop: Resolved(loop=loop, attributes={}))
         radius = loop_radius(truth, controller).radius
-        u_max = math.inf if case.drive is None else case.drive.voltage_limit
-        rate = measures.envelope_growth_rate(ds["sample_time"].values, ds["applied"].values, t_end / 6.0,
-                                             limit=0.99 * u_max)
-        runs.append(BoundaryRun(float(Ts), radius, math.log(radius) / Ts, rate, ds.attrs["integrator_status"]))
+        rate, status = nonlinear_rate(_held_at_rest(case, Ts, delay, gain, deflection, sm, t_end), beam, numerics, sm,
+                                      controller)
+        runs.append(BoundaryRun(float(Ts), radius, math.log(radius) / Ts, rate, status))
     return runs[0], runs[1]
 
 
@@ -399,5 +412,5 @@ def sweep_dataset(sweeps: Sequence[SampleTimeSweep], truth_modes: PlantModes,
 
 
 __all__ = ["CONTROLLER_MODE", "GAINS", "BoundaryRun", "LoopRadius", "PlantModes", "SampleTimeSweep",
-           "aliasing_sample_times", "confirm_boundary", "loop_matrix", "loop_radius", "plant_modes",
-           "sample_time_sweep", "stability_boundary", "state_feedback", "sweep_dataset", "truth_model"]
+           "aliasing_sample_times", "at_rest", "confirm_boundary", "loop_matrix", "loop_radius", "nonlinear_rate",
+           "plant_modes", "sample_time_sweep", "stability_boundary", "state_feedback", "sweep_dataset", "truth_model"]

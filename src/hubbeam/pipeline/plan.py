@@ -863,12 +863,15 @@ class _Planner:
                         "fingerprint": fingerprint(settings.beam, settings.numerics, *cases)},
                 wildcards=[{}] if spec is not None else [])
 
-        first = control.get("sample_time", {}).get("cases", ())
-        kernel = ({"kernel": SHARED.kernel_marker(kernel_name(model(settings.cases[first[0]].model).family, True))}
-                  if first else {})
+        def kernels(part: str) -> dict:  # the sampled-loop kernels of the nonlinear confirmation runs
+            names = control.get(part, {}).get("cases", ())
+            families = sorted({model(settings.cases[name].model).family for name in names})
+            markers = [SHARED.kernel_marker(kernel_name(family, True)) for family in families]
+            return {"kernels": markers} if names else {}
+
         return {
-            "control_sample_time": analysis("sample_time", "sample_time", kernel),
-            "control_robustness": analysis("robustness", "robustness"),
+            "control_sample_time": analysis("sample_time", "sample_time", kernels("sample_time")),
+            "control_robustness": analysis("robustness", "robustness", kernels("robustness")),
             "control_export": self.step(
                 "control_export.py", output={ext: paths.result(CONTROL_FOLDER, f"{{case}}.{ext}")
                                              for ext in ("mat", "json")},

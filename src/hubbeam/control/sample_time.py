@@ -62,6 +62,8 @@ from hubbeam.simulation.simulate import Resolved, simulate
 
 #: the two ways a sampled loop gets its gain (``sampling.gain``)
 GAINS = ("continuous", "discrete")
+#: the name of a real, non-zero mode of the truth (the hub's rate, damped by the drive and the friction)
+REAL_MODE = "hub (real)"
 #: the name of a closed-loop mode that lives in the controller's states (its plant part negligible)
 CONTROLLER_MODE = "controller"
 #: a closed-loop eigenvector whose plant part is below this share of its norm is the controller's
@@ -86,9 +88,9 @@ def truth_model(case: Case, beam, sm):
 class PlantModes:
     """The modes of a continuous linear model: its eigenvalues ``values`` (s-1) with unit-length
     right eigenvectors ``vectors`` (columns), the ``name`` of each eigenvalue's mode (``rigid body``;
-    ``drive``, a real mode such as the hub damped by the drive; ``bending k`` and ``axial k`` by
-    frequency within their kind, by where the eigenvector's positions lie) and each distinct name's
-    damped ``frequency`` in Hz (``names``, ``frequencies``; 0 for a real mode)."""
+    ``hub (real)``, a real mode: the hub's rate damped by the drive's back-EMF and the friction;
+    ``bending k`` and ``axial k`` by frequency within their kind, by where the eigenvector's positions
+    lie) and each distinct name's damped ``frequency`` in Hz (``names``, ``frequencies``; 0 for a real mode)."""
 
     values: np.ndarray
     vectors: np.ndarray
@@ -121,7 +123,7 @@ def plant_modes(model) -> PlantModes:
         if abs(value) <= tol:
             kinds.append("rigid body")
         elif abs(value.imag) <= tol:
-            kinds.append("drive")
+            kinds.append(REAL_MODE)
         else:
             share = np.linalg.norm(vector[axial]) / np.linalg.norm(vector[positions]) if axial else 0.0
             kinds.append("axial" if share > math.sqrt(0.5) else "bending")
@@ -134,7 +136,7 @@ def plant_modes(model) -> PlantModes:
             labels[k] = f"{kind} {rank}"
             frequencies[labels[k]] = abs(values[k].imag) / (2.0 * math.pi)
     for k, kind in enumerate(kinds):
-        if kind in ("rigid body", "drive"):
+        if kind in ("rigid body", REAL_MODE):
             labels[k] = kind
             frequencies[kind] = 0.0
     order = sorted(frequencies, key=lambda name: (frequencies[name], name))
@@ -411,6 +413,6 @@ def sweep_dataset(sweeps: Sequence[SampleTimeSweep], truth_modes: PlantModes,
     return xr.Dataset(data, coords=coords, attrs=global_attributes(title, extra=attrs))
 
 
-__all__ = ["CONTROLLER_MODE", "GAINS", "BoundaryRun", "LoopRadius", "PlantModes", "SampleTimeSweep",
+__all__ = ["CONTROLLER_MODE", "GAINS", "REAL_MODE", "BoundaryRun", "LoopRadius", "PlantModes", "SampleTimeSweep",
            "aliasing_sample_times", "at_rest", "confirm_boundary", "loop_matrix", "loop_radius", "nonlinear_rate",
            "plant_modes", "sample_time_sweep", "stability_boundary", "state_feedback", "sweep_dataset", "truth_model"]

@@ -8,6 +8,7 @@ loop is unstable).
 from __future__ import annotations
 
 import math
+import textwrap
 
 import xarray as xr
 
@@ -19,7 +20,7 @@ def plot(robustness: xr.Dataset):
     parameters = [name.removeprefix("radius_") for name in robustness.data_vars if name.startswith("radius_")]
     columns = min(3, len(parameters))
     rows = math.ceil(len(parameters) / columns)
-    fig, axes = new_figure(rows, columns, height=2.8 * rows, sharex=False)
+    fig, axes = new_figure(rows, columns, height=3.0 * rows, width=8.0, sharex=False)
     flat = axes.ravel()
     for ax, name in zip(flat, parameters):
         grid = robustness[f"{name}_value"]
@@ -31,7 +32,7 @@ def plot(robustness: xr.Dataset):
         ax.axhline(1.0, color="0.3", linewidth=0.8)
         ax.set_xlabel(axis_label(name.replace("_", " "), grid.attrs.get("units", "1")))
         ax.set_ylabel(axis_label(r"$\max|z|$", "1"))
-        ax.set_title(grid.attrs.get("long_name", name), fontsize=8)
+        ax.set_title(textwrap.fill(grid.attrs.get("long_name", name), 34), fontsize=7)
     for ax in flat[len(parameters):]:
         ax.set_visible(False)
     flat[0].legend(loc="best", fontsize=6)

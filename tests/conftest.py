@@ -26,7 +26,7 @@ CONFIG_FILE = REPO_ROOT / "config" / "config.yaml"
 #: names of the calls and signals with which tests interrupt and kill processes
 KILL_NAMES = {"kill", "killpg", "SIGINT", "SIGTERM", "SIGKILL"}
 #: test modules whose every test is slow (but runs no workflow)
-SLOW_MODULES = {"test_reference", "test_config_install", "test_validation_pybmodes"}
+SLOW_MODULES = {"test_reference", "test_config_install", "test_validation_pybmodes", "test_quanser_plan"}
 #: single tests (``module::function``, every parameter) that take seconds on a 2-core machine even with
 #: the kernels compiled: whole figure sets, long nonlinear closed loops, the finite-element and
 #: Exudyn references, the scipy reference of the benchmark (``pytest --durations=60`` lists them)

@@ -309,7 +309,8 @@ def test_every_job_of_all_puts_each_output_in_place_by_rename(small_run):
     ran = {plan.steps[planned.rule].script for planned, renamed in runs if renamed is not None}
     assert ran == {step.script for step in plan.steps.values()} - {
         "validate_exudyn.py", "validate_models.py", "validate_case.py", "validate_comparison.py", "validate_modes.py",
-        "validate_convergence.py", "validate_nonuniform.py", "report_validation.py"}  # `snakemake validate` only
+        "validate_convergence.py", "validate_nonuniform.py", "report_validation.py"} - {  # `snakemake validate` only
+        "control_sample_time.py", "control_robustness.py", "control_export.py"}  # a `control` section only
 
 
 def test_the_map_gathered_by_the_jobs_is_the_map_of_the_configuration_s_sweep(small_run):

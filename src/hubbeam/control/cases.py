@@ -147,8 +147,10 @@ def resolve(case: Case, sm, beam) -> Resolved:
             if isinstance(error, FeedbackError):
                 raise
             raise FeedbackError(f"{where}.maneuver.sampling", str(error)) from None
+        # netCDF attributes are one-dimensional: the predicted poles as their real and imaginary parts
         attributes = {"controller_kind": controller.kind,
-                      "controller_poles": [[p.real, p.imag] for p in controller.poles]}
+                      "controller_poles_real": controller.poles.real.tolist(),
+                      "controller_poles_imag": controller.poles.imag.tolist()}
         if sampling.reduce:
             error = reduction_error(case, beam, sm)
             attributes |= {"design_reduced_states": controller.design.plant_states,

@@ -76,8 +76,10 @@ def discrete_lqr(dm, weights: Mapping[str, float], input_weight: float) -> LqrDe
                      input_weight=R, method="discrete LQR (control.dlqr)")
 
 
-def continuous_lqr(dm, weights: Mapping[str, float], input_weight: float) -> LqrDesign:
-    """``control.lqr`` on ``dm.continuous`` with its gain applied at the samples (module docstring)."""
+def continuous_lqr(dm, weights: Mapping[str, float], input_weight: float, check: bool = True) -> LqrDesign:
+    """``control.lqr`` on ``dm.continuous`` with its gain applied at the samples (module docstring);
+    ``check=False`` returns the gain even when the sampled loop of ``dm`` is not stable (a sweep of
+    the sample time looks for where it stops being so)."""
     import control as ct
 
     lm = dm.continuous
@@ -86,7 +88,8 @@ def continuous_lqr(dm, weights: Mapping[str, float], input_weight: float) -> Lqr
     gains = np.zeros(dm.A.shape[0])
     gains[:dm.plant_states] = np.asarray(K)[0]
     poles = np.linalg.eigvals(dm.A - np.outer(dm.B[:, 0], gains))
-    stability_check(dm, poles, f"the continuous LQR design on {lm.name} sampled every {dm.Ts:g} s")
+    if check:
+        stability_check(dm, poles, f"the continuous LQR design on {lm.name} sampled every {dm.Ts:g} s")
     return LqrDesign(model=dm, K=gains, P=np.asarray(P), poles=poles, weights=dict(weights), input_weight=R,
                      method="continuous LQR (control.lqr) through the hold")
 

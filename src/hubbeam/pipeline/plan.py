@@ -36,6 +36,7 @@ from typing import Any, NamedTuple
 from hubbeam.configuration.load import ConfigError, validate_config
 from hubbeam.configuration.settings import Settings, from_config
 from hubbeam.configuration.tabular import resolve_files
+from hubbeam.control.analyses import control_problems, sampled_cases
 from hubbeam.control.cases import case_problems, sampling_of
 from hubbeam.linear.statespace import HUBS
 from hubbeam.model.frozen import FrozenMap
@@ -51,6 +52,8 @@ from hubbeam.reporting.products import (
     CAMPBELL_NC,
     CASE_FIGURE,
     COMPARISON_FIGURE,
+    CONTROL_FOLDER,
+    CONTROL_NC,
     CRITICAL_SPEEDS_CSV,
     CRITICAL_SPEEDS_NC,
     DESIGNS_FIGURE,
@@ -230,7 +233,7 @@ def checked_configuration(config: Mapping,
         problems += error.problems
     settings = None if problems else from_config(cfg)
     if settings is not None:
-        problems += case_problems(settings)
+        problems += case_problems(settings) + control_problems(cfg, settings)
     return cfg, settings, problems
 
 
@@ -289,7 +292,7 @@ class _Planner:
     def plan(self) -> Plan:
         steps = {**self.simulation_steps(), **self.eigen_steps(), **self.figure_steps(), **self.table_steps(),
                  **self.linear_steps(), **self.reading_steps(), **self.report_steps(), **self.sweep_steps(),
-                 **self.validation_steps()}
+                 **self.validation_steps(), **self.control_steps()}
         return Plan(config=self.cfg, settings=self.settings, paths=self.paths, products=self.products,
                     readings=self.readings, steps=FrozenMap(steps),
                     targets=(*self.archived(), self.paths.archive()),
@@ -643,11 +646,12 @@ class _Planner:
                                            "summary": paths.summary()},
                 log=paths.log("report", "report.log"),
                 input={"simulations": self.simulations(self.cases), "figures": list(self.figure_files("png").values()),
-                       "matrices": [self.matrices_file(settings.case(case)) for case in self.cases]},
+                       "matrices": [self.matrices_file(settings.case(case)) for case in self.cases],
+                       **self.control_report_inputs()},
                 params={"study": cfg.get("study"), "beam": cfg["beam"], "cases": list(self.cases),
                         "case_settings": [settings.case(case) for case in self.cases],
                         "settings": fingerprint(*(settings.case(case) for case in self.cases)),
-                        "figures": self.report_figures()}),
+                        "figures": self.report_figures(), "control_cases": self.control_cases()}),
             "archive": self.step(
                 "archive.py", output={"archive": paths.archive()}, log=paths.log("report", "archive.log"),
                 input={"files": self.archived()},
@@ -667,7 +671,7 @@ class _Planner:
         validation = sorted(published.values()) + ([self.paths.rotating_frequencies("pdf")] if published else [])
         return sorted(set(self.simulations(self.cases) + matrices + eigen + self.sweep_files(in_all=True) + models
                           + self.figure_targets() + self.table_targets() + self.reports() + validation
-                          + self.reading_matrix()))
+                          + self.reading_matrix() + self.controller_files()))
 
     # --- parameter sweeps (sweeps.smk) ------------------------------------------------------------
 
@@ -833,6 +837,56 @@ class _Planner:
                                                 "html": paths.validation_report("html")},
                 log=paths.log("report", "validation_exudyn.log"),
                 input={**self.exudyn_report(), **self.nonuniform_checks()}),
+        }
+
+
+    # --- analyses of the sampled controllers (control.smk, docs/quanser-study.md) -----------------
+
+    def control_cases(self) -> list[str]:
+        """The sampled cases whose controllers are exported: all of them, with a ``control`` section."""
+        return sampled_cases(self.settings) if "control" in self.cfg else []
+
+    def control_report_inputs(self) -> dict:
+        """What the study report reads of the ``control`` section: its datasets and the exported controllers."""
+        control = self.cfg.get("control", {})
+        found = {part: self.result(CONTROL_NC[part]) for part in ("sample_time", "robustness") if part in control}
+        return found | ({"controllers": self.controller_files()} if self.control_cases() else {})
+
+    def controller_files(self) -> list[str]:
+        """The implementation files (``.mat``, ``.json``) of every exported controller."""
+        return [self.paths.result(CONTROL_FOLDER, f"{case}.{ext}") for case in self.control_cases()
+                for ext in ("mat", "json")]
+
+    def control_steps(self) -> dict[str, Step]:
+        control, settings = self.cfg.get("control", {}), self.settings
+        paths = self.paths
+
+        def analysis(part: str, product: str, extra_input: Mapping | None = None) -> Step:
+            spec = control.get(part)
+            cases = [settings.cases[name] for name in (spec or {}).get("cases", ())]
+            return self.step(
+                f"control_{part}.py", output={"nc": self.result(CONTROL_NC[product])},
+                log=paths.log("control", f"{part}.log"), input=extra_input,
+                params={"settings": settings, "spec": spec,
+                        "fingerprint": fingerprint(settings.beam, settings.numerics, *cases)},
+                wildcards=[{}] if spec is not None else [])
+
+        def kernels(part: str) -> dict:  # the sampled-loop kernels of the nonlinear confirmation runs
+            names = control.get(part, {}).get("cases", ())
+            families = sorted({model(settings.cases[name].model).family for name in names})
+            markers = [SHARED.kernel_marker(kernel_name(family, True)) for family in families]
+            return {"kernels": markers} if names else {}
+
+        return {
+            "control_sample_time": analysis("sample_time", "sample_time", kernels("sample_time")),
+            "control_robustness": analysis("robustness", "robustness", kernels("robustness")),
+            "control_export": self.step(
+                "control_export.py", output={ext: paths.result(CONTROL_FOLDER, f"{{case}}.{ext}")
+                                             for ext in ("mat", "json")},
+                log=paths.log("control", "export_{case}.log"),
+                params={"settings": settings, "case": "{case}",
+                        "fingerprint": fingerprint(settings.beam, settings.numerics, self.case)},
+                wildcards=[{"case": case} for case in self.control_cases()]),
         }
 
 

@@ -78,6 +78,7 @@ FORMATS = {
     ".py": Format("text/x-python", "Python"),
     ".smk": Format("text/plain", "Snakemake rules"),
     ".rst": Format("text/x-rst", "reStructuredText"),
+    ".json": Format("application/json", "JSON"),
     "": Format("text/plain", "Snakemake workflow"),
 }
 

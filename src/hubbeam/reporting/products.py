@@ -69,6 +69,9 @@ LINEAR_NC = {name: IN_RESULTS.linear(name) for name in ("campbell", "mode_shapes
 TABLE2_CSV = IN_RESULTS.table("table2", "csv")
 #: the critical speed of each tip mass at the beam tip (the claims read it)
 CRITICAL_SPEEDS_CSV = IN_RESULTS.table("critical_speeds", "csv")
+#: the analyses of the sampled controllers (``control`` section, hubbeam.control.analyses) and their folder
+CONTROL_FOLDER = "control"
+CONTROL_NC = {name: IN_RESULTS.result(CONTROL_FOLDER, f"{name}.nc") for name in ("sample_time", "robustness")}
 
 
 class ProductError(ValueError):
@@ -295,6 +298,20 @@ GENERAL_PRODUCTS: Mapping[str, Product] = registry(
              "design of the study against its design speed, on CFOAM and on its own design model; "
              "the paper's conclusion (iii) that SFOAM can be used for controller design, tested.",
         needs=("study",), section=DESIGNS_SECTION),
+    Product(
+        "sample_time_sweep", FILES_FIGURE, "hubbeam.plotting.sample_time:plot",
+        "How slowly each design may be sampled", in_paper=False,
+        ours="Spectral radius of each design's sampled loop with the truth plant against the sample time: "
+             "the continuous gain through the hold and a discrete LQR redesigned at each sample time, without "
+             "and with one sample of delay; each plant mode's aliasing sample time 1/(2f) marked.",
+        files={"sweep": CONTROL_NC["sample_time"]}, needs=("control.sample_time",), section=DESIGNS_SECTION),
+    Product(
+        "robustness", FILES_FIGURE, "hubbeam.plotting.robustness:plot",
+        "Robustness of the sampled controllers to the plant's parameters", in_paper=False,
+        ours="Spectral radius of each sampled controller's loop (built for the nominal plant) with the plant's "
+             "linear model, one parameter moved over its range at a time (payload, EI, Beq, kt = km, Rm); "
+             "the nominal value marked; above 1 the loop is unstable.",
+        files={"robustness": CONTROL_NC["robustness"]}, needs=("control.robustness",), section=DESIGNS_SECTION),
 )
 
 # --- the paper's products ------------------------------------------------------------------------

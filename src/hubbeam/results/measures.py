@@ -218,3 +218,29 @@ def wrap_phase(angle: float) -> float:
 def phase_lead(a: SinusoidFit, b: SinusoidFit) -> float:
     """Phase of ``a`` minus phase of ``b``, wrapped to (-pi, pi]; positive when ``a`` leads."""
     return wrap_phase(a.phase - b.phase)
+
+
+def envelope_growth_rate(time, values, t0: float, windows: int = 12, floor: float = 1e-6,
+                         limit: float = math.inf) -> float:
+    """The growth rate (s-1; negative: decay) of the envelope of ``x(t)`` after ``t0``: the
+    least-squares slope of ``ln max |x|`` over ``windows`` equal windows of ``(t0, t_end]`` against
+    the time of each window's maximum. Windows are left out from the first one whose maximum
+    reaches ``limit`` (a saturated command) or falls below ``floor`` times the first window's
+    (the rounding floor of a decayed signal); NaN with fewer than two windows left. For a loop
+    whose least stable mode ``z`` dominates the record, the rate tends to ``ln |z| / Ts``."""
+    time = np.asarray(time, dtype=float)
+    magnitude = np.abs(np.asarray(values, dtype=float))
+    keep = (time > t0) & np.isfinite(magnitude)
+    time, magnitude = time[keep], magnitude[keep]
+    if time.size < 2 * windows:
+        return math.nan
+    found_t, found_log = [], []
+    for part_t, part in zip(np.array_split(time, windows), np.array_split(magnitude, windows)):
+        top = float(part.max())
+        if top >= limit or (found_log and top < floor * math.exp(found_log[0])) or top == 0.0:
+            break
+        found_t.append(float(part_t[int(np.argmax(part))]))
+        found_log.append(math.log(top))
+    if len(found_t) < 2:
+        return math.nan
+    return float(np.polyfit(found_t, found_log, 1)[0])

@@ -33,14 +33,15 @@ from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE,
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                    figures: Mapping[str, Mapping[str, str]], designs: Sequence[Mapping] = (),
-                   frequencies: Sequence[Mapping] = ()) -> str:
+                   frequencies: Sequence[Mapping] = (), controllers: str = "") -> str:
     """The report in Markdown. ``rows`` are summary rows, ``designs`` the rows of
     :func:`hubbeam.study.trust.design_table`, ``frequencies`` those of
     :func:`hubbeam.study.frequencies.case_frequencies`; ``figures`` gives, per section of the report (the
     products' ``section``, :data:`hubbeam.reporting.products.SECTIONS`), the PNG paths relative
     to the report by label: the case of a figure per case, the comparison of a figure per
     comparison, the figure's name otherwise. Sections the study report has no place for (the
-    paper's) are left out."""
+    paper's) are left out. ``controllers``: the section on sampled controllers
+    (:func:`hubbeam.study.controllers.controllers_markdown`), shown before the case figures."""
     def first(section: str) -> str | None:
         return next(iter(figures.get(section, {}).values()), None)
 
@@ -54,7 +55,8 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                   verdicts=verdicts(list(designs)), design_figure=first(DESIGNS_SECTION),
                   reference_model=REFERENCE_MODEL, settling_band=SETTLING_BAND,
                   trust_tolerance=TRUST_TOLERANCE,
-                  eigen_figures=figures.get(EIGEN_SECTION, {}), linear_figures=figures.get(LINEAR_SECTION, {}))
+                  eigen_figures=figures.get(EIGEN_SECTION, {}), linear_figures=figures.get(LINEAR_SECTION, {}),
+                  controllers=controllers)
 
 
 def beam_summary(beam: Mapping) -> list[dict]:

@@ -17,6 +17,7 @@ from hubbeam.pipeline.runner import Job
 from hubbeam.reporting.archive import build_archive, verify_archive
 from hubbeam.reporting.document import markdown_to_html
 from hubbeam.results.io import open_result, staged, write_text
+from hubbeam.study.controllers import controllers_markdown
 from hubbeam.study.frequencies import case_frequencies
 from hubbeam.study.report import study_html, study_markdown
 from hubbeam.study.summary import COLUMNS, case_summary
@@ -62,7 +63,8 @@ def study_report(job: Job) -> None:
     figures = {name: {label: os.path.relpath(path, report_dir) for label, path in shown.items()}
                for name, shown in p["figures"].items()}
     markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets),
-                              frequencies=frequencies)
+                              frequencies=frequencies,
+                              controllers=_controllers(job, datasets, figures, report_dir))
     write_text(out["markdown"], markdown)
     write_text(out["html"], study_html(markdown, p["study"].get("title", p["study"]["name"]), report_dir))
     with staged(out["summary"]) as (summary,), open(summary, "w", newline="") as handle:
@@ -70,6 +72,18 @@ def study_report(job: Job) -> None:
         writer.writeheader()
         writer.writerows(rows)
     LOG.info("%d cases -> %s, %s, %s", len(rows), out["markdown"], out["html"], out["summary"])
+
+
+def _controllers(job: Job, datasets, figures, report_dir: Path) -> str:
+    """The report's section on sampled controllers from the rule's optional inputs: the sample-time
+    sweep (``sample_time``), the robustness maps (``robustness``) and the exported controllers
+    (``controllers``: ``.mat`` and ``.json`` per case of ``params.control_cases``, in that order)."""
+    inputs = job.input
+    files = [os.path.relpath(path, report_dir) for path in inputs.get("controllers", ())]
+    exports = {case: (files[2 * k], files[2 * k + 1]) for k, case in enumerate(job.params.get("control_cases", ()))}
+    shown = {key: path for section in figures.values() for key, path in section.items()}
+    return controllers_markdown(datasets, open_result(inputs["sample_time"]) if "sample_time" in inputs else None,
+                                open_result(inputs["robustness"]) if "robustness" in inputs else None, exports, shown)
 
 
 def validation_report(job: Job) -> None:

@@ -117,14 +117,15 @@ def sampled_loop(case: Case, controller: SampledController) -> SampledLoop:
 def case_shaper(case: Case, beam, sm, sample_time: float | None = None) -> Shaper:
     """The command shaper of ``case`` (``case.shaper``): on its given frequencies, or tuned on the
     modes the command excites in the linearisation of its model (or the shaper's) at the shaper's
-    speed (default the maneuver's final speed); with a ``sample_time``, checked against it and
+    speed (default the maneuver's final speed), designed at its ``frequency_ratio`` times their
+    frequencies if it has one; with a ``sample_time``, checked against it and
     rounded to its samples (``hubbeam.model.shapers``)."""
     spec = case.shaper
     modes = spec.given_modes()
     if modes is None:
         speed = case.maneuver.final_speed if spec.speed is None else spec.speed
         found = [case_shaping_mode(case, beam, sm, speed, mode=number, model=spec.model) for number in spec.modes]
-        modes = [(mode.omega, mode.zeta) for mode in found]
+        modes = spec.design_modes([(mode.omega, mode.zeta) for mode in found])
     shaper = spec.shaper(modes)
     if sample_time is None:
         return shaper

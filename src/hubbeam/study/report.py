@@ -27,6 +27,7 @@ from hubbeam.reporting.products import (
     EIGEN_SECTION,
     LINEAR_SECTION,
 )
+from hubbeam.study.summary import NO_SHAPER
 from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, verdicts
 
 
@@ -74,19 +75,25 @@ def beam_markdown(beam: Mapping) -> str:
 
 
 def cases_markdown(rows: Sequence[Mapping]) -> str:
-    """A line per case: settings, peak and residual tip deflection, validity, convergence check."""
+    """A line per case: settings, peak and residual tip deflection, validity, convergence check;
+    with shaped runs among them, the shaper and its move-time penalty too."""
     def convergence(row):
         if row["convergence"] == "not checked":
             return row["convergence"]
         return (f"{row['convergence']} (tolerance {number(row['convergence_tolerance_diff_m'], 2)} m, "
                 f"modes {number(row['convergence_modes_diff_m'], 2)} m)")
 
+    shaped = any(row["shaper"] != NO_SHAPER for row in rows)
+
+    def shaping(row):
+        return [row["shaper"], number(row["move_time_penalty_s"])] if shaped else []
+
     return markdown_table(
         ("case", "model", "maneuver", "modes", "tip mass (kg)", "peak v(L) (m)", "at t (s)", "end (s)",
-         "residual (m)", "validity", "convergence check"),
+         *(("shaper", "move-time penalty (s)") if shaped else ()), "residual (m)", "validity", "convergence check"),
         ([row["case"], row["model"], row["maneuver"], row["modes"], number(row["tip_mass_kg"]),
           number(row["peak_tip_deflection_m"]), number(row["peak_time_s"]), number(row["maneuver_end_s"]),
-          number(row["residual_amplitude_m"]), row["validity"], convergence(row)] for row in rows))
+          *shaping(row), number(row["residual_amplitude_m"]), row["validity"], convergence(row)] for row in rows))
 
 
 def designs_markdown(designs: Sequence[Mapping]) -> str:

@@ -97,3 +97,20 @@ def test_beam_readers_name_what_they_take():
     with pytest.raises(ValueError, match=r"takes the beam section.*beam_from_config\(cfg\['beam'\]\)"):
         beam_from_config(products)
     assert beam_from_config(products["beam"]).L == 1.0
+
+
+def test_a_root_spring_is_a_key_of_the_case_checked_with_the_rest(tmp_path):
+    """``cases.<name>.root_spring`` reaches the case as a :class:`RootSpring` through the one check; the
+    linear model then carries the hub angle (one more coordinate) and a negative stiffness in the last
+    case is refused before anything runs, by its key."""
+    move = {"model": "FOAM", "t_end": 0.5, "maneuver": {"kind": "torque", "tau_max": 0.01, "tf": 0.4}}
+    spring = {"stiffness": 2.0, "damping": 0.001, "clamp_inertia": 1e-5}
+    rig = load(write_study(tmp_path, study(rigid=move, compliant=dict(move, root_spring=spring))))
+    assert rig.case("rigid").root_spring is None
+    assert rig.case("compliant").root_spring.to_dict() == spring
+    rigid, compliant = rig.linear("rigid", speed=0.0), rig.linear("compliant", speed=0.0)
+    assert compliant.A.shape[0] == rigid.A.shape[0] + 2
+    bad = dict(move, root_spring=dict(spring, stiffness=-2.0))
+    with pytest.raises(ConfigError) as error:
+        load(write_study(tmp_path, study(rigid=move, bad=bad)))
+    assert [problem.path for problem in error.value.problems] == ["cases.bad.root_spring.stiffness"]

@@ -8,6 +8,7 @@
 * so do CFOAM with a tip mass and the torque-driven FOAM and SFOAM (whose right-hand sides in the
   fast path are built differently from the reference's general mass-matrix solve);
 * so do shaped commands (a torque, a hub motion, a controller's reference);
+* so do runs on a compliant root (the hub angle appended, the spring between hub and root);
 * both paths record the divergence of TLAM at w_f = 3.5 rad/s at the same time.
 
 The 50 s reference uses the jitted accelerations (the pure-Python ones take ~50 s there); the
@@ -25,6 +26,7 @@ from hubbeam.model.maneuvers import maneuver_from_dict
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import MODELS
 from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.root import RootSpring, joint_inputs
 from hubbeam.model.shapers import Shaper
 from hubbeam.simulation.reference import pure_python, reference_simulation
 from hubbeam.simulation.simulate import Resolved, kernel_matrices, simulate
@@ -171,3 +173,40 @@ def test_both_paths_record_the_divergence_of_tlam_at_the_same_time(setup):
     assert 0.0 <= lag < 0.5
     valid = (fast.time < reference.attrs["diverged_at_s"] - 1.0).values
     _assert_close_runs(fast, reference, max(numerics["rtol"], 1e-10), "tip_transverse", valid)
+
+
+@pytest.mark.parametrize("name,changes", [
+    ("tab3_foam_tau200", {"t_end": 8.0}),  # free hub: the two hub rows of the modal mass
+    ("fig04_cfoam", {"maneuver": {"kind": "prescribed", "wf": 3.0, "tf": 10.0}, "t_end": 12.0,
+                     "tip_mass": {"mass": 0.5, "position": 8.0}}),  # the prescribed hub, the link on the spring
+    ("fig08_sfoam_tau200", {"t_end": 8.0, "damping": {"kind": "modal", "axial": 0.02, "transverse": 0.05},
+                            "maneuver": {"kind": "pd", "kp": 2000.0, "kd": 800.0,
+                                         "reference": {"kind": "angle_table", "time": [0.0, 4.0],
+                                                       "angle": [0.0, 1.0]}}}),  # PD on the hub's angle
+])
+def test_runs_on_a_root_spring_agree_with_the_reference(setup, name, changes):
+    """A compliant root (``RootSpring``: the hub angle appended, the hinge's terms, spring and
+    damper) in the integrator's right-hand sides against scipy on the general equations, over whole
+    runs: the tip, the root's angle and the hub's, and the plain-Python accelerations with the joint
+    against the jitted ones."""
+    params, numerics, config = setup
+    spring = RootSpring(5e3, 20.0, 100.0)
+    case = case_of(config, name).to_dict() | changes | {"root_spring": spring.to_dict()}
+    reference = reference_simulation(case, params, numerics, rtol=1e-10, atol=1e-12, pure_python_rhs=False)
+    fast = simulate(case, params, numerics)
+    assert reference.attrs["integrator_status"] == fast.attrs["integrator_status"] == "success"
+    rtol = max(numerics["rtol"], 1e-10)
+    for variable in ("tip_transverse", "theta", "hub_angle"):
+        _assert_close_runs(fast, reference, rtol, variable)
+    assert float(abs(fast.hub_angle - fast.theta).max()) > 1e-4  # the spring did twist
+    sm = kernel_matrices(assemble(params, None, 2, 16))
+    link, root = joint_inputs(sm, spring)
+    kind, mp = maneuver_from_dict(case["maneuver"]).kernel_parameters()
+    inputs = SimulationInputs(MODELS[case["model"]].traits, kind, mp, np.zeros((2, 2, 2)), link, root=root)
+    free = eom.free_coordinates(inputs)
+    y, v = np.random.default_rng(3).normal(scale=0.1, size=(2, 6))
+    a_fast, a_plain = np.zeros(6), np.zeros(6)
+    out_fast = eom.accelerations(inputs, 2.0, y.copy(), v.copy(), free, a_fast)
+    out_plain = pure_python(eom.accelerations)(inputs, 2.0, y.copy(), v.copy(), free, a_plain)
+    assert np.allclose(a_plain, a_fast, rtol=1e-12, atol=1e-12)
+    assert np.allclose(out_plain, out_fast, rtol=1e-12, atol=1e-12)

@@ -93,8 +93,8 @@ def test_the_identity_shaper_returns_every_command_to_the_bit(name):
             # the full coordinates, and those of a model without q1 (SFOAM)
             for size in (1 + 2 * N_MODES, 1 + N_MODES):
                 y, v = _states(size)
-                got = shaped_torque(kind, t, y, v, mp, IDENTITY_SHAPER)
-                expected = (tracking_torque(kind, reference_motion(t, mp, reference_offset(kind, mp)), y, v, mp)
+                got = shaped_torque(kind, t, y, v, mp, IDENTITY_SHAPER, 0)
+                expected = (tracking_torque(kind, reference_motion(t, mp, reference_offset(kind, mp)), y, v, mp, 0)
                             if tracks_reference(kind) else open_loop_torque(kind, t, mp))
                 assert np.array(got).tobytes() == np.array(expected).tobytes()
             continue
@@ -130,10 +130,10 @@ def test_a_shaped_command_is_the_weighted_sum_of_the_delayed_commands(name):
             o = reference_offset(kind, mp)
             reference = sum(a * np.array(reference_motion(s, mp, o)) for a, s in delayed)
             expected = _hand_law(reference, y, v, maneuver)
-            assert shaped_torque(kind, t, y, v, mp, shaper) == pytest.approx(expected, rel=1e-12, abs=1e-12)
+            assert shaped_torque(kind, t, y, v, mp, shaper, 0) == pytest.approx(expected, rel=1e-12, abs=1e-12)
         else:
             expected = sum(a * open_loop_torque(kind, s, mp) for a, s in delayed)
-            assert shaped_torque(kind, t, y, v, mp, shaper) == pytest.approx(expected, rel=1e-14, abs=1e-14)
+            assert shaped_torque(kind, t, y, v, mp, shaper, 0) == pytest.approx(expected, rel=1e-14, abs=1e-14)
 
 
 @pytest.mark.parametrize("name", MANEUVERS)

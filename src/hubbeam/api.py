@@ -93,7 +93,7 @@ class Configuration:
                              convergence_check=self.settings.numerics.convergence_check)
 
     def linear(self, name: str, speed: float | None = None, hub: str = "free", outputs=None):
-        """The linear model of case ``name``'s model, modes, tip body and damping about the steady spin
+        """The linear model of case ``name``'s model, modes, tip body, damping and root about the steady spin
         at ``speed`` (rad s-1; default the maneuver's final speed): the voltage as input for a free
         hub with a drive (``hubbeam.linear.voltage``), the hub torque (free) or acceleration
         (``hub="prescribed"``) otherwise; ``outputs`` as ``hubbeam.linear.statespace.linear_model``."""
@@ -102,8 +102,8 @@ class Configuration:
         speed = case.maneuver.final_speed if speed is None else speed
         damping = damping_matrices(case.damping, sm)
         if case.drive is not None and hub == "free":
-            return voltage_model(self.beam, sm, case.model, case.drive, speed, damping, outputs)
-        return linear_model(self.beam, sm, case.model, speed, hub, damping, outputs)
+            return voltage_model(self.beam, sm, case.model, case.drive, speed, damping, outputs, case.root_spring)
+        return linear_model(self.beam, sm, case.model, speed, hub, damping, outputs, case.root_spring)
 
     def plant(self, name: str, speed: float | None = None, hub: str = "free", outputs=None):
         """:meth:`linear` as a python-control ``StateSpace`` with named states, inputs and outputs."""

@@ -99,6 +99,7 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
         problems += entry_problems + _initial_problems(f"cases.{name}", case, modes, check_speed=not entry_problems)
         problems += _feedback_problems(f"cases.{name}.maneuver", case, modes)
         problems += _drive_problems(f"cases.{name}", case) + _shaper_problems(f"cases.{name}.shaper", case, modes)
+        problems += _root_problems(f"cases.{name}", case)
     problems += _beam_problems(beam, length)
     if whole:
         problems += _study_problems(cfg, eigen, cases)
@@ -364,6 +365,17 @@ def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Prob
     if len(set(signals)) < len(signals):
         problems.append(Problem(f"{where}.sampling.sensors", f"measure {signals}; allowed: each signal once"))
     return problems
+
+
+def _root_problems(where: str, case: Mapping) -> list[Problem]:
+    """A compliant root takes every maneuver but a state feedback, whose laws, designs and sampled
+    controllers are built on the rigid root's states."""
+    kind = _section(case, "maneuver").get("kind")
+    if isinstance(case.get("root_spring"), dict) and kind == "state_feedback":
+        return [Problem(f"{where}.root_spring", "given with a state_feedback maneuver; allowed: a root spring under "
+                        "a prescribed, torque, table or pd maneuver (a state feedback on the flexible joint's "
+                        "states is not modelled; docs/compliant-root.md)")]
+    return []
 
 
 def _shaper_problems(where: str, case: Mapping, modes: int | None) -> list[Problem]:

@@ -33,6 +33,7 @@ from hubbeam.model.frozen import FrozenMap, freeze
 from hubbeam.model.limits import MEMORY_BUDGET_MB, SMALL_DEFLECTION_LIMIT
 from hubbeam.model.maneuvers import Maneuver, maneuver_from_dict
 from hubbeam.model.parameters import TipMass, UniformBeam
+from hubbeam.model.root import RootSpring
 from hubbeam.model.shapers import ShaperSpec
 
 
@@ -84,6 +85,8 @@ class Case:
     drive: DcMotor | None = None
     #: the command shaper (None: unshaped)
     shaper: ShaperSpec | None = None
+    #: a compliant root between the hub and the beam (None: clamped to the hub)
+    root_spring: RootSpring | None = None
 
     @property
     def label(self) -> str:
@@ -108,6 +111,8 @@ class Case:
             settings["drive"] = self.drive.to_dict()
         if self.shaper is not None:
             settings["shaper"] = self.shaper.to_dict()
+        if self.root_spring is not None:
+            settings["root_spring"] = self.root_spring.to_dict()
         return settings
 
 
@@ -337,7 +342,8 @@ def case_from_config(cfg: Mapping, name: str) -> Case:
                 damping=damping_from_dict(case.get("damping")),
                 initial=InitialState.from_dict(case["initial"]) if "initial" in case else None,
                 drive=DcMotor(**case["drive"]) if "drive" in case else None,
-                shaper=ShaperSpec.from_dict(case["shaper"]) if "shaper" in case else None)
+                shaper=ShaperSpec.from_dict(case["shaper"]) if "shaper" in case else None,
+                root_spring=RootSpring(**case["root_spring"]) if "root_spring" in case else None)
 
 
 #: the name a case given without one has in messages

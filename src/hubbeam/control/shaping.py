@@ -41,6 +41,7 @@ from hubbeam.linear.statespace import linear_model
 from hubbeam.linear.tracking import dominant_content, numbered_by_frequency, state_modes
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.maneuvers import PRESCRIBED_HUB, Maneuver, PdControl, Tracking
+from hubbeam.model.root import HUB_COORDINATE
 
 #: the loop a command drives -> the hub of the linear model
 LOOPS = {"held": "prescribed", "free": "free", "closed": "free"}
@@ -71,7 +72,8 @@ def _gain_row(lin, gains: Mapping) -> np.ndarray:
 
 
 def linear_shaping_mode(beam, sm, model: str, speed: float, loop: str = "held", *,
-                        mode: int | str = 1, damping=None, gains: Mapping | None = None) -> ShapingMode:
+                        mode: int | str = 1, damping=None, gains: Mapping | None = None,
+                        root_spring=None) -> ShapingMode:
     """The ``mode``-th vibration (by frequency, from 1; or the one labelled ``mode``, such as
     ``"bending 1"``) of ``model`` about its steady spin at ``speed`` (rad s-1) in the ``loop``
     (:data:`LOOPS`), from its linear model.
@@ -79,7 +81,8 @@ def linear_shaping_mode(beam, sm, model: str, speed: float, loop: str = "held", 
     ``beam`` and ``sm`` (its system matrices, with the tip mass) as in
     :func:`hubbeam.linear.statespace.linear_model`; ``damping`` the ``(2, n, n)`` matrices of
     ``hubbeam.model.damping`` or None; ``gains`` the controller's gains by state name (``theta``,
-    ``q2_1``, ``theta_dot``, ...), required for ``loop = "closed"`` only.
+    ``q2_1``, ``theta_dot``, ...), required for ``loop = "closed"`` only; ``root_spring`` a compliant
+    root (``hubbeam.model.root.RootSpring``; its hub angle ``phi`` then the held or driven one).
     """
     if loop not in LOOPS:
         raise ValueError(f"loop = {loop!r}; allowed: one of {', '.join(LOOPS)}")
@@ -90,10 +93,11 @@ def linear_shaping_mode(beam, sm, model: str, speed: float, loop: str = "held", 
     if not ((numbered and mode >= 1) or isinstance(mode, str)):
         raise ValueError(f"mode = {mode!r}; allowed: a mode number 1, 2, ... (by frequency) or a "
                          "label such as 'bending 1'")
-    lin = linear_model(beam, sm, model, speed, LOOPS[loop], damping, outputs=["tip_deflection"])
+    lin = linear_model(beam, sm, model, speed, LOOPS[loop], damping, outputs=["tip_deflection"],
+                       root_spring=root_spring)
     A = lin.A - lin.B @ _gain_row(lin, gains) if loop == "closed" else lin.A
     N = A.shape[0] // 2
-    weights = mode_weights(sm, model)  # kinetic-energy weights of the labels
+    weights = mode_weights(sm, model, root_spring)  # kinetic-energy weights of the labels
     modes = state_modes(A[None], weights)
     where = f"{model} ({loop} loop) at speed {lin.speed!r} rad s-1"
     growing = np.flatnonzero(~modes.stable[0])
@@ -127,17 +131,18 @@ def maneuver_loop(maneuver: Maneuver) -> str:
 def case_shaping_mode(case: Case, beam, sm, speed: float, *, mode: int = 1,
                       model: str | None = None) -> ShapingMode:
     """:func:`linear_shaping_mode` of the mode ``case``'s command excites: the loop of its
-    maneuver (:func:`maneuver_loop`), its damping, and for a controller its gains (``pd``:
-    ``kp`` on ``theta``, ``kd`` on ``theta_dot``; ``state_feedback``: resolved by
-    :func:`hubbeam.control.feedback.feedback_law` for ``sm``), of ``model`` (default the case's)
-    about the steady spin at ``speed``."""
+    maneuver (:func:`maneuver_loop`), its damping, its compliant root, and for a controller its
+    gains (``pd``: ``kp`` on the hub angle, ``theta`` or with a root spring ``phi``, ``kd`` on its
+    rate; ``state_feedback``: resolved by :func:`hubbeam.control.feedback.feedback_law` for
+    ``sm``), of ``model`` (default the case's) about the steady spin at ``speed``."""
     maneuver = case.maneuver
     loop = maneuver_loop(maneuver)
     gains = None
     if isinstance(maneuver, PdControl):
-        gains = {"theta": maneuver.kp, "theta_dot": maneuver.kd}
+        hub = "theta" if case.root_spring is None else HUB_COORDINATE
+        gains = {hub: maneuver.kp, f"{hub}_dot": maneuver.kd}
     elif loop == "closed":
         law = feedback_law(case, sm, beam)[0]
         gains = dict(zip(coordinate_names(sm.M1.shape[0]), law.gains.tolist(), strict=True))
     return linear_shaping_mode(beam, sm, model or case.model, speed, loop, mode=mode,
-                               damping=damping_matrices(case.damping, sm), gains=gains)
+                               damping=damping_matrices(case.damping, sm), gains=gains, root_spring=case.root_spring)

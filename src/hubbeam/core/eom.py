@@ -24,6 +24,11 @@ A tip body's rotary inertia ``Jt`` (``SystemMatrices.Jt``, ``docs/tip-body.md``)
 ``Jt (theta' + f2'(l) q2')^2 / 2`` to the kinetic energy of every model: constant entries of the
 mass matrix (:func:`add_rotary_inertia`) and no force.
 
+A compliant root (``hubbeam.core.root``: a torsional spring and damper between the hub and the
+beam's root, the hub angle ``phi`` appended to ``y``) adds its hinge's terms, the spring and the
+damper to the link's equations about its hinge (:func:`equations`); the hub torque then acts on
+``phi``.
+
 A model enters as its :class:`~hubbeam.core.inputs.ModelTraits` (``traits``), built from the one
 table of models (``hubbeam.model.models``): the kernels branch on what a model keeps, never on its name.
 
@@ -39,6 +44,7 @@ import numpy as np
 from hubbeam.core.drive import drive_torque
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import prescribed
+from hubbeam.core.root import add_joint, damper_power, has_joint, hub_index, spring_energy, spring_torque
 from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 
@@ -63,6 +69,46 @@ def free_dofs(traits, kind, n):
         free[k] = 1 + n + i
         k += 1
     return free
+
+
+@kernel
+def free_coordinates(inputs):
+    """Indices of the integrated coordinates of the :class:`~hubbeam.core.inputs.SimulationInputs`
+    ``inputs``: :func:`free_dofs`, and with a compliant root (``y = (theta, q1, q2, phi)``) theta
+    always (the link turns on the spring), q1 if the model keeps it, q2, and the hub angle phi
+    unless the maneuver prescribes it."""
+    traits = inputs.traits
+    kind = inputs.kind
+    n = inputs.sm.M1.shape[0]
+    if not has_joint(inputs.root):
+        return free_dofs(traits, kind, n)
+    count = 2 * n + 2
+    if prescribed(kind):
+        count -= 1
+    if not traits.keeps_axial:
+        count -= n
+    free = np.empty(count, dtype=np.int64)
+    free[0] = 0
+    k = 1
+    if traits.keeps_axial:
+        for i in range(n):
+            free[k] = 1 + i
+            k += 1
+    for i in range(n):
+        free[k] = 1 + n + i
+        k += 1
+    if not prescribed(kind):
+        free[k] = 1 + 2 * n
+    return free
+
+
+@kernel
+def coordinate_count(inputs):
+    """The length of ``y``: ``1 + 2 n``, one more with a compliant root (the hub angle)."""
+    N = 1 + 2 * inputs.sm.M1.shape[0]
+    if has_joint(inputs.root):
+        return N + 1
+    return N
 
 
 @borrowing_kernel
@@ -298,24 +344,26 @@ def impose_constraints(inputs, t, y, v, a):
     (Eq. 44, a torque table, PD feedback on theta and theta', state feedback on the whole
     state, evaluated after a model that does not keep q1 (SFOAM) has it held at zero, a held
     input), through the hub's drive when it has one (``inputs.drive``, ``hubbeam.core.drive``). Both
-    follow the command shaped by ``inputs.shaper`` (``hubbeam.core.shaping``).
+    follow the command shaped by ``inputs.shaper`` (``hubbeam.core.shaping``). With a compliant
+    root the hub is the hub angle ``phi``, the last coordinate (``hubbeam.core.root``).
     ``inputs``: :class:`~hubbeam.core.inputs.SimulationInputs`.
     """
     n = (y.shape[0] - 1) // 2
+    hub = hub_index(inputs.root, y.shape[0])
     tau = 0.0
     kind = inputs.kind
     if prescribed(kind):
         th, thd, thdd = shaped_motion(kind, t, inputs.mp, inputs.shaper)
-        y[0] = th
-        v[0] = thd
-        a[0] = thdd
+        y[hub] = th
+        v[hub] = thd
+        a[hub] = thdd
     if not inputs.traits.keeps_axial:
         for i in range(n):
             y[1 + i] = 0.0
             v[1 + i] = 0.0
             a[1 + i] = 0.0
     if not prescribed(kind):
-        tau = drive_torque(inputs.drive, shaped_torque(kind, t, y, v, inputs.mp, inputs.shaper), v[0])
+        tau = drive_torque(inputs.drive, shaped_torque(kind, t, y, v, inputs.mp, inputs.shaper, hub), v[hub])
     return tau
 
 
@@ -370,26 +418,57 @@ def solve_spd(A, b):
 
 
 #: Work arrays of the acceleration kernels, allocated once per simulation by :func:`workspace`:
-#: the full mass matrix and force, the free block and its right-hand side, and the free mask.
-Workspace = namedtuple("Workspace", "M F Mff rhs is_free")
+#: the full mass matrix and force, the free block and its right-hand side, the free mask, and the
+#: rows a compliant root's terms pass through (``hubbeam.core.root.add_joint``).
+Workspace = namedtuple("Workspace", "M F Mff rhs is_free joint")
 
 
 @kernel
-def workspace(sm, free):
-    """Allocate the :data:`Workspace` of a simulation with free coordinates ``free``."""
-    n = sm.M1.shape[0]
-    N = 1 + 2 * n
+def sized_workspace(N, n, free):
+    """Allocate the :data:`Workspace` of ``N`` coordinates, ``n`` modes and free coordinates
+    ``free``."""
     nf = free.shape[0]
     is_free = np.zeros(N, dtype=np.bool_)
     for i in range(nf):
         is_free[free[i]] = True
-    return Workspace(np.empty((N, N)), np.empty(N), np.empty((nf, nf)), np.empty(nf), is_free)
+    return Workspace(np.empty((N, N)), np.empty(N), np.empty((nf, nf)), np.empty(nf), is_free,
+                     np.empty((2, 2 * n)))
+
+
+@kernel
+def workspace(sm, free):
+    """Allocate the :data:`Workspace` of a simulation with free coordinates ``free`` of ``y =
+    (theta, q1, q2)``."""
+    n = sm.M1.shape[0]
+    return sized_workspace(1 + 2 * n, n, free)
+
+
+@kernel
+def inputs_workspace(inputs, free):
+    """Allocate the :data:`Workspace` of the simulation ``inputs`` (with a compliant root, of
+    ``y = (theta, q1, q2, phi)``)."""
+    return sized_workspace(coordinate_count(inputs), inputs.sm.M1.shape[0], free)
+
+
+@kernel
+def equations(inputs, y, v, tau, ws):
+    """The mass matrix and force of the simulation ``inputs`` into ``ws.M``, ``ws.F``, at the
+    state ``(y, v)`` under the hub torque ``tau``, with the damping forces: the model's
+    (:func:`mass_matrix_and_force`), or with a compliant root the link's about its hinge with the
+    hinge, the spring and the damper (``hubbeam.core.root.add_joint``), the torque on the hub angle."""
+    if has_joint(inputs.root):
+        mass_matrix_and_force(inputs.traits, y, v, 0.0, inputs.sm, ws.M, ws.F)
+        add_joint(inputs.traits, inputs.root, y, v, tau, ws.M, ws.F, ws.joint)
+    else:
+        mass_matrix_and_force(inputs.traits, y, v, tau, inputs.sm, ws.M, ws.F)
+    add_damping(inputs.C, v, ws.F)
 
 
 @borrowing_kernel
-def solve_free(kind, tau, free, a_out, ws):
+def solve_free(kind, tau, free, a_out, ws, hub):
     """Solve ``M_ff a_f = F_f - M_fc a_c`` from ``ws.M`` and ``ws.F`` (Eq. 24, already built),
-    with the constrained ``a_c`` already in ``a_out``; returns ``(torque, Q_theta)``."""
+    with the constrained ``a_c`` already in ``a_out``; returns ``(torque, F_theta - tau)``, the
+    torque of a prescribed hub from its row ``hub`` (0, or a compliant root's hub angle)."""
     M = ws.M
     F = ws.F
     N = M.shape[0]
@@ -412,10 +491,10 @@ def solve_free(kind, tau, free, a_out, ws):
         a_out[free[i]] = rhs[i]
     q_theta = F[0] - tau
     if prescribed(kind):
-        ma0 = 0.0
+        ma = 0.0
         for j in range(N):
-            ma0 += M[0, j] * a_out[j]
-        tau = ma0 - q_theta
+            ma += M[hub, j] * a_out[j]
+        tau = ma - (F[hub] - tau)
     return tau, q_theta
 
 
@@ -428,13 +507,17 @@ def accelerations(inputs, t, y, v, free, a_out):
     their constrained entries are overwritten from the maneuver.
     The free accelerations solve ``M_ff a_f = F_f - M_fc a_c`` with the constrained accelerations
     ``a_c`` known. ``torque`` is the applied torque of a free hub, or the torque a prescribed motion
-    requires, ``(M a)_theta - Q_theta`` (the hub row of Eq. 24). SFOAM has no Q_theta (zero).
+    requires, ``(M a)_theta - Q_theta`` (the hub row of Eq. 24). SFOAM has no Q_theta (zero). With
+    a compliant root (``hubbeam.core.root``) the torque is the hub angle's and ``Q_theta`` the force
+    on the root angle besides the spring's and the damper's torque.
     """
-    ws = workspace(inputs.sm, free)
+    ws = inputs_workspace(inputs, free)
     tau = impose_constraints(inputs, t, y, v, a_out)
-    mass_matrix_and_force(inputs.traits, y, v, tau, inputs.sm, ws.M, ws.F)
-    add_damping(inputs.C, v, ws.F)
-    return solve_free(inputs.kind, tau, free, a_out, ws)
+    equations(inputs, y, v, tau, ws)
+    torque, q_theta = solve_free(inputs.kind, tau, free, a_out, ws, hub_index(inputs.root, y.shape[0]))
+    if has_joint(inputs.root):
+        q_theta = ws.F[0] - spring_torque(inputs.root, y, v)
+    return torque, q_theta
 
 
 @borrowing_kernel
@@ -451,7 +534,7 @@ def outputs(kind, tau, y, v, sm, free, a_out, ws):
     matrix and force are already in ``ws.M``, ``ws.F`` (applied torque ``tau``, constrained
     entries of ``y, v, a_out`` imposed): one mass matrix for all of them."""
     N = y.shape[0]
-    torque, q_theta = solve_free(kind, tau, free, a_out, ws)
+    torque, q_theta = solve_free(kind, tau, free, a_out, ws, 0)
     e = strain_energy(y, sm.K1, sm.K2)
     p = 0.0
     for i in range(N):
@@ -462,6 +545,36 @@ def outputs(kind, tau, y, v, sm, free, a_out, ws):
         if i == 0:
             p = mv
     return torque, q_theta, e, p
+
+
+@borrowing_kernel
+def joint_outputs(inputs, tau, y, v, free, a_out, ws):
+    """:func:`outputs` with a compliant root: accelerations and ``(hub torque, Q_theta, energy,
+    angular momentum)``, the energy with the spring's, the angular momentum about the hub axis of
+    hub and link (the hub angle's and the root angle's momenta), ``Q_theta`` the root angle's force
+    besides the spring and the damper."""
+    N = y.shape[0]
+    hub = N - 1
+    torque, _ = solve_free(inputs.kind, tau, free, a_out, ws, hub)
+    e = strain_energy(y, inputs.sm.K1, inputs.sm.K2) + spring_energy(inputs.root, y)
+    p = 0.0
+    for i in range(N):
+        mv = 0.0
+        for j in range(N):
+            mv += ws.M[i, j] * v[j]
+        e += 0.5 * v[i] * mv
+        if i == 0 or i == hub:
+            p += mv
+    return torque, ws.F[0] - spring_torque(inputs.root, y, v), e, p
+
+
+@borrowing_kernel
+def joint_dissipation(inputs, v):
+    """The power dissipated in the elastic coordinates and, with a compliant root, in its damper."""
+    power = dissipation_rate(inputs.C, v)
+    if has_joint(inputs.root):
+        power += damper_power(inputs.root, v)
+    return power
 
 
 @kernel
@@ -530,10 +643,12 @@ def high_order_terms(Mc, Fc, tau, state, inputs, Mf, Ff, dQ):
     Writes ``dQ = (F_C - M_C a) - (F_F - M_F a)``: the generalised force the high-order terms add
     to FOAM's equations (theta, q1, q2 rows; accelerations moved to the right-hand side as in
     Eqs. 38-39) and returns
-    ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35).
+    ``Delta M_thth = M_C[0,0] - M_F[0,0]`` (Eq. 35). With a compliant root the state is that of
+    ``(theta, q1, q2, phi)`` and ``Mc, Fc, Mf, Ff`` the link's equations about its hinge (the hinge's
+    terms, the same in both models, cancel).
     """
     y, v, a = state
-    N = y.shape[0]
+    N = Mf.shape[0]
     foam_system(inputs.traits, y, v, tau, inputs.sm, Mf, Ff)
     add_damping(inputs.C, v, Ff)
     for i in range(N):

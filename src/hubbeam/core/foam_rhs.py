@@ -33,7 +33,18 @@ The same hub row gives the outputs of a state (:func:`foam_outputs`): the angula
 ``p_theta = m00 thd + c . e'``, the kinetic energy ``(m00 thd^2 + 2 thd c . e' + e'^T Me e') / 2``
 and, for a prescribed hub, the torque it requires, ``m00 theta_ddot + c . e'' - Q_theta``.
 These are the equations :func:`hubbeam.core.eom.accelerations` solves with the full mass matrix;
-the tests hold the two to rounding error. CFOAM, whose elastic mass blocks depend on ``q2``,
+the tests hold the two to rounding error.
+
+With a compliant root (``hubbeam.core.root``) the matrices are the link's about its hinge, theta is
+the root angle (always integrated) and the hub angle ``phi`` is appended. The hinge adds to the
+elastic rows the force ``f`` and the coupling ``w`` to ``phi''`` (nothing to ``Me``), so that
+
+    e'' = u + theta_ddot r + Me^-1 f - phi_ddot Me^-1 w,
+
+and the root row (``m00``, ``c``, ``Q_theta`` as above, with the hinge's force and the spring) and
+the hub row (``J_h + a^2 m``, the hub-root coupling ``m_rh`` and ``w``) are two equations in
+``(theta_ddot, phi_ddot)``, solved by Cramer's rule (the hub's ``phi_ddot`` given when the maneuver
+prescribes it): :func:`joint_rhs`. CFOAM, whose elastic mass blocks depend on ``q2``,
 has its own (:mod:`hubbeam.core.cfoam_rhs`).
 """
 
@@ -42,18 +53,33 @@ from collections import namedtuple
 import numpy as np
 
 from hubbeam.core.drive import drive_torque
-from hubbeam.core.eom import cholesky_factor, cholesky_solve, free_dofs
-from hubbeam.core.jit import borrowing_kernel, kernel
+from hubbeam.core.eom import cholesky_factor, cholesky_solve, free_coordinates
+from hubbeam.core.jit import borrowing_kernel, inline_kernel, kernel
 from hubbeam.core.maneuver import prescribed
 from hubbeam.core.radau import register_rhs
+from hubbeam.core.root import (
+    DAMPING,
+    HINGE_MASS,
+    HUB_INERTIA,
+    STIFFNESS,
+    has_joint,
+    hinge_terms,
+    joint_rows,
+    packed_joint,
+    unpacked_joint,
+)
 from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 #: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1, P3, Me`` and ``b``
 #: stacks ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
 #: ``scalars = (J0, q_theta_factor)``; ``kind`` and ``mp`` the maneuver; ``work`` holds ``u, r``;
 #: ``drive`` the hub's packed drive (``hubbeam.core.drive``; empty: the maneuver gives the torque);
-#: ``shaper`` the command shaper (``hubbeam.core.shaping``).
-FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work drive shaper")
+#: ``shaper`` the command shaper (``hubbeam.core.shaping``); ``joint`` the compliant root packed
+#: (``hubbeam.core.root.packed_joint``; empty: rigid) with the rows of :func:`joint_rhs` after it:
+#: the Cholesky factor of ``Me`` on the free elastic coordinates (``ne`` rows), their indices in
+#: ``(q1, q2)``, the full-length state ``(theta, q1, q2, phi)`` (positions, rates), the hinge's
+#: coupling and force on ``(q1, q2)``, ``Me^-1 w`` and ``Me^-1 f``.
+FoamProblem = namedtuple("FoamProblem", "kind mp P b scalars work drive shaper joint")
 
 P0, P1, P2, G, C1, P3, ME = range(7)
 B0, B1, G_VEC, C0 = range(4)
@@ -111,8 +137,8 @@ def foam_problem(inputs):
     cholesky_solve(factor, fx[0])
     cholesky_solve(factor, fx[1])
     # free elastic coordinates as indices into (q1, q2)
-    free = free_dofs(traits, kind, n)
-    elastic = free[free > 0] - 1
+    free = free_coordinates(inputs)
+    elastic = free[(free > 0) & (free <= m)] - 1
     ne = elastic.shape[0]
     P = np.empty((7, ne, ne))
     b = np.empty((4, ne))
@@ -133,7 +159,16 @@ def foam_problem(inputs):
             P[ME, i, j] = A[4, r, c]
     q_theta_factor = 1.0 if traits.hub_velocity_force else 0.0
     scalars = np.array([sm.Jh + sm.Jb + sm.Jt, q_theta_factor])
-    return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)), inputs.drive, inputs.shaper)
+    joint = np.zeros((0, 0))
+    if has_joint(inputs.root):
+        joint = packed_joint(traits, inputs.root, ne + 7)
+        first = joint_rows(joint)
+        factor = joint[first:first + ne, :ne]
+        factor[:, :] = P[ME]
+        cholesky_factor(factor)
+        for i in range(ne):
+            joint[first + ne, i] = elastic[i]
+    return FoamProblem(kind, mp, P, b, scalars, np.empty((2, ne)), inputs.drive, inputs.shaper, joint)
 
 
 @borrowing_kernel
@@ -143,7 +178,7 @@ def _hub_row(y, v, o, thd, x1, x2, ox, problem):
     (Eqs. 26-27) and ``Q_theta`` (Eq. 32; zero for SFOAM) as in the module docstring."""
     P = problem.P
     b = problem.b
-    ne = y.shape[0] - o
+    ne = problem.work.shape[1]
     m00 = problem.scalars[0]
     gee = 0.0  # e^T G e' + g . e'
     c_1 = 0.0
@@ -161,11 +196,111 @@ def _hub_row(y, v, o, thd, x1, x2, ox, problem):
     return m00, -2.0 * thd * gee * problem.scalars[1], c_1, c_2
 
 
-@borrowing_kernel
-def foam_rhs(t, y, v, a, problem):
-    """Accelerations ``a`` of the free coordinates (theta first unless prescribed, then ``e``)."""
+@inline_kernel
+def _elastic_rates(y, v, o, thd, problem):
+    """``u`` and ``r`` of ``e'' = u + theta_ddot r`` (module docstring) into ``problem.work`` at the
+    free elastic coordinates ``e = y[o:o + ne]``."""
     P = problem.P
     b = problem.b
+    u = problem.work[0]
+    r = problem.work[1]
+    thd2 = thd * thd
+    for i in range(u.shape[0]):
+        ui = thd2 * b[B0, i]
+        ri = b[B1, i]
+        for j in range(u.shape[0]):
+            ej = y[o + j]
+            ui += ((P[P0, i, j] + thd2 * P[P1, i, j]) * ej
+                   + (2.0 * thd * P[P2, i, j] + P[P3, i, j]) * v[o + j])
+            ri += P[P2, i, j] * ej
+        u[i] = ui
+        r[i] = ri
+
+
+@borrowing_kernel
+def joint_rhs(t, y, v, a, problem):
+    """:func:`foam_rhs` with a compliant root: accelerations of theta, ``e`` and, unless
+    prescribed, the hub angle phi (the last free coordinate), from the two hub rows (module
+    docstring)."""
+    joint = problem.joint
+    u = problem.work[0]
+    r = problem.work[1]
+    nf = y.shape[0]
+    ne = u.shape[0]
+    traits, root = unpacked_joint(joint)
+    m = 2 * root.p1.shape[0]
+    first = joint_rows(joint)
+    factor = joint[first:first + ne, :ne]
+    elastic = joint[first + ne]
+    yf = joint[first + ne + 1]
+    vf = joint[first + ne + 2]
+    coupling = joint[first + ne + 3]
+    force = joint[first + ne + 4]
+    w_hat = joint[first + ne + 5]
+    f_hat = joint[first + ne + 6]
+    free_hub = nf == ne + 2
+    thd = v[0]
+    if free_hub:
+        phi = y[nf - 1]
+        phd = v[nf - 1]
+        phdd = 0.0
+    else:
+        phi, phd, phdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)
+    _elastic_rates(y, v, 1, thd, problem)
+    # the full-length state (theta, q1, q2, phi); q1 held at zero where not integrated
+    for i in range(m):
+        yf[1 + i] = 0.0
+        vf[1 + i] = 0.0
+    for i in range(ne):
+        yf[1 + int(elastic[i])] = y[1 + i]
+        vf[1 + int(elastic[i])] = v[1 + i]
+    yf[0] = y[0]
+    vf[0] = thd
+    yf[m + 1] = phi
+    vf[m + 1] = phd
+    root_hub, root_force, hub_force = hinge_terms(traits, root, yf[:m + 2], vf[:m + 2], coupling, force)
+    for i in range(ne):
+        w_hat[i] = coupling[int(elastic[i])]
+        f_hat[i] = force[int(elastic[i])]
+    cholesky_solve(factor, w_hat[:ne])
+    cholesky_solve(factor, f_hat[:ne])
+    m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, r, 0, problem)
+    _, _, c_w, c_f = _hub_row(y, v, 1, thd, w_hat, f_hat, 0, problem)
+    w_u = w_r = w_w = w_f = 0.0  # w . u, w . r, w . Me^-1 w, w . Me^-1 f
+    for i in range(ne):
+        wi = coupling[int(elastic[i])]
+        w_u += wi * u[i]
+        w_r += wi * r[i]
+        w_w += wi * w_hat[i]
+        w_f += wi * f_hat[i]
+    twist = root.scalars[STIFFNESS] * (phi - y[0]) + root.scalars[DAMPING] * (phd - thd)
+    a11 = m00 + c_r
+    a12 = root_hub - c_w
+    b1 = q_theta + root_force + twist - c_u - c_f
+    if free_hub:
+        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper, nf - 1),
+                           phd)
+        a21 = root_hub + w_r
+        a22 = root.scalars[HUB_INERTIA] + root.scalars[HINGE_MASS] - w_w
+        b2 = tau + hub_force - twist - w_u - w_f
+        det = a11 * a22 - a12 * a21
+        thdd = (b1 * a22 - a12 * b2) / det
+        phdd = (a11 * b2 - a21 * b1) / det
+        a[nf - 1] = phdd
+    else:
+        thdd = (b1 - a12 * phdd) / a11
+    a[0] = thdd
+    for i in range(ne):
+        a[1 + i] = u[i] + thdd * r[i] + f_hat[i] - phdd * w_hat[i]
+
+
+@borrowing_kernel
+def foam_rhs(t, y, v, a, problem):
+    """Accelerations ``a`` of the free coordinates (theta first unless prescribed, then ``e``;
+    with a compliant root :func:`joint_rhs`)."""
+    if problem.joint.shape[0] > 0:
+        joint_rhs(t, y, v, a, problem)
+        return
     u = problem.work[0]
     r = problem.work[1]
     o = 0 if prescribed(problem.kind) else 1
@@ -175,21 +310,11 @@ def foam_rhs(t, y, v, a, problem):
     else:
         thd = v[0]
         thdd = 0.0
-    thd2 = thd * thd
-    for i in range(ne):
-        ui = thd2 * b[B0, i]
-        ri = b[B1, i]
-        for j in range(ne):
-            ej = y[o + j]
-            ui += ((P[P0, i, j] + thd2 * P[P1, i, j]) * ej
-                   + (2.0 * thd * P[P2, i, j] + P[P3, i, j]) * v[o + j])
-            ri += P[P2, i, j] * ej
-        u[i] = ui
-        r[i] = ri
+    _elastic_rates(y, v, o, thd, problem)
     if o == 1:
         # hub row (Eqs. 25-27, 32) with e'' eliminated
         m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, r, 0, problem)
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper), thd)
+        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper, 0), thd)
         thdd = (tau + q_theta - c_u) / (m00 + c_r)
         a[0] = thdd
     for i in range(ne):
@@ -213,7 +338,7 @@ def foam_outputs(t, y, v, a, problem):
     else:
         thd = v[0]
         thdd = a[0]
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper), thd)
+        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper, 0), thd)
     m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, a, o, problem)
     eMe = 0.0  # e'^T Me e'
     for i in range(ne):

@@ -3,7 +3,9 @@
 * :class:`ModelTraits`: what a model computes, as flags the kernels branch on (built from the one
   table of models, ``hubbeam.model.models``, which the core does not import);
 * :class:`SimulationInputs`: the problem of one simulation (model traits, maneuver, damping,
-  system matrices, command shaper);
+  system matrices, drive, command shaper, compliant root);
+* :class:`RootJoint`: a torsional spring and damper between the hub and the beam's root
+  (:mod:`hubbeam.core.root`);
 * :class:`IntegratorSettings`: tolerances, the watched tip limit and the step budget of
   :func:`hubbeam.core.radau.radau5`;
 * :class:`State` and :class:`Trajectory`: a state of ``y = (theta, q1, q2)`` and the dense
@@ -51,12 +53,33 @@ def family(traits: ModelTraits) -> str:
 IDENTITY_SHAPER = np.array([[0.0], [1.0]])
 
 
+class RootJoint(NamedTuple):
+    """A torsional spring and damper between the hub and the beam's root, as the kernels receive
+    it (:mod:`hubbeam.core.root`; built by ``hubbeam.model.root.joint_inputs``): ``scalars`` the
+    stiffness ``k`` (N m rad-1), the damping ``c`` (N m s rad-1), the hub's own inertia ``J_h``
+    (kg m2, the motor side), ``a^2 m`` (kg m2) and ``a s0`` (kg m2); the hinge's levers ``p1 = a
+    sum w f1``, ``p2 = a sum w f2`` (n,) and ``Ea = a sum w S`` (n, n) over the point cloud, ``a``
+    the hub radius. Empty arrays (:data:`NO_ROOT`) are the rigid root."""
+
+    scalars: np.ndarray
+    p1: np.ndarray
+    p2: np.ndarray
+    Ea: np.ndarray
+
+
+#: the rigid root: the beam clamped to the hub, ``y = (theta, q1, q2)`` (no floating-point operation
+#: of a run changes)
+NO_ROOT = RootJoint(np.zeros(0), np.zeros(0), np.zeros(0), np.zeros((0, 0)))
+
+
 class SimulationInputs(NamedTuple):
     """The problem of one simulation: model, maneuver (``hubbeam.core.maneuver``), damping
     matrices ``C = [C1, C2]`` (``eom.add_damping``), system matrices, the hub's packed DC drive
-    ``drive`` (``hubbeam.core.drive``; empty, the default: an ideal torque actuator) and the command
+    ``drive`` (``hubbeam.core.drive``; empty, the default: an ideal torque actuator), the command
     shaper (``hubbeam.core.shaping``: impulse times in row 0, amplitudes in row 1; default the
-    identity, which leaves the maneuver unshaped)."""
+    identity, which leaves the maneuver unshaped) and the compliant root ``root``
+    (:class:`RootJoint`; default :data:`NO_ROOT`, the beam clamped to the hub; with a joint ``sm``
+    holds the link's matrices about its hinge, ``hubbeam.model.root.joint_inputs``)."""
 
     traits: ModelTraits
     kind: int
@@ -65,6 +88,7 @@ class SimulationInputs(NamedTuple):
     sm: SystemMatrices
     drive: np.ndarray = NO_DRIVE
     shaper: np.ndarray = IDENTITY_SHAPER
+    root: RootJoint = NO_ROOT
 
 
 class IntegratorSettings(NamedTuple):
@@ -84,7 +108,8 @@ class IntegratorSettings(NamedTuple):
 
 
 class State(NamedTuple):
-    """Positions and velocities of ``y = (theta, q1, q2)`` (or of the integrated coordinates)."""
+    """Positions and velocities of ``y = (theta, q1, q2)`` (``(theta, q1, q2, phi)`` with a compliant
+    root), or of the integrated coordinates."""
 
     y: np.ndarray
     v: np.ndarray

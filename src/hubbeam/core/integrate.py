@@ -31,10 +31,15 @@ from hubbeam.core.drive import friction_torque, motor_torque, required_voltage, 
 from hubbeam.core.eom import (
     add_damping,
     body_outputs,
+    coordinate_count,
     dissipation_rate,
-    free_dofs,
+    equations,
+    free_coordinates,
     high_order_terms,
     impose_constraints,
+    inputs_workspace,
+    joint_dissipation,
+    joint_outputs,
     outputs,
     strain_energy,
     tip_outputs,
@@ -45,6 +50,7 @@ from hubbeam.core.inputs import FAMILIES, Trajectory, family
 from hubbeam.core.jit import borrowing_kernel, inline_kernel, kernel
 from hubbeam.core.maneuver import prescribed
 from hubbeam.core.radau import radau5
+from hubbeam.core.root import add_joint, has_joint, hub_index, spring_torque
 from hubbeam.core.shaping import shaped_torque
 
 #: Columns of the output array: these, then ``q1[0..n-1]``, ``q2[0..n-1]``, then the CFOAM
@@ -62,10 +68,17 @@ SCALAR_OUTPUTS = ("theta", "theta_dot", "theta_ddot", "hub_torque", "Q_theta", "
 N_SCALAR = len(SCALAR_OUTPUTS)
 HUB_VOLTAGE = SCALAR_OUTPUTS.index("hub_voltage")
 MOTOR_TORQUE = SCALAR_OUTPUTS.index("motor_torque")
+#: Columns a run with a compliant root (``hubbeam.core.root``) appends: the hub's angle, rate and
+#: acceleration (the motor side; ``theta`` is then the beam's root angle) and the torque the spring
+#: and damper pass from the hub to the link. ``hub_torque`` is the torque on the hub,
+#: ``angular_momentum`` that of hub and link, ``energy`` includes the spring's and
+#: ``dissipation_rate`` the damper's power.
+JOINT_OUTPUTS = ("hub_angle", "hub_speed", "hub_acceleration", "spring_torque")
 
 
-def output_columns(n):
-    """``{name: column index or slice}`` of the output array for ``n`` modes."""
+def output_columns(n, joint=False):
+    """``{name: column index or slice}`` of the output array for ``n`` modes (with ``joint``, a
+    compliant root's columns :data:`JOINT_OUTPUTS` too)."""
     columns = {name: k for k, name in enumerate(SCALAR_OUTPUTS)}
     columns["q1"] = slice(N_SCALAR, N_SCALAR + n)
     columns["q2"] = slice(N_SCALAR + n, N_SCALAR + 2 * n)
@@ -73,12 +86,14 @@ def output_columns(n):
     columns["dQ_theta"] = N_SCALAR + 2 * n + 1
     columns["dQ_q1"] = slice(N_SCALAR + 2 * n + 2, N_SCALAR + 3 * n + 2)
     columns["dQ_q2"] = slice(N_SCALAR + 3 * n + 2, N_SCALAR + 4 * n + 2)
+    if joint:
+        columns |= {name: N_SCALAR + 4 * n + 2 + k for k, name in enumerate(JOINT_OUTPUTS)}
     return columns
 
 
-def n_output_columns(n):
-    """Width of the output array for ``n`` modes."""
-    return N_SCALAR + 4 * n + 2
+def n_output_columns(n, joint=False):
+    """Width of the output array for ``n`` modes (with ``joint``, a compliant root's)."""
+    return N_SCALAR + 4 * n + 2 + (len(JOINT_OUTPUTS) if joint else 0)
 
 
 def integration_problem(inputs):
@@ -95,7 +110,7 @@ def tip_watch(free, sm):
     n = sm.f2L.shape[0]
     w = np.zeros(free.shape[0])
     for i in range(free.shape[0]):
-        if free[i] >= 1 + n:
+        if 1 + n <= free[i] < 1 + 2 * n:
             w[i] = sm.f2L[free[i] - 1 - n]
     return w
 
@@ -138,7 +153,7 @@ def _write_row(out_row, y, v, a, hub, ends, dissipation):
     out_row[10] = dissipation
     out_row[11] = body[0]
     out_row[12] = body[1]
-    for i in range(y.shape[0] - 1):
+    for i in range(2 * ((y.shape[0] - 1) // 2)):
         out_row[N_SCALAR + i] = y[1 + i]
 
 
@@ -147,16 +162,17 @@ def _drive_columns(out_row, inputs, t, y, v, torque):
     """``hub_voltage`` and ``motor_torque`` of one output time (see :data:`SCALAR_OUTPUTS`) from
     the state ``(y, v)`` (full length, constraints imposed) and the hub torque ``torque``."""
     drive = inputs.drive
+    hub = hub_index(inputs.root, y.shape[0])
     if drive.shape[0] == 0:
         out_row[HUB_VOLTAGE] = np.nan
         out_row[MOTOR_TORQUE] = np.nan
     elif prescribed(inputs.kind):
-        out_row[HUB_VOLTAGE] = required_voltage(drive, torque, v[0])
-        out_row[MOTOR_TORQUE] = torque + friction_torque(drive, v[0])
+        out_row[HUB_VOLTAGE] = required_voltage(drive, torque, v[hub])
+        out_row[MOTOR_TORQUE] = torque + friction_torque(drive, v[hub])
     else:
-        command = shaped_torque(inputs.kind, t, y, v, inputs.mp, inputs.shaper)
+        command = shaped_torque(inputs.kind, t, y, v, inputs.mp, inputs.shaper, hub)
         out_row[HUB_VOLTAGE] = terminal_voltage(drive, command)
-        out_row[MOTOR_TORQUE] = motor_torque(drive, command, v[0])
+        out_row[MOTOR_TORQUE] = motor_torque(drive, command, v[hub])
 
 
 # Outputs of an undamped run (C = 0) have a dissipation rate of exactly zero, not summed.
@@ -184,19 +200,97 @@ def _foam_rows(problem, inputs, damped, free, states, out, work):
         _drive_columns(out[k], inputs, t_out[k], y, v, torque)
 
 
+@borrowing_kernel
+def _joint_row(out_row, inputs, t, state, tau, free, ws):
+    """The columns of one output time of a run with a compliant root, whose mass matrix and force
+    (:func:`hubbeam.core.eom.equations`) are in ``ws`` for ``state = (y, v, a)`` (constraints
+    imposed, hub torque ``tau``); ``a`` receives the accelerations."""
+    y, v, a = state
+    sm = inputs.sm
+    hub = joint_outputs(inputs, tau, y, v, free, a, ws)
+    _write_row(out_row, y, v, a, hub, (tip_outputs(y, sm), body_outputs(y, sm)), joint_dissipation(inputs, v))
+    _drive_columns(out_row, inputs, t, y, v, hub[0])
+    first = N_SCALAR + 4 * sm.K1.shape[0] + 2
+    last = y.shape[0] - 1
+    out_row[first] = y[last]
+    out_row[first + 1] = v[last]
+    out_row[first + 2] = a[last]
+    out_row[first + 3] = spring_torque(inputs.root, y, v)
+
+
+@kernel
+def _joint_rows_foam(inputs, free, states, out):
+    """:func:`fill_outputs` of TLAM, FOAM or SFOAM with a compliant root: the general equations
+    (:func:`hubbeam.core.eom.equations`) at every output time."""
+    N = coordinate_count(inputs)
+    y = np.zeros(N)
+    v = np.zeros(N)
+    a = np.zeros(N)
+    ws = inputs_workspace(inputs, free)
+    t_out = states.t
+    for k in range(t_out.shape[0]):
+        if not _start_row(out, k, free, states, y, v):
+            continue
+        tau = impose_constraints(inputs, t_out[k], y, v, a)
+        equations(inputs, y, v, tau, ws)
+        _joint_row(out[k], inputs, t_out[k], (y, v, a), tau, free, ws)
+
+
 @kernel
 def _fill_rows_foam(problem, inputs, free, states, out):
     """:func:`fill_outputs` of TLAM, FOAM or SFOAM from its ``FoamProblem``: the accelerations
-    and the hub row from the constant modal mass (``foam_rhs.foam_outputs``), no mass matrix."""
+    and the hub row from the constant modal mass (``foam_rhs.foam_outputs``), no mass matrix
+    (with a compliant root, :func:`_joint_rows_foam`)."""
+    if has_joint(inputs.root):
+        _joint_rows_foam(inputs, free, states, out)
+        return
     work = np.zeros((4, 1 + 2 * inputs.sm.K1.shape[0]))
     _foam_rows(problem, inputs, np.any(inputs.C != 0.0), free, states, out, work)
+
+
+@kernel
+def _joint_rows_cfoam(ct, inputs, free, states, out):
+    """:func:`fill_outputs` of CFOAM with a compliant root: its link's mass matrix and force from
+    the tensors ``ct`` with the joint's terms at every output time; the high-order terms are the
+    link's (the joint's terms are the same in FOAM)."""
+    sm = inputs.sm
+    C = inputs.C
+    n = sm.K1.shape[0]
+    link = 1 + 2 * n
+    N = link + 1
+    y = np.zeros(N)
+    v = np.zeros(N)
+    a = np.zeros(N)
+    dQ = np.zeros(link)
+    Mc = np.empty((link, link))
+    Fc = np.empty(link)
+    Mf = np.empty((link, link))
+    Ff = np.empty(link)
+    ws = inputs_workspace(inputs, free)
+    t_out = states.t
+    for k in range(t_out.shape[0]):
+        if not _start_row(out, k, free, states, y, v):
+            continue
+        tau = impose_constraints(inputs, t_out[k], y, v, a)
+        cfoam_system(y, v, 0.0, ct, ws.M, ws.F)
+        add_joint(inputs.traits, inputs.root, y, v, tau, ws.M, ws.F, ws.joint)
+        add_damping(C, v, ws.F)
+        _joint_row(out[k], inputs, t_out[k], (y, v, a), tau, free, ws)
+        cfoam_system(y, v, 0.0, ct, Mc, Fc)
+        add_damping(C, v, Fc)
+        out[k, N_SCALAR + 2 * n] = high_order_terms(Mc, Fc, 0.0, (y, v, a), inputs, Mf, Ff, dQ)
+        for i in range(link):
+            out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
 
 
 @kernel
 def _fill_rows_cfoam(ct, inputs, free, states, out):
     """:func:`fill_outputs` of CFOAM from its tensors ``ct``: one mass matrix and force of
     Eq. (24) per output time gives the accelerations, the torque, the energy, the angular
-    momentum and the high-order terms."""
+    momentum and the high-order terms (with a compliant root, :func:`_joint_rows_cfoam`)."""
+    if has_joint(inputs.root):
+        _joint_rows_cfoam(ct, inputs, free, states, out)
+        return
     sm = inputs.sm
     C = inputs.C
     n = sm.K1.shape[0]
@@ -264,6 +358,7 @@ def integrate_free(inputs, start, t_stops, settings, states, stats):
     full-length ``y = (theta, q1, q2)``; its constrained entries are not read) and write the free
     positions and velocities (``eom.free_dofs``) on ``states.t`` into ``states.y``, ``states.v``
     (a :class:`~hubbeam.core.inputs.Trajectory`, shape ``(len(t), n_free)``; NaN after a stop).
+    With a compliant root ``y = (theta, q1, q2, phi)`` (``eom.free_coordinates``).
 
     TLAM, FOAM and SFOAM run on :data:`hubbeam.core.foam_rhs.FoamProblem` (constant modal mass
     inverted once), CFOAM on :data:`hubbeam.core.cfoam_rhs.CfoamProblem` (point-cloud sums
@@ -273,7 +368,7 @@ def integrate_free(inputs, start, t_stops, settings, states, stats):
     ``len(radau.STAT_NAMES)``) receives radau5's counters. Returns radau5's
     ``(status, t_stop)`` and the weights ``w`` with ``w . y_free = v(L)``.
     """
-    free = free_dofs(inputs.traits, inputs.kind, inputs.sm.K1.shape[0])
+    free = free_coordinates(inputs)
     if inputs.traits.exact_kinetic_energy:
         return _integrate(cfoam_problem(inputs), free, inputs.sm, start, t_stops, settings, states,
                           stats)
@@ -285,7 +380,7 @@ def integrate_free(inputs, start, t_stops, settings, states, stats):
 def _states(problem, inputs, start, t_out, t_stops, settings, stats):
     """:func:`integrate_free` on ``problem``: ``(status, t_stop, free, states)`` with the
     :class:`~hubbeam.core.inputs.Trajectory` ``states`` of the free coordinates on ``t_out``."""
-    free = free_dofs(inputs.traits, inputs.kind, inputs.sm.K1.shape[0])
+    free = free_coordinates(inputs)
     y_out = np.empty((t_out.shape[0], free.shape[0]))
     states = Trajectory(t_out, y_out, np.empty_like(y_out))
     status, t_stop, _ = _integrate(problem, free, inputs.sm, start, t_stops, settings, states,

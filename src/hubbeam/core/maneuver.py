@@ -32,15 +32,17 @@ theta')``; ``mp = [kp, kd, reference kind, reference parameters...]`` with the r
 (a packed clamped cubic spline of the angle, zero slope at both ends, held outside the table).
 
 ``STATE_FEEDBACK``: a free hub under ``tau = J theta_r'' + c theta_r' - K (x - x_r)`` with ``x =
-(y, y')`` the whole state in the coordinates ``y = (theta, q1, q2)`` (size ``N = 1 + 2 n``) and the
-reference ``x_r = (theta_r, theta_r'^2 s, 0, theta_r', 0, 0)``: the rigid reference motion for the
-hub, the centrifugal stretch ``q1s = theta_r'^2 s`` for ``q1`` and zero for ``q2``. ``mp = [N, J, c,
-K (2 N gains: positions then rates), s (n), reference kind, reference parameters...]`` with the
-reference as for ``PD`` (``J = c = 0``: no feedforward; ``J`` needs the reference's acceleration,
-which only ``PRESCRIBED`` gives; ``c``, a drive's damping over its gain, keeps a driven hub at the
-reference speed; with a drive the law gives volts). The torque may be evaluated on the free coordinates of a model that
-integrates no ``q1`` (SFOAM, Eq. 40): the ``q1`` entries of ``K`` are then skipped (they are zero
-for such a model). ``PD`` is the case ``K = (kp, 0.., kd, 0..)``, ``J = 0``.
+(y, y')`` the whole state in the coordinates ``y = (theta, q1, q2)`` (size ``N = 1 + 2 n``; with a
+compliant root ``(theta, q1, q2, phi)``, ``N = 2 + 2 n``, the hub angle ``phi`` referenced like
+``theta``) and the reference ``x_r = (theta_r, theta_r'^2 s, 0, theta_r', 0, 0)``: the rigid
+reference motion for the hub, the centrifugal stretch ``q1s = theta_r'^2 s`` for ``q1`` and zero for
+``q2``. ``mp = [N, J, c, K (2 N gains: positions then rates), s (n), reference kind, reference
+parameters...]`` with the reference as for ``PD`` (``J = c = 0``: no feedforward; ``J`` needs the
+reference's acceleration, which only ``PRESCRIBED`` gives; ``c``, a drive's damping over its gain,
+keeps a driven hub at the reference speed; with a drive the law gives volts). The torque may be
+evaluated on the free coordinates of a model that integrates no ``q1`` (SFOAM, Eq. 40): the ``q1``
+entries of ``K`` are then skipped (they are zero for such a model). ``PD`` is the case ``K = (kp,
+0.., kd, 0..)``, ``J = 0``.
 
 ``HELD``: a free hub under a zero-order hold, the input a sampled controller writes as it runs
 (``hubbeam.core.sampled``); ``mp = [c, s_0..s_{m-1}, u_0..u_{m-1}]`` holds ``c <= m`` switches,
@@ -174,10 +176,12 @@ def reference_offset(kind, mp):
 
 
 @borrowing_kernel
-def feedback_torque(reference, y, v, mp):
+def feedback_torque(reference, y, v, mp, hub):
     """``tau = J theta_r'' - K (x - x_r)`` of a ``STATE_FEEDBACK`` maneuver at ``(y, y')`` (the
     full coordinates, or those of a model without ``q1``; module docstring) towards the
-    ``reference`` ``(theta_r, theta_r', theta_r'')`` (:func:`reference_motion`)."""
+    ``reference`` ``(theta_r, theta_r', theta_r'')`` (:func:`reference_motion`). ``hub`` is where
+    the hub angle of a compliant root sits in ``y`` (``hubbeam.core.root``; the last coordinate,
+    which follows the reference motion like ``theta``), 0 without one."""
     N = int(mp[0])
     n = (N - 1) // 2
     k = FEEDBACK_GAINS
@@ -193,6 +197,9 @@ def feedback_torque(reference, y, v, mp):
     stretch = theta_r_dot * theta_r_dot
     for i in range(1, y.shape[0]):
         j = i + skip
+        if i == hub:
+            tau -= mp[k + j] * (y[i] - theta_r) + mp[k + N + j] * (v[i] - theta_r_dot)
+            continue
         target = stretch * mp[s + j - 1] if j <= n else 0.0
         tau -= mp[k + j] * (y[i] - target) + mp[k + N + j] * v[i]
     return tau
@@ -244,12 +251,13 @@ def reference_motion(t, mp, o):
 
 
 @borrowing_kernel
-def tracking_torque(kind, reference, y, v, mp):
+def tracking_torque(kind, reference, y, v, mp, hub):
     """Torque of a ``PD`` or ``STATE_FEEDBACK`` controller in the state ``(y, y')`` towards the
-    ``reference`` ``(theta_r, theta_r', theta_r'')``."""
+    ``reference`` ``(theta_r, theta_r', theta_r'')``; ``PD`` reads the hub angle and rate at
+    ``y[hub]``, ``v[hub]`` (0, or the hub angle of a compliant root, ``hubbeam.core.root``)."""
     if kind == PD:
-        return mp[0] * (reference[0] - y[0]) + mp[1] * (reference[1] - v[0])
-    return feedback_torque(reference, y, v, mp)
+        return mp[0] * (reference[0] - y[hub]) + mp[1] * (reference[1] - v[hub])
+    return feedback_torque(reference, y, v, mp, hub)
 
 
 @borrowing_kernel

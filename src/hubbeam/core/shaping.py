@@ -82,12 +82,13 @@ def shaped_reference_motion(t, mp, o, shaper):
 
 
 @borrowing_kernel
-def shaped_torque(kind, t, y, v, mp, shaper):
+def shaped_torque(kind, t, y, v, mp, shaper, hub):
     """Torque applied to a free hub at ``t`` in the state ``(y, y')`` under the shaped command: a
-    controller's law towards its shaped reference, or the shaped open-loop torque ``sum_i A_i
+    controller's law towards its shaped reference (the hub's angle at ``y[hub]``,
+    :func:`hubbeam.core.maneuver.tracking_torque`), or the shaped open-loop torque ``sum_i A_i
     tau(t - t_i)`` (Eq. 44, a torque table)."""
     if tracks_reference(kind):
-        return tracking_torque(kind, shaped_reference(kind, t, mp, shaper), y, v, mp)
+        return tracking_torque(kind, shaped_reference(kind, t, mp, shaper), y, v, mp, hub)
     tau = shaper[1, 0] * open_loop_torque(kind, t - shaper[0, 0], mp)
     for i in range(1, shaper.shape[1]):
         tau += shaper[1, i] * open_loop_torque(kind, t - shaper[0, i], mp)

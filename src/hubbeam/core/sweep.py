@@ -34,7 +34,7 @@ import numba
 import numpy as np
 
 from hubbeam.core.eom import free_dofs
-from hubbeam.core.inputs import ModelTraits, SimulationInputs, State, Trajectory
+from hubbeam.core.inputs import ModelTraits, RootJoint, SimulationInputs, State, Trajectory
 from hubbeam.core.integrate import integrate_free
 from hubbeam.core.jit import JIT_OPTIONS, inline_kernel, kernel
 from hubbeam.core.radau import STAT_NAMES, SUCCESS
@@ -211,10 +211,11 @@ def sweep_tip_extrema(first, stride, points, stack, output_step, settings, found
     no_drive = np.zeros(0)
     unshaped = np.zeros((2, 1))  # the identity shaper (numba does not fill a NamedTuple's defaults)
     unshaped[1, 0] = 1.0
+    rigid = RootJoint(np.zeros(0), np.zeros(0), np.zeros(0), np.zeros((0, 0)))  # the rigid root, NO_ROOT
     for p in range(first, points.traits.shape[0], stride):
         sm = matrices_at(stack, points.matrix_index[p])
         inputs = SimulationInputs(traits_at(points.traits, p), points.kind, points.mp[p], undamped,
-                                  sm, no_drive, unshaped)
+                                  sm, no_drive, unshaped, rigid)
         code, t_stop, peak, peak_time, residual = tip_extrema(
             inputs, points.t_end[p], points.t_mark[p], output_step, settings, found.stats[p])
         found.status[p] = code

@@ -31,7 +31,7 @@ import xarray as xr
 
 from hubbeam.configuration.settings import damping_settings
 from hubbeam.linear import frequency, tracking
-from hubbeam.linear.statespace import HUBS, INPUT_UNITS, OUTPUTS, check_speeds, linear_model, second_order
+from hubbeam.linear.statespace import HUBS, INPUT_UNITS, OUTPUTS, check_speeds, linear_model, spin_equations
 from hubbeam.model.beam import beam_attributes
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.eigen import critical_speed
@@ -96,20 +96,22 @@ def _coordinate_names(n_modes):
     return ["theta"] + [f"q{b}_{i}" for b in (1, 2) for i in range(1, n_modes + 1)]
 
 
-def mode_weights(sm, model: str) -> np.ndarray:
-    """Square roots of the diagonal of the model's mass matrix at rest (``theta``, ``q1``, ``q2``):
-    the MAC and label weights of :mod:`hubbeam.linear.tracking`."""
-    return np.sqrt(np.diag(second_order(sm, model_traits(model), 0.0)[0]))
+def mode_weights(sm, model: str, root_spring=None) -> np.ndarray:
+    """Square roots of the diagonal of the model's mass matrix at rest (``theta``, ``q1``, ``q2``;
+    with a compliant root ``root_spring`` the hub angle ``phi`` too): the MAC and label weights of
+    :mod:`hubbeam.linear.tracking`."""
+    return np.sqrt(np.diag(spin_equations(sm, model_traits(model), 0.0, root_spring=root_spring)[0]))
 
 
-def tracked_modes(beam, sm, model: str, hub: str, speeds, damping=None):
+def tracked_modes(beam, sm, model: str, hub: str, speeds, damping=None, root_spring=None):
     """The modes of ``model`` with hub condition ``hub`` over ``speeds``, tracked, with the
-    position state names: ``(Modes, names)``."""
-    models = [linear_model(beam, sm, model, float(speed), hub, damping, outputs=("hub_angle",))
-              for speed in speeds]
+    position state names: ``(Modes, names)`` (with a compliant root ``root_spring``, its states,
+    ``hubbeam.linear.statespace.linear_model``)."""
+    models = [linear_model(beam, sm, model, float(speed), hub, damping, outputs=("hub_angle",),
+                           root_spring=root_spring) for speed in speeds]
     A = np.stack([lm.A for lm in models])
     names = models[0].states[:A.shape[1] // 2]
-    modes = tracking.track(tracking.state_modes(A, mode_weights(sm, model)))
+    modes = tracking.track(tracking.state_modes(A, mode_weights(sm, model, root_spring)))
     return modes, names
 
 

@@ -15,6 +15,10 @@ a coordinate the nonlinear terms match the linear ones at an amplitude ``s``
 4e-11`` relative. Rates are stepped by ``h`` times the first bending frequency of the held beam
 (their scale), the input by the torque or the acceleration that gives the hub that frequency
 squared.
+
+With a compliant root (``root_spring``) the equations are the link's about its hinge with the
+joint's terms (``hubbeam.core.root.add_joint``), the hub angle ``phi`` appended (differenced as
+``theta``) and the input on it: the same kernels the simulations integrate.
 """
 
 from __future__ import annotations
@@ -22,6 +26,8 @@ from __future__ import annotations
 import numpy as np
 
 from hubbeam.core import eom
+from hubbeam.core.inputs import NO_ROOT
+from hubbeam.core.root import add_joint, has_joint
 from hubbeam.linear.statespace import (
     LinearModel,
     check_matrices,
@@ -31,6 +37,7 @@ from hubbeam.linear.statespace import (
     state_space,
 )
 from hubbeam.model.linearised import axial_stretch
+from hubbeam.model.root import RootSpring, checked_spring, joint_inputs
 
 #: relative step of the central differences, eps^(1/3)
 RELATIVE_STEP = np.finfo(float).eps ** (1.0 / 3.0)
@@ -52,49 +59,64 @@ def coordinate_scales(sm) -> np.ndarray:
     return np.concatenate([[1.0], np.full(n, scale), q2])
 
 
-def steady_state(sm, traits, speed, q1s):
-    """Full-length ``(y, v)`` of the steady spin and the indices of the model's coordinates."""
+def steady_state(sm, traits, speed, q1s, joint: bool = False):
+    """Full-length ``(y, v)`` of the steady spin and the indices of the model's coordinates (with a
+    compliant root, ``joint``, the hub angle appended, turning with the root)."""
     n = sm.M2.shape[0]
-    y = np.zeros(1 + 2 * n)
-    v = np.zeros(1 + 2 * n)
+    N = 2 + 2 * n if joint else 1 + 2 * n
+    y = np.zeros(N)
+    v = np.zeros(N)
     v[0] = speed
+    if joint:
+        v[-1] = speed
     y[1:1 + n] = q1s
-    kept = np.arange(1 + 2 * n) if traits.keeps_axial else np.r_[0, 1 + n:1 + 2 * n]
+    kept = np.arange(N) if traits.keeps_axial else np.r_[0, 1 + n:N]
     return y, v, kept
 
 
-def nonlinear_accelerations(kernel, sm, C, hub, y, v, u, kept):
-    """Accelerations of the coordinates ``kept``: ``M a = F`` on the free ones, ``theta'' = u``
-    where the hub is prescribed (its torque then follows from the hub row and is not needed)."""
+def nonlinear_accelerations(kernel, sm, C, hub, y, v, u, kept, root=NO_ROOT):
+    """Accelerations of the coordinates ``kept``: ``M a = F`` on the free ones, the hub angle's
+    ``= u`` where the hub is prescribed (its torque then follows from the hub row and is not
+    needed); with a compliant root ``root`` (``sm`` the link's matrices) the joint's equations and
+    the hub angle last."""
     N = y.size
     M = np.empty((N, N))
     F = np.empty(N)
     tau = u if hub == "free" else 0.0
-    eom.mass_matrix_and_force(kernel, y, v, tau, sm, M, F)
+    if has_joint(root):
+        eom.mass_matrix_and_force(kernel, y, v, 0.0, sm, M, F)
+        add_joint(kernel, root, y, v, tau, M, F, np.empty((2, N - 2)))
+    else:
+        eom.mass_matrix_and_force(kernel, y, v, tau, sm, M, F)
     eom.add_damping(C, v, F)
     a = np.zeros(N)
-    free = kept if hub == "free" else kept[1:]
+    index = N - 1 if has_joint(root) else 0
+    free = kept if hub == "free" else kept[kept != index]
     if hub != "free":
-        a[0] = u
-    a[free] = np.linalg.solve(M[np.ix_(free, free)], F[free] - M[free, 0] * a[0])
+        a[index] = u
+    a[free] = np.linalg.solve(M[np.ix_(free, free)], F[free] - M[free, index] * a[index])
     return a[kept]
 
 
-def differenced_rates(sm, traits, speed, hub, damping=None):
-    """``(Az, Av, Bu)`` by central differences about the steady spin, and the stretch ``q1s``."""
+def differenced_rates(sm, traits, speed, hub, damping=None, root_spring: RootSpring | None = None):
+    """``(Az, Av, Bu)`` by central differences about the steady spin, and the stretch ``q1s``
+    (with a compliant root ``root_spring``, of ``(theta, [q1], q2, phi)``)."""
     n = sm.M2.shape[0]
     C = checked_damping(damping, n)
     q1s = axial_stretch(sm, speed) if traits.keeps_axial else np.zeros(n)
-    y0, v0, kept = steady_state(sm, traits, speed, q1s)
+    joint = root_spring is not None
+    y0, v0, kept = steady_state(sm, traits, speed, q1s, joint)
+    link, root = joint_inputs(sm, root_spring)
     kernel = traits.traits
     frequency = np.sqrt(sm.K2[0, 0] / sm.M2[0, 0])
-    z_steps = RELATIVE_STEP * coordinate_scales(sm)[kept]
+    scales = coordinate_scales(sm)
+    z_steps = RELATIVE_STEP * (np.append(scales, 1.0) if joint else scales)[kept]
     v_steps = z_steps * frequency
     u_step = RELATIVE_STEP * frequency**2 * (sm.Jh + sm.Jb if hub == "free" else 1.0)
 
     def central(dy, dv, du, step):
-        plus = nonlinear_accelerations(kernel, sm, C, hub, y0 + dy, v0 + dv, du, kept)
-        minus = nonlinear_accelerations(kernel, sm, C, hub, y0 - dy, v0 - dv, -du, kept)
+        plus = nonlinear_accelerations(kernel, link, C, hub, y0 + dy, v0 + dv, du, kept, root)
+        minus = nonlinear_accelerations(kernel, link, C, hub, y0 - dy, v0 - dv, -du, kept, root)
         return (plus - minus) / (2.0 * step)
 
     zero = np.zeros(y0.size)
@@ -106,10 +128,11 @@ def differenced_rates(sm, traits, speed, hub, damping=None):
 
 
 def jacobian_model(beam, sm, model: str, speed: float, hub: str = "free", damping=None,
-                   outputs=None) -> LinearModel:
+                   outputs=None, root_spring: RootSpring | None = None) -> LinearModel:
     """:func:`hubbeam.linear.statespace.linear_model` by the Jacobian route (same arguments)."""
-    traits, names = check_request(model, hub, outputs)
+    root_spring = checked_spring(root_spring)
+    traits, names = check_request(model, hub, outputs, root_spring is not None)
     speed = check_speed(speed)
     check_matrices(beam, sm)
-    rates, q1s = differenced_rates(sm, traits, speed, hub, damping)
-    return state_space(beam, sm, traits, hub, speed, names, q1s, rates)
+    rates, q1s = differenced_rates(sm, traits, speed, hub, damping, root_spring)
+    return state_space(beam, sm, traits, hub, speed, names, q1s, rates, root_spring)

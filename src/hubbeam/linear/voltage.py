@@ -37,10 +37,12 @@ from hubbeam.linear.statespace import (
     check_matrices,
     check_request,
     check_speed,
-    second_order,
+    model_states,
+    spin_equations,
     state_space_matrices,
 )
 from hubbeam.model.drive import DcMotor
+from hubbeam.model.root import checked_spring
 
 #: the name of the drive's input (its unit: ``statespace.INPUT_UNITS``)
 VOLTAGE = "voltage"
@@ -92,27 +94,30 @@ def operating_voltage(motor: DcMotor, speed: float) -> float:
 
 
 def voltage_model(beam, sm, model: str, motor: DcMotor, speed: float = 0.0, damping=None,
-                  outputs=None) -> DrivenModel:
+                  outputs=None, root_spring=None) -> DrivenModel:
     """The free-hub linear model of ``model`` with the voltage of ``motor`` as its input.
 
-    Arguments as :func:`hubbeam.linear.statespace.linear_model` (free hub); ``motor`` a
-    :class:`~hubbeam.model.drive.DcMotor` whose inertia the hub inertia of ``beam`` already holds
-    (``DcMotor.reflected_inertia`` is added to nothing here). Every argument is checked first.
+    Arguments as :func:`hubbeam.linear.statespace.linear_model` (free hub; the drive on the hub's
+    side of a ``root_spring``); ``motor`` a :class:`~hubbeam.model.drive.DcMotor` whose inertia the
+    hub inertia of ``beam`` already holds (``DcMotor.reflected_inertia`` is added to nothing here).
+    Every argument is checked first.
     """
-    traits, names = check_request(model, "free", outputs)
+    root_spring = checked_spring(root_spring)
+    traits, names = check_request(model, "free", outputs, root_spring is not None)
     speed = check_speed(speed)
     check_motor(motor)
     check_matrices(beam, sm)
     volts = operating_voltage(motor, speed)
     c = linearised_damping(motor, speed)
-    M, G, C, K, q1s = second_order(sm, traits, speed, damping)
+    M, G, C, K, q1s, hub = spin_equations(sm, traits, speed, damping, root_spring)
     C = C.copy()
-    C[0, 0] += c
-    Az, Av, Bu = accelerations(M, G, C, K, "free")
-    A, B, Cy, D = state_space_matrices(beam, sm, traits, speed, names, q1s, (Az, Av, motor.torque_gain * Bu))
+    C[hub, hub] += c
+    Az, Av, Bu = accelerations(M, G, C, K, "free", hub)
+    A, B, Cy, D = state_space_matrices(beam, sm, traits, speed, names, q1s, (Az, Av, motor.torque_gain * Bu),
+                                       root_spring)
     return DrivenModel(model=traits.name, hub="free", speed=speed, A=A, B=B, C=Cy, D=D,
-                       states=traits.state_names(sm.M2.shape[0]), inputs=(VOLTAGE,), outputs=names,
-                       motor=motor, operating_voltage=volts, hub_damping=c)
+                       states=model_states(traits, sm.M2.shape[0], root_spring), inputs=(VOLTAGE,), outputs=names,
+                       root_spring=root_spring, motor=motor, operating_voltage=volts, hub_damping=c)
 
 
 def voltage_weight(torque_weight: float, motor: DcMotor) -> float:

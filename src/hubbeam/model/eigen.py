@@ -38,7 +38,9 @@ from hubbeam.model import linearised
 from hubbeam.model import printed as paper
 from hubbeam.model.beam import beam_attributes
 from hubbeam.model.matrices import MODE_NORMALISATION, assemble, point_mass_terms
+from hubbeam.model.models import model as model_traits
 from hubbeam.model.parameters import TipMass, UniformBeam
+from hubbeam.model.root import RootSpring, checked_spring, joint_second_order
 
 #: the linearisations of the eigen-analysis (the variants of Eq. 31 with the axial coupling: TLAM's
 #: and FOAM's, the latter also SFOAM's and CFOAM's, ``hubbeam.model.models``)
@@ -62,10 +64,42 @@ def K22(sm, model, speed):
     return linearised.transverse_stiffness(sm.K2, sm.M2, sm.D, model, speed)
 
 
-def natural_frequencies(sm):
+def natural_frequencies(sm, root_spring: RootSpring | None = None):
     """Circular natural frequencies (rad s-1) of the non-rotating beam with its hub held:
-    ``(K2, M2t)``, ``M2t`` with a tip body's rotary inertia (``transverse_mass``)."""
-    return linearised.frequencies_from_squares(linearised.symmetric_eigenvalues(sm.K2, transverse_mass(sm)))
+    ``(K2, M2t)``, ``M2t`` with a tip body's rotary inertia (``transverse_mass``); with a compliant
+    root (``root_spring``, ``hubbeam.model.root``) the beam's root angle joins ``q2``, held by the
+    spring to the hub (:func:`root_frequencies` at rest, the bending block)."""
+    if checked_spring(root_spring) is None:
+        return linearised.frequencies_from_squares(linearised.symmetric_eigenvalues(sm.K2, transverse_mass(sm)))
+    M, _, _, K, _ = joint_second_order(sm, root_spring, model_traits("TLAM"), 0.0, np.zeros((2,) + sm.K2.shape))
+    n = sm.K2.shape[0]
+    bending = np.r_[0, 1 + n:1 + 2 * n]  # at rest the axial coordinates and the hub's part
+    return linearised.frequencies_from_squares(linearised.symmetric_eigenvalues(K[np.ix_(bending, bending)],
+                                                                                M[np.ix_(bending, bending)]))
+
+
+#: the hub conditions of :func:`root_frequencies`
+ROOT_HUBS = ("held", "free")
+
+
+def root_frequencies(sm, root_spring: RootSpring, model: str = "FOAM", speed: float = 0.0, hub: str = "held"):
+    """Circular frequencies (rad s-1, one per conjugate pair, ascending) of ``model``'s undamped
+    vibrations about the steady spin at ``speed`` with the compliant root ``root_spring``
+    (``hubbeam.model.root.joint_second_order``): the hub ``held`` at the speed (its angle removed,
+    the beam's root turning on the spring) or ``free`` (hub and link turn together in a rigid-body
+    mode of frequency 0; the hub's inertia ``sm.Jh`` on the other side of the spring). The axial
+    coordinates and the Coriolis coupling are kept (``gyroscopic_frequencies`` with the root); a
+    divergent direction shows as 0."""
+    if checked_spring(root_spring) is None:
+        raise ValueError("root_spring = None; allowed: a hubbeam.model.root.RootSpring (the frequencies of a "
+                         "rigid root: gyroscopic_frequencies)")
+    if hub not in ROOT_HUBS:
+        raise ValueError(f"hub = {hub!r}; allowed: one of {', '.join(ROOT_HUBS)}")
+    M, G, _, K, _ = joint_second_order(sm, root_spring, model_traits(model), float(speed),
+                                       np.zeros((2,) + sm.K2.shape))
+    if hub == "held":
+        M, G, K = M[:-1, :-1], G[:-1, :-1], K[:-1, :-1]
+    return linearised.pair_frequencies(linearised.quadratic_eigenvalues(M, G, K))
 
 
 def transverse_frequencies(sm, model, speed):

@@ -30,7 +30,7 @@ speeds at once: the symmetric one ``K22 v = omega^2 M2t v`` and the gyroscopic q
 
 import numpy as np
 
-from hubbeam.core.system_matrices import transverse_mass
+from hubbeam.core.system_matrices import rotary_mass, transverse_mass
 from hubbeam.model.models import MODELS
 
 #: ``B`` of ``K22 = K2 - Omega^2 B`` as ``a M2 - c D``: variant -> ``(a, c)`` (Eq. 31): the
@@ -162,3 +162,38 @@ def frequencies(sm, model, speed, axial=False):
     block), 0 for a divergent pair (coupled system)."""
     values = eigenvalues(sm, model, speed, axial)
     return pair_frequencies(values) if axial else frequencies_from_squares(values)
+
+
+def stretch_foreshortening(sm, q1s: np.ndarray) -> np.ndarray:
+    """``E(q1s) = sum_k w_k (f1(x_k) q1s) S(x_k)`` over the point cloud: the foreshortening of the
+    exact kinetic energy (Eqs. 8-9) weighted by the stretch; CFOAM's ``K22`` gains ``Omega^2 E``."""
+    return np.einsum("k,k,kij->ij", sm.w, sm.F1 @ q1s, sm.S)
+
+
+def spin_matrices(sm, traits, speed: float, damping: np.ndarray, q1s: np.ndarray):
+    """``(M, G, C, K)`` of a model's equations linearised about the steady spin at ``speed`` with
+    the axial coordinates at ``q1s``: ``M z'' + (G + C) z' + K z = e_theta tau`` in the deviations
+    ``z = (theta, [q1 - q1s], q2)`` (``hubbeam.linear.statespace``, whose module docstring and
+    ``docs/linear-models.md`` derive them; ``traits`` a ``hubbeam.model.models.Model``,
+    ``damping`` the ``(2, n, n)`` matrices ``[C1, C2]``)."""
+    n = sm.M2.shape[0]
+    Me, Ge, Ke = constant_speed_matrices(sm, traits.linearisation, speed, axial=traits.keeps_axial)
+    Ke = np.array(Ke)
+    if traits.exact_kinetic_energy:  # Eqs. 8-9
+        Ke[-n:, -n:] += speed**2 * stretch_foreshortening(sm, q1s)
+    Ce = np.zeros_like(Me)
+    if traits.keeps_axial:
+        Ce[:n, :n] = damping[0]
+    Ce[-n:, -n:] = damping[1]
+    N = 1 + Me.shape[0]
+    M, G, C, K = (np.zeros((N, N)) for _ in range(4))
+    M[1:, 1:], G[1:, 1:], C[1:, 1:], K[1:, 1:] = Me, Ge, Ce, Ke
+    hub, coupling, _ = rotary_mass(sm)  # the q2 block has it already (constant_speed_matrices)
+    M[0, 0] = sm.Jh + sm.Jb + 2.0 * sm.V1 @ q1s + q1s @ sm.M1 @ q1s + hub
+    M[0, -n:] = M[-n:, 0] = sm.V2 + sm.R.T @ q1s + coupling
+    if traits.keeps_axial:
+        p = sm.V1 + sm.M1 @ q1s
+        G[1:1 + n, 0] = -2.0 * speed * p
+        if traits.hub_velocity_force:
+            G[0, 1:1 + n] = 2.0 * speed * p
+    return M, G, C, K

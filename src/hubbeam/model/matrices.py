@@ -19,6 +19,12 @@ f2'(l)^T f2'(l)) q2 / 2`` from the abscissa ``l + e``. The mass terms above take
 (:func:`body_centre`) in place of ``f2(l)``, ``S(l)`` and ``l``; the body's rotary inertia is kept
 apart (``SystemMatrices.Jt``, ``dF2t``).
 
+The transverse functions are the clamped-free beam's modes (``hubbeam.model.modes``), or, on
+request (``functions = "tip_body"``), the modes of the uniform beam clamped at the hub and loaded by
+the case's tip body at rest, with which the frequencies converge fast when a body loads the tip
+(docs/tip-body.md): :func:`transverse_load` gives their load, :func:`functions_load` recognises it
+in assembled matrices.
+
 ``rho A``, ``EI`` and ``EA`` may vary along the beam (``hubbeam.model.beam.BeamSections``): they are
 evaluated at the quadrature nodes, and the rule breaks at the stations of the tables
 (``hubbeam.model.quadrature.beam_rule``). For the uniform beam they are the constants of Table 1.
@@ -34,8 +40,8 @@ import numpy as np
 
 from hubbeam.core.system_matrices import SystemMatrices
 from hubbeam.model.beam import beam_attributes
-from hubbeam.model.modes import axial_modes, transverse_modes
-from hubbeam.model.parameters import TipMass, check_tip
+from hubbeam.model.modes import CLAMPED_FREE, TIP_BODY, TRANSVERSE_FUNCTIONS, axial_modes, transverse_modes
+from hubbeam.model.parameters import TipMass, UniformBeam, check_tip
 from hubbeam.model.quadrature import beam_rule, effective_points, gauss_legendre, point_cloud
 
 
@@ -46,6 +52,46 @@ def checked_tip(params, tip):
         return TipMass(0.0, float(params.L))
     check_tip(tip, params.L)
     return tip
+
+
+def transverse_load(params, tip: TipMass, functions: str = CLAMPED_FREE):
+    """The load of the transverse functions named ``functions`` (``hubbeam.model.modes``): None for
+    the clamped-free functions; for ``"tip_body"`` the ratios ``(m / (rho A L), J / (rho A L^3), e /
+    L)`` of the checked body ``tip``, which must sit at the end of a uniform beam (the closed form
+    of the loaded beam's modes). A ``ValueError`` names what is not allowed."""
+    if functions not in TRANSVERSE_FUNCTIONS:
+        raise ValueError(f"functions = {functions!r}; allowed: one of {', '.join(TRANSVERSE_FUNCTIONS)}")
+    if functions == CLAMPED_FREE:
+        return None
+    if not isinstance(params, UniformBeam):
+        raise ValueError(f"functions = {TIP_BODY!r} with a beam of sections; allowed: a uniform beam (the "
+                         "loaded beam's modes are those of a uniform beam)")
+    if tip.position != params.L:
+        raise ValueError(f"functions = {TIP_BODY!r} with tip_mass.position = {tip.position!r}; allowed: the "
+                         f"beam's end L = {params.L} m (the loaded beam's modes carry the body at the end)")
+    rhoA, L = float(params.rhoA), float(params.L)
+    return (tip.mass / (rhoA * L), tip.inertia / (rhoA * L**3), tip.offset / L)
+
+
+def functions_load(params, sm):
+    """The load of the transverse functions ``sm`` was assembled with on the beam ``params``: None
+    for the clamped-free functions, the tip body's ratios for its ``"tip_body"`` functions (the body
+    read from the point cloud's last point, at the beam's end); recognised by ``f2(L)``. A
+    ``ValueError`` when neither gives ``sm.f2L`` (matrices of another beam)."""
+    n = sm.M2.shape[0]
+
+    def gives_f2L(load):
+        return np.allclose(sm.f2L, transverse_modes(params.L, n, params, load=load)[0], rtol=1e-12, atol=0.0)
+
+    if gives_f2L(None):
+        return None
+    if isinstance(params, UniformBeam):
+        rhoA, L = float(params.rhoA), float(params.L)
+        load = (float(sm.w[-1]) / (rhoA * L), float(sm.Jt) / (rhoA * L**3), (float(sm.x[-1]) - L) / L)
+        if gives_f2L(load):
+            return load
+    raise ValueError("sm: system matrices assembled for another beam; allowed: "
+                     "hubbeam.model.matrices.assemble(beam, tip, n_modes) of this beam")
 
 
 def body_centre(f2, S, slope, offset):
@@ -68,28 +114,30 @@ def _gram(values, weights):
     return 0.5 * (product + product.T)
 
 
-def S_matrix(params, x, n_modes, n_quad=64):
+def S_matrix(params, x, n_modes, n_quad=64, load=None):
     """``S(x) = int_0^x f2'(xi)^T f2'(xi) dxi`` (Eq. 20) at abscissae ``x``, shape (m, n, n).
 
     Each ``S(x_k)`` is integrated by its own Gauss-Legendre rule on ``[0, x_k]`` with
-    ``effective_points(n_quad, n_modes)`` nodes. Units kg^-1 m^-1.
+    ``effective_points(n_quad, n_modes)`` nodes. Units kg^-1 m^-1. ``load``: the transverse
+    functions' (:func:`transverse_load`).
     """
     x = np.atleast_1d(np.asarray(x, dtype=float))
     nodes, weights = gauss_legendre(effective_points(n_quad, n_modes), np.zeros_like(x), x)
-    slopes = transverse_modes(nodes.ravel(), n_modes, params, derivative=1)
+    slopes = transverse_modes(nodes.ravel(), n_modes, params, derivative=1, load=load)
     slopes = slopes.reshape(nodes.shape + (n_modes,))
     S = np.einsum("kq,kqi,kqj->kij", weights, slopes, slopes)
     return 0.5 * (S + np.swapaxes(S, -1, -2))
 
 
-def point_mass_terms(params, mass, position, n_modes, n_quad=64, offset=0.0):
+def point_mass_terms(params, mass, position, n_modes, n_quad=64, offset=0.0, load=None):
     """Contributions of a mass ``mass`` attached at ``position`` to Jb, M1, M2, V1, V2, D, R.
 
     ``mass``, ``position`` and ``offset`` broadcast against each other (shape ``s``); each returned
     array has shape ``s`` (Jb), ``s + (n,)`` (V1, V2) or ``s + (n, n)`` (M1, M2, D, R). This is the
     term ``m_t * integrand(l)`` of every mass integral (Appendix with ``L -> l``), shared by
     :func:`assemble` and the parameter sweeps of :mod:`hubbeam.model.eigen`; a nonzero ``offset``
-    moves the mass to its body's centre (:func:`body_centre`, lever ``rA + l + e``).
+    moves the mass to its body's centre (:func:`body_centre`, lever ``rA + l + e``); ``load``: the
+    transverse functions' (:func:`transverse_load`).
     """
     mass, position, offset = np.broadcast_arrays(np.asarray(mass, float), np.asarray(position, float),
                                                  np.asarray(offset, float))
@@ -98,11 +146,11 @@ def point_mass_terms(params, mass, position, n_modes, n_quad=64, offset=0.0):
     shape = mass.shape
     flat_l = position.ravel()
     f1 = axial_modes(flat_l, n_modes, params).reshape(shape + (n_modes,))
-    f2 = transverse_modes(flat_l, n_modes, params).reshape(shape + (n_modes,))
-    S = S_matrix(params, flat_l, n_modes, n_quad).reshape(shape + (n_modes, n_modes))
+    f2 = transverse_modes(flat_l, n_modes, params, load=load).reshape(shape + (n_modes,))
+    S = S_matrix(params, flat_l, n_modes, n_quad, load).reshape(shape + (n_modes, n_modes))
     lever = params.rA + position
     if np.any(offset != 0.0):
-        slope = transverse_modes(flat_l, n_modes, params, derivative=1).reshape(shape + (n_modes,))
+        slope = transverse_modes(flat_l, n_modes, params, derivative=1, load=load).reshape(shape + (n_modes,))
         f2, S = body_centre(f2, S, slope, offset)
         lever = lever + offset
     m = mass[..., None]
@@ -118,7 +166,7 @@ def point_mass_terms(params, mass, position, n_modes, n_quad=64, offset=0.0):
     }
 
 
-def assemble(params, tip=None, n_modes=5, n_quad=64):
+def assemble(params, tip=None, n_modes=5, n_quad=64, functions=CLAMPED_FREE):
     """Assemble :class:`SystemMatrices` for ``n_modes`` modes (Eqs. 13-20, Appendix).
 
     Parameters
@@ -138,23 +186,30 @@ def assemble(params, tip=None, n_modes=5, n_quad=64):
         for every matrix to be converged to 1e-12 relative; the point cloud then has that many
         nodes plus the tip body's centre. A beam with sections gets a composite rule broken at its
         stations with at least that many nodes (``hubbeam.model.quadrature.beam_rule``).
+    functions : str
+        The admissible transverse functions (``hubbeam.model.modes.TRANSVERSE_FUNCTIONS``):
+        ``"clamped_free"``, the clamped-free beam's modes (the paper's, the default), or
+        ``"tip_body"``, the modes of the uniform beam clamped at the hub and loaded by ``tip`` at
+        its end, at rest (:func:`transverse_load`), with which the frequencies converge fast
+        when a body loads the tip (docs/tip-body.md).
     """
     tip = checked_tip(params, tip)
+    load = transverse_load(params, tip, functions)
     mass, position = tip.mass, tip.position
     nq = effective_points(n_quad, n_modes)
     x, w = point_cloud(params, mass, position, nq)
     xb, gauss = beam_rule(params, nq)  # the beam nodes of x and their plain weights
     wb, lever = w[:-1], params.rA + xb
     F1 = axial_modes(x, n_modes, params)
-    F2 = transverse_modes(x, n_modes, params)
+    F2 = transverse_modes(x, n_modes, params, load=load)
     F1b, F2b = F1[:-1], F2[:-1]
     dF1 = axial_modes(xb, n_modes, params, derivative=1)
-    dF2 = transverse_modes(xb, n_modes, params, derivative=1)
-    ddF2 = transverse_modes(xb, n_modes, params, derivative=2)
+    dF2 = transverse_modes(xb, n_modes, params, derivative=1, load=load)
+    ddF2 = transverse_modes(xb, n_modes, params, derivative=2, load=load)
 
-    tip_terms = point_mass_terms(params, mass, position, n_modes, n_quad, tip.offset)
-    S = S_matrix(params, x, n_modes, n_quad)
-    slope = transverse_modes(position, n_modes, params, derivative=1)[0]
+    tip_terms = point_mass_terms(params, mass, position, n_modes, n_quad, tip.offset, load)
+    S = S_matrix(params, x, n_modes, n_quad, load)
+    slope = transverse_modes(position, n_modes, params, derivative=1, load=load)[0]
     if tip.offset != 0.0:  # the last point of the cloud is the body's centre
         x[-1] = position + tip.offset
         F2[-1], S[-1] = body_centre(F2[-1], S[-1], slope, tip.offset)
@@ -176,8 +231,8 @@ def assemble(params, tip=None, n_modes=5, n_quad=64):
         F2=F2,
         S=S,
         f1L=axial_modes(params.L, n_modes, params)[0],
-        f2L=transverse_modes(params.L, n_modes, params)[0],
-        SL=S_matrix(params, params.L, n_modes, n_quad)[0],
+        f2L=transverse_modes(params.L, n_modes, params, load=load)[0],
+        SL=S_matrix(params, params.L, n_modes, n_quad, load)[0],
         Jt=tip.inertia,
         dF2t=slope,
     )
@@ -236,13 +291,14 @@ def configuration_name(tip):
     return name
 
 
-def to_dataset(sm, params, tip, n_quad_requested=None):
+def to_dataset(sm, params, tip, n_quad_requested=None, functions=CLAMPED_FREE):
     """Self-describing :class:`xarray.Dataset` of ``sm`` (units, long names, mode coordinates).
 
     Global attributes record a ``title``, the configuration name, the tip mass (and the body's
     rotary inertia and offset), the beam under its config keys
     (``hubbeam.model.beam.beam_attributes``), the number of modes and of Gauss nodes,
-    and the mode normalisation. Provenance
+    and the mode normalisation; matrices assembled with other transverse ``functions`` than the
+    clamped-free ones (:func:`assemble`) record them as ``transverse_functions``. Provenance
     attributes (``Conventions``, ``history``, ...) are added by the writer.
     """
     import xarray as xr
@@ -275,6 +331,12 @@ def to_dataset(sm, params, tip, n_quad_requested=None):
     }
     if n_quad_requested is not None:
         attrs["n_quad_requested"] = int(n_quad_requested)
+    if functions != CLAMPED_FREE:
+        transverse_load(params, body, functions)
+        attrs["transverse_functions"] = functions
+        attrs["mode_normalisation"] = MODE_NORMALISATION.replace(
+            "f2: clamped-free Euler-Bernoulli modes", "f2: modes of the uniform beam clamped at the hub and loaded "
+            "by the tip body at rest")
     attrs |= beam_attributes(params)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 

@@ -19,11 +19,50 @@ number of order one, which loses every digit by the 12th mode or so. Here it is 
 with ``c_plus = (1 - s) e^Z / 2`` and ``c_minus = (1 + s) / 2`` computed from closed forms that
 only involve ``e^{-Z}``; every term is then bounded by a small constant on ``0 <= x <= L`` and no
 exponential can overflow.
+
+**Functions loaded by a tip body** (``TIP_BODY``, docs/tip-body.md). The clamped-free functions
+have zero moment and shear at the tip, which a tip body loads with both, so that with a body the
+frequencies converge only as ``N^-1``. The eigenfunctions of the uniform beam clamped at the root
+and carrying the body at its end, at rest, have the same form with other roots ``Z_i`` and
+coefficients ``s_i``: the clamped root keeps ``phi(0) = phi'(0) = 0``, i.e. with the cos
+coefficient ``-1`` (a normalisation) ``c_minus = (1 + s) / 2`` and ``s = 1 - 2 c_plus e^{-Z}``; in
+``xi = x / L`` the shape is ``c_plus P + Q`` with ``P = e^{Z (xi - 1)} - e^{-Z} e^{-Z xi} - 2 e^{-Z}
+sin(Z xi)`` and ``Q = e^{-Z xi} - cos(Z xi) + sin(Z xi)``, both bounded. The body's two end
+conditions (shear against the centre's inertia, moment against both inertias; the mass, inertia
+and offset ratios ``mu = m / (rho A L)``, ``j = J / (rho A L^3)``, ``eps = e / L``; ``F^(k)`` the
+``k``-th derivative in ``xi`` at ``xi = 1``)
+
+    c_plus r_1[P] + r_1[Q] = 0,    r_1[F] = F^(3) + mu Z^4 (F + eps F^(1)),
+    c_plus r_2[P] + r_2[Q] = 0,    r_2[F] = -F^(2) + Z^4 (mu eps (F + eps F^(1)) + j F^(1)),
+
+hold together at the roots of the 2 x 2 determinant ``r_1[P] r_2[Q] - r_2[P] r_1[Q]``
+(:func:`loaded_roots`), which then give ``c_plus`` (:func:`loaded_coefficients`). The stable
+evaluation above carries over; the functions are scaled to unit modal mass of the bare beam, as
+the clamped-free ones, ``int_0^L rho A f^2 dx = 1`` (``int_0^1 phi^2 dxi`` by a Gauss rule that
+integrates it to rounding), and are orthogonal in the loaded beam's mass and stiffness, so that
+hubbeam's frequencies at rest with the body are the exact ones for any number of modes.
 """
 
+import functools
+import math
+
 import numpy as np
+import scipy.optimize
 
 from hubbeam.model.limits import MAX_MODES, MIN_MODES
+
+#: the clamped-free beam's eigenfunctions, the paper's (the default)
+CLAMPED_FREE = "clamped_free"
+#: the eigenfunctions of the clamped beam carrying the case's tip body at rest (module docstring)
+TIP_BODY = "tip_body"
+#: the admissible transverse functions (``hubbeam.model.matrices.assemble``'s ``functions``)
+TRANSVERSE_FUNCTIONS = (CLAMPED_FREE, TIP_BODY)
+#: grid of the search for the loaded roots: its step (the closed form's,
+#: ``hubbeam.validation.tip_body``) and its start (z = 0 is the trivial solution)
+_ROOT_GRID_STEP = math.pi / 256
+_ROOT_GRID_START = 1e-2
+#: Gauss-Legendre nodes of ``int_0^1 phi^2 dxi``: rounding-exact for the roots of 20 modes (Z < 70)
+_NORM_NODES = 256
 
 #: Derivatives of cos and sin of order k (mod 4) as (sign, function) pairs.
 _COS_DERIVATIVES = ((1.0, np.cos), (-1.0, np.sin), (-1.0, np.cos), (1.0, np.sin))
@@ -75,7 +114,75 @@ def _beam_coefficients(Z):
     return s, c_plus, c_minus
 
 
-def transverse_modes(x, n_modes, params, derivative=0):
+def _end_rows(z, load):
+    """``(r_1[P], r_1[Q], r_2[P], r_2[Q])`` of the loaded end (module docstring) at the ``z`` of an
+    array, for the ``load`` ``(mu, j, eps)``."""
+    mu, j, eps = load
+    decay = np.exp(-z)
+    P, Q = [], []
+    for k in range(4):
+        sin_k, cos_k = np.sin(z + k * math.pi / 2.0), np.cos(z + k * math.pi / 2.0)
+        sign = (-1.0) ** k
+        P.append(z**k * (1.0 - sign * decay * decay - 2.0 * decay * sin_k))
+        Q.append(z**k * (sign * decay - cos_k + sin_k))
+    z4 = z**4
+    rows = []
+    for F in (P, Q):
+        centre = F[0] + eps * F[1]
+        rows.append((F[3] + mu * z4 * centre, -F[2] + z4 * (mu * eps * centre + j * F[1])))
+    (r1P, r2P), (r1Q, r2Q) = rows
+    return r1P, r1Q, r2P, r2Q
+
+
+def _loaded_determinant(z, load):
+    """The 2 x 2 determinant of the loaded end's conditions, each row divided by its largest entry
+    (positive factors: the same roots, a determinant of order one)."""
+    r1P, r1Q, r2P, r2Q = _end_rows(z, load)
+    scale = np.maximum(np.abs(r1P), np.abs(r1Q)) * np.maximum(np.abs(r2P), np.abs(r2Q))
+    return (r1P * r2Q - r2P * r1Q) / scale
+
+
+def loaded_roots(n_modes, load):
+    """The first ``n_modes`` roots ``Z = beta L`` of the clamped beam loaded at its end by a body of
+    ``load = (mass_ratio, inertia_ratio, offset_ratio)`` (module docstring): the sign changes of the
+    determinant on a grid of step pi/256, refined by Brent's method to ``xtol = 1e-15``. With no
+    load these are the clamped-free roots of ``1 + cos z cosh z = 0``."""
+    _check_request(n_modes, 0)
+    roots = []
+    start = _ROOT_GRID_START
+    while len(roots) < n_modes:
+        z = start + _ROOT_GRID_STEP * np.arange(2049)
+        values = _loaded_determinant(z, load)
+        for k in np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0.0)[:n_modes - len(roots)]:
+            roots.append(scipy.optimize.brentq(lambda w: float(_loaded_determinant(np.array(w), load)),
+                                               z[k], z[k + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps))
+        start = z[-1]
+    return np.array(roots)
+
+
+@functools.lru_cache(maxsize=64)
+def loaded_coefficients(n_modes, load):
+    """``(Z, s, c_plus, c_minus, norm)`` of the functions loaded by the tip body ``load`` (a tuple
+    ``(mass_ratio, inertia_ratio, offset_ratio)``; module docstring): the roots, the coefficients
+    of the stable form and ``norm = int_0^1 phi^2 dxi``. ``c_plus`` is taken from the end condition
+    in which it weighs more (read-only arrays: the results are cached)."""
+    Z = loaded_roots(n_modes, load)
+    r1P, r1Q, r2P, r2Q = _end_rows(Z, load)
+    first = (np.abs(r1P) * np.maximum(np.abs(r2P), np.abs(r2Q))
+             >= np.abs(r2P) * np.maximum(np.abs(r1P), np.abs(r1Q)))
+    c_plus = np.where(first, -r1Q / r1P, -r2Q / r2P)
+    s = 1.0 - 2.0 * c_plus * np.exp(-Z)
+    c_minus = 0.5 * (1.0 + s)
+    nodes, weights = np.polynomial.legendre.leggauss(_NORM_NODES)
+    z = np.multiply.outer(0.5 * (nodes + 1.0), Z)
+    phi = c_plus * np.exp(z - Z) + c_minus * np.exp(-z) - np.cos(z) + s * np.sin(z)
+    norm = 0.5 * weights @ phi**2
+    for array in (Z, s, c_plus, c_minus, norm):
+        array.setflags(write=False)
+    return Z, s, c_plus, c_minus, norm
+
+
+def transverse_modes(x, n_modes, params, derivative=0, load=None):
     """Beam functions ``f2`` (Eq. 11) or their ``derivative``-th x-derivative at abscissae ``x``.
 
     Parameters
@@ -88,6 +195,10 @@ def transverse_modes(x, n_modes, params, derivative=0):
         Supplies ``L`` and the normalising mass per unit length ``rhoA_ref``.
     derivative : int
         0 for ``f2``, 1 for ``f2'``, 2 for ``f2''``, 3 for ``f2'''``.
+    load : tuple or None
+        None for the clamped-free functions; a tip body's ``(mass_ratio, inertia_ratio,
+        offset_ratio)`` for the functions it loads (module docstring; a uniform beam with the
+        body at its end, which ``hubbeam.model.matrices.assemble`` checks).
 
     Returns
     -------
@@ -97,8 +208,13 @@ def transverse_modes(x, n_modes, params, derivative=0):
     _check_request(n_modes, derivative)
     x = np.atleast_1d(np.asarray(x, dtype=float))
     L = float(params.L)
-    Z = clamped_free_roots(n_modes)
-    s, c_plus, c_minus = _beam_coefficients(Z)
+    if load is None:
+        Z = clamped_free_roots(n_modes)
+        s, c_plus, c_minus = _beam_coefficients(Z)
+        mass = params.rhoA_ref * L
+    else:
+        Z, s, c_plus, c_minus, norm = loaded_coefficients(n_modes, tuple(float(r) for r in load))
+        mass = params.rhoA_ref * L * norm
     z = np.multiply.outer(x, Z / L)
     k = derivative
     cos_sign, cos_fun = _COS_DERIVATIVES[k % 4]
@@ -110,7 +226,7 @@ def transverse_modes(x, n_modes, params, derivative=0):
         + s * sin_sign * sin_fun(z)
     )
     # int_0^L phi^2 dx = L for the clamped-free eigenfunctions, hence the scale 1/sqrt(rho A L).
-    return phi * (Z / L) ** k / np.sqrt(params.rhoA_ref * L)
+    return phi * (Z / L) ** k / np.sqrt(mass)
 
 
 def axial_modes(x, n_modes, params, derivative=0):

@@ -23,11 +23,12 @@ import xarray as xr
 
 from hubbeam.model.beam import beam_from_attributes
 from hubbeam.model.maneuvers import maneuver_from_dict
-from hubbeam.results.variables import CUMULATIVE_VARIABLES, HIGH_ORDER_VARIABLES, VARIABLES
+from hubbeam.results.variables import CUMULATIVE_VARIABLES, HIGH_ORDER_VARIABLES, JOINT_VARIABLES, VARIABLES
 
 #: every variable a simulation dataset may hold -> its UDUNITS units (the tables of
-#: :mod:`hubbeam.results.variables`; the high-order ones only in CFOAM runs)
-UNITS = {name: entry[-2] for table in (VARIABLES, CUMULATIVE_VARIABLES, HIGH_ORDER_VARIABLES)
+#: :mod:`hubbeam.results.variables`; the high-order ones only in CFOAM runs, the joint's only with a
+#: compliant root)
+UNITS = {name: entry[-2] for table in (VARIABLES, CUMULATIVE_VARIABLES, HIGH_ORDER_VARIABLES, JOINT_VARIABLES)
          for name, entry in table.items()}
 
 #: the ``numerics`` settings a dataset records as attributes, with their types: what

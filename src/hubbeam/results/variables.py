@@ -56,6 +56,23 @@ SAMPLE_VARIABLES = {
     "applied": (("sample",), "1", "the saturated command the hold applies after the delay (V with a drive, "
                 "else N m)"),
 }
+#: runs with a compliant root only (``hubbeam.model.root``, ``docs/compliant-root.md``): ``theta``
+#: and its rates are the beam's root's (their long names here), the hub's angle, rate and
+#: acceleration (the motor side) join, and the spring's torque (``hub_torque``, ``energy``,
+#: ``angular_momentum`` and ``dissipated_energy`` are the hub's and the whole system's, spring and
+#: damper included)
+JOINT_VARIABLES = {
+    "theta": (("time",), "rad", "beam root angle theta"),
+    "theta_dot": (("time",), "rad s-1", "beam root angular velocity"),
+    "theta_ddot": (("time",), "rad s-2", "beam root angular acceleration"),
+    "hub_angle": (("time",), "rad", "hub (motor side) angle phi"),
+    "hub_speed": (("time",), "rad s-1", "hub (motor side) angular velocity"),
+    "hub_acceleration": (("time",), "rad s-2", "hub (motor side) angular acceleration"),
+    "spring_torque": (("time",), "N m", "torque of the root's spring and damper on the link, "
+                      "k (phi - theta) + c (phi' - theta')"),
+}
+#: a compliant root's work of the hub torque: on the hub's rate, not the root's
+JOINT_WORK = ("hub_torque", "hub_speed")
 #: CFOAM only: the high-order terms FOAM drops, along the CFOAM trajectory (note 5, Fig. 3)
 HIGH_ORDER_VARIABLES = {
     "dM_thth": (("time",), "kg m2", "CFOAM minus FOAM rotary inertia M_thth (Eq. 35)"),
@@ -75,13 +92,13 @@ def output_count(t_end: float, output_step: float) -> int:
     return int(math.floor(t_end / output_step + 1e-9)) + 1
 
 
-def dataset_variables(name: str, driven: bool = False) -> dict:
+def dataset_variables(name: str, driven: bool = False, joint: bool = False) -> dict:
     """The variables on the output grid (besides :data:`CUMULATIVE_VARIABLES`) of a simulation
     dataset of the model ``name``: :data:`VARIABLES`, :data:`HIGH_ORDER_VARIABLES` for a model with
-    ``high_order_outputs`` (``hubbeam.model.models``) and :data:`DRIVE_VARIABLES` for a ``driven``
-    hub."""
+    ``high_order_outputs`` (``hubbeam.model.models``), :data:`DRIVE_VARIABLES` for a ``driven``
+    hub and, with a compliant root (``joint``), :data:`JOINT_VARIABLES`."""
     return (VARIABLES | (HIGH_ORDER_VARIABLES if model(name).high_order_outputs else {})
-            | (DRIVE_VARIABLES if driven else {}))
+            | (DRIVE_VARIABLES if driven else {}) | (JOINT_VARIABLES if joint else {}))
 
 
 def values_per_time(name: str, modes: int) -> int:

@@ -34,6 +34,7 @@ from hubbeam.model.damping import damping_matrices
 from hubbeam.model.matrices import SystemMatrices
 from hubbeam.model.models import model
 from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.root import joint_inputs
 from hubbeam.model.shapers import Shaper
 from hubbeam.simulation.simulate import (
     Resolved,
@@ -83,23 +84,27 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
     path (and at every row of a maneuver's table). Integrator attributes name scipy, the method and
     its counts (``n_steps`` is not known to scipy and is omitted; ``n_rhs`` is scipy's ``nfev``).
     The run starts from the case's initial state (:func:`hubbeam.simulation.simulate.initial_state`);
-    ``shaper`` shapes the maneuver's command as in :func:`hubbeam.simulation.simulate.simulate`.
+    ``shaper`` shapes the maneuver's command, as in
+    :func:`hubbeam.simulation.simulate.simulate`.
     """
     case, numerics = simulation_settings(case, numerics, params.L)
     if method not in METHODS:
         raise ValueError(f"method = {method!r}; allowed: one of {', '.join(METHODS)}")
     sm = case_matrices(case, params, numerics, matrices)
     kind, mp = case.maneuver.kernel_parameters()
-    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), sm,
+    link, root = joint_inputs(sm, case.root_spring)
+    inputs = SimulationInputs(model(case.model).traits, kind, mp, damping_matrices(case.damping, sm), link,
                               NO_DRIVE if case.drive is None else case.drive.packed(),
-                              IDENTITY_SHAPER if shaper is None else shaper.kernel_array())
+                              IDENTITY_SHAPER if shaper is None else shaper.kernel_array(), root)
     n = case.modes
-    free = eom.free_dofs(inputs.traits, kind, n)
+    joint = case.root_spring is not None
+    free = eom.free_coordinates(inputs)
     nf = free.size
     accelerations = pure_python(eom.accelerations) if pure_python_rhs else eom.accelerations
-    y = np.zeros(1 + 2 * n)
-    v = np.zeros(1 + 2 * n)
-    a = np.zeros(1 + 2 * n)
+    y = np.zeros(eom.coordinate_count(inputs))
+    v = np.zeros_like(y)
+    a = np.zeros_like(y)
+    watched = np.isin(free, np.arange(1 + n, 1 + 2 * n))  # the q2 among the free coordinates
 
     def rhs(t, z):
         y[free] = z[:nf]
@@ -109,8 +114,8 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
 
     tip_limit = float(numerics.divergence_limit) * params.L
 
-    def tip_event(t, z):  # q2 are the last n free coordinates
-        return tip_limit - abs(sm.f2L @ z[nf - n:nf])
+    def tip_event(t, z):
+        return tip_limit - abs(sm.f2L @ z[:nf][watched])
 
     tip_event.terminal = True
 
@@ -143,7 +148,7 @@ def reference_simulation(case: Case | Mapping, params: BeamParameters, numerics:
             break
         z = result.y[:, -1]
     wall = time.perf_counter() - start
-    out = np.empty((t.size, n_output_columns(n)))
+    out = np.empty((t.size, n_output_columns(n, joint)))
     fill_outputs(inputs, free, Trajectory(t, np.ascontiguousarray(states[:, :nf]),
                                           np.ascontiguousarray(states[:, nf:])), out)
     integrator = {"integrator": f"scipy.integrate.solve_ivp {method} (hubbeam.simulation.reference)",

@@ -233,7 +233,7 @@ def reference_array(maneuver: Tracking) -> np.ndarray:
 def loop_arrays(loop: SampledLoop, free: np.ndarray, t_end: float, reference: np.ndarray,
                 shaper: np.ndarray) -> tuple[LoopArrays, np.ndarray, np.ndarray]:
     """The kernel's :class:`~hubbeam.core.inputs.LoopArrays` of ``loop`` for the integrated
-    coordinates ``free`` (``hubbeam.core.eom.free_dofs``), the last output time ``t_end``, the
+    coordinates ``free`` (``hubbeam.core.eom.free_coordinates``), the last output time ``t_end``, the
     packed ``reference`` (:func:`reference_array`) and the ``shaper`` array of its command shaper,
     with NaN records; the stops of the integration (every sample and switch time in ``(0,
     t_end]``); the noise drawn."""

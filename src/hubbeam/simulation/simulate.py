@@ -38,7 +38,7 @@ from scipy.integrate import cumulative_simpson
 from hubbeam.configuration.settings import Case, ConvergenceCheck, Numerics, simulation_settings
 from hubbeam.core import maneuver as kernel_maneuvers
 from hubbeam.core import radau
-from hubbeam.core.eom import free_dofs
+from hubbeam.core.eom import free_coordinates
 from hubbeam.core.inputs import IDENTITY_SHAPER, NO_DRIVE, IntegratorSettings, SampleRecords, SimulationInputs, State
 from hubbeam.core.integrate import n_output_columns, output_columns, simulate_kernel
 from hubbeam.core.sampled import simulate_sampled_kernel
@@ -56,10 +56,12 @@ from hubbeam.model.maneuvers import FeedbackLaw, Maneuver, PdControl, SpinUp, Tr
 from hubbeam.model.matrices import SystemMatrices, assemble
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.root import joint_inputs
 from hubbeam.model.shapers import Shaper, shaped_stops
 from hubbeam.results.provenance import global_attributes
 from hubbeam.results.variables import (
     CUMULATIVE_VARIABLES,
+    JOINT_WORK,
     SAMPLE_VARIABLES,
     dataset_variables,
     output_count,
@@ -75,7 +77,9 @@ INTEGRATOR = "Radau IIA order 5 (hubbeam.core.radau), dense output by quintic He
 def initial_state(case: Case, sm: SystemMatrices) -> State:
     """The state ``(y, y')`` of ``y = (theta, q1, q2)`` at ``t = 0`` of a checked case (the
     configuration's checks, ``hubbeam.configuration.checks``), from its optional ``initial``
-    state (:class:`~hubbeam.configuration.settings.InitialState`; default: rest):
+    state (:class:`~hubbeam.configuration.settings.InitialState`; default: rest); with a
+    compliant root (``case.root_spring``, ``hubbeam.model.root``) of ``(theta, q1, q2, phi)``, the
+    hub angle ``phi = 0`` turning with the root (the spring relaxed):
 
     * ``hub_speed`` (rad s-1, default 0): a steady spin, ``theta = 0``, ``theta' = hub_speed``,
       with ``q1`` at its centrifugal stretch ``q1s`` for that speed
@@ -86,12 +90,14 @@ def initial_state(case: Case, sm: SystemMatrices) -> State:
     """
     n = case.modes
     spec = case.initial
+    hub = [] if case.root_spring is None else [0.0]
     if spec is None:
-        return State(np.zeros(1 + 2 * n), np.zeros(1 + 2 * n))
+        size = 1 + 2 * n + len(hub)
+        return State(np.zeros(size), np.zeros(size))
     speed = spec.hub_speed or 0.0
     q1s = linearised.axial_stretch(sm, speed) if model(case.model).keeps_axial else np.zeros(n)
-    return State(np.concatenate([[0.0], q1s + spec.modal("q1", n), spec.modal("q2", n)]),
-                 np.concatenate([[speed], spec.modal("q1_dot", n), spec.modal("q2_dot", n)]))
+    return State(np.concatenate([[0.0], q1s + spec.modal("q1", n), spec.modal("q2", n), hub]),
+                 np.concatenate([[speed], spec.modal("q1_dot", n), spec.modal("q2_dot", n), [speed] * len(hub)]))
 
 
 def output_times(t_end: float, output_step: float) -> np.ndarray:
@@ -233,18 +239,25 @@ def run(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatric
     held command) (:mod:`hubbeam.core.integrate`, :mod:`hubbeam.core.sampled`)."""
     traits = model(case.model).traits
     n = case.modes
+    joint = case.root_spring is not None
+    N = 1 + 2 * n + (1 if joint else 0)  # theta, q1, q2 (and the hub angle phi)
     t = output_times(case.t_end, numerics.output_step)
-    out = np.empty((t.size, n_output_columns(n)))
+    out = np.empty((t.size, n_output_columns(n, joint)))
     stats = np.zeros(len(radau.STAT_NAMES), dtype=np.int64)
     drive = NO_DRIVE if case.drive is None else case.drive.packed()
     shaper = IDENTITY_SHAPER if resolved.shaper is None else resolved.shaper.kernel_array()
     damping = damping_matrices(case.damping, sm)
     settings = integrator_settings(numerics, params.L)
+    link, root = joint_inputs(sm, case.root_spring)
     start = time.perf_counter()
     loop = resolved.loop
     if loop is None:
+        if resolved.law is not None and np.size(resolved.law.gains) != 2 * N:
+            raise SimulationError(f"cases.{case.label}.maneuver: {np.size(resolved.law.gains)} feedback gains; "
+                                  f"allowed: {2 * N}, one per state of {case.model} with {n} modes"
+                                  + (" and the root spring's hub angle" if joint else ""))
         kind, mp = case.maneuver.kernel_parameters(resolved.law)
-        inputs = SimulationInputs(traits, kind, mp, damping, sm, drive, shaper)
+        inputs = SimulationInputs(traits, kind, mp, damping, link, drive, shaper, root)
         status, t_stop = simulate_kernel(inputs, initial_state(case, sm), t,
                                          step_stops(case.maneuver, t, resolved.shaper), settings, out, stats)
         records = noise = None
@@ -252,14 +265,15 @@ def run(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatric
         if not isinstance(case.maneuver, Tracking):
             raise SimulationError(f"cases.{case.label}.maneuver.kind = {case.maneuver.kind!r} with a sampled loop; "
                                   "allowed: a maneuver that tracks a reference (the loop replaces its law)")
-        N = 1 + 2 * n
         if loop.sensors[0].row.size != 2 * N:
             raise SimulationError(f"SampledLoop.sensors: rows of length {loop.sensors[0].row.size}; allowed: "
-                                  f"2 N = {2 * N}, the state (y, y') of {case.model} with {n} modes")
-        free = free_dofs(traits, kernel_maneuvers.HELD, n)
-        arrays, stops, noise = loop_arrays(loop, free, t[-1], reference_array(case.maneuver), shaper)
-        held = held_table(arrays.timing.sample_times.size, loop.u_init)
-        inputs = SimulationInputs(traits, kernel_maneuvers.HELD, held, damping, sm, drive, IDENTITY_SHAPER)
+                                  f"2 N = {2 * N}, the state (y, y') of {case.model} with {n} modes"
+                                  + (" and the root spring's hub angle" if joint else ""))
+        inputs = SimulationInputs(traits, kernel_maneuvers.HELD, held_table(0, loop.u_init), damping, link, drive,
+                                  IDENTITY_SHAPER, root)
+        arrays, stops, noise = loop_arrays(loop, free_coordinates(inputs), t[-1], reference_array(case.maneuver),
+                                           shaper)
+        inputs = inputs._replace(mp=held_table(arrays.timing.sample_times.size, loop.u_init))
         status, t_stop = simulate_sampled_kernel(inputs, initial_state(case, sm), t, stops, settings, arrays, out,
                                                  stats)
         records = arrays.records
@@ -304,6 +318,7 @@ def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Nu
     tip = ds["tip_transverse"].values
     t_stop = float(ds.attrs["stopped_at_s"])
     n = case.modes
+    joint = case.root_spring is not None
     tight = dataclasses.replace(numerics, rtol=max(float(numerics.rtol) * settings.tolerance_factor, MIN_RTOL),
                                 atol=float(numerics.atol) * settings.tolerance_factor)
     more = min(n + int(settings.extra_modes), MAX_MODES)
@@ -323,7 +338,7 @@ def convergence(ds: xr.Dataset, case: Case, params: BeamParameters, numerics: Nu
     for label, (rerun_case, rerun_numerics, rerun_sm, what) in reruns.items():
         rerun = run(rerun_case, params, rerun_numerics, rerun_sm, _resolved(rerun_case, rerun_sm, resolve))
         status, rerun_stop = rerun.status, rerun.t_stop
-        rerun_tip = rerun.out[:, output_columns(rerun_case.modes)["tip_transverse"]]
+        rerun_tip = rerun.out[:, output_columns(rerun_case.modes, joint)["tip_transverse"]]
         both = np.isfinite(tip) & np.isfinite(rerun_tip)
         difference = float(np.max(np.abs(tip - rerun_tip)[both])) if both.any() else math.nan
         found[f"convergence_{label}_diff_m"] = difference
@@ -355,12 +370,15 @@ def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: Sy
     """
     t, out, status, t_stop, integrator = result[:5]
     n = case.modes
-    columns = output_columns(n)
-    variables = dataset_variables(case.model, driven=case.drive is not None)
+    joint = case.root_spring is not None
+    columns = output_columns(n, joint)
+    variables = dataset_variables(case.model, driven=case.drive is not None, joint=joint)
     data_vars = {name: (dims, np.ascontiguousarray(out[:, columns[name]]),
                         {"units": units, "long_name": long_name})
                  for name, (dims, units, long_name) in variables.items()}
     for name, (factors, units, long_name) in CUMULATIVE_VARIABLES.items():
+        if joint and factors == CUMULATIVE_VARIABLES["work"][0]:
+            factors = JOINT_WORK  # the hub torque works on the hub's rate, across the spring
         integrand = np.prod([out[:, columns[factor]] for factor in factors], axis=0)
         data_vars[name] = ("time", cumulative_integral(integrand, t),
                            {"units": units, "long_name": long_name})
@@ -394,6 +412,7 @@ def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: Sy
         "n_modes": int(n),
         **({} if case.drive is None else {"drive": case.drive.to_dict()}),
         **beam_attributes(params),
+        **({} if case.root_spring is None else case.root_spring.attributes()),
         **found,
         "integrator_status": radau.STATUS_NAMES[status],
         "stopped_at_s": float(t_stop),

@@ -149,3 +149,24 @@ def frequencies(params, speeds, direction: str, tip=None, n_elements: int = 160,
                                subset_by_index=[mass.shape[0] - n_frequencies, mass.shape[0] - 1])
         out.append(mu[::-1] ** -0.5)
     return np.array(out)
+
+
+def ritz_frequencies(params, speeds, shapes, tip=None, n_elements: int = 80, count: int = 3) -> np.ndarray:
+    """The lowest ``count`` in-plane circular frequencies (rad s-1) at each hub speed of ``speeds``
+    of the Ritz model in the trial functions ``shapes`` built from the elements' matrices: each
+    function enters as its nodal values and slopes (``shapes(x, derivative)``, shape ``(len(x),
+    k)``; its cubic Hermite interpolant, exact for cubics), so that the mass and stiffness are
+    ``Phi^T (M + R) Phi`` and ``Phi^T K(Omega) Phi`` (a basis to compare with hubbeam's, assembled
+    apart from it)."""
+    tip = TipMass(0.0, params.L) if tip is None else tip
+    nodes = mesh(params, n_elements, tip.position)[1:]  # the root's DOFs are removed
+    values, slopes = shapes(nodes, 0), shapes(nodes, 1)
+    Phi = np.empty((2 * nodes.size, values.shape[1]))
+    Phi[0::2], Phi[1::2] = values, slopes
+    fe = matrices(params, tip, n_elements)
+    mass = Phi.T @ (fe.M + fe.R) @ Phi
+    out = []
+    for speed in np.atleast_1d(np.asarray(speeds, dtype=float)):
+        stiffness = Phi.T @ (fe.K + speed**2 * (fe.G - fe.M)) @ Phi
+        out.append(np.sqrt(scipy.linalg.eigh(stiffness, mass, eigvals_only=True)[:count]))
+    return np.array(out)

@@ -16,7 +16,7 @@ wildcard_constraints:
     comparison=CASE_NAME_PATTERN,
 
 
-for _key, _product in of_kind(PLAN.products, CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE).items():
+for _key, _product in of_kind(PLAN.products, CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE, SHAPING_FIGURE).items():
     _step = STEPS[f"figure_{_key}"]
 
     rule:

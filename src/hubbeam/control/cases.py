@@ -28,7 +28,7 @@ import functools
 import math
 
 from hubbeam.configuration.schema import Problem
-from hubbeam.configuration.settings import Case, Settings
+from hubbeam.configuration.settings import Case, Settings, simulation_settings
 from hubbeam.control.dlqr import continuous_lqr, discrete_lqr
 from hubbeam.control.feedback import FeedbackError, design_plant, feedback_law
 from hubbeam.control.kalman import kalman_filter
@@ -40,17 +40,20 @@ from hubbeam.control.sampled import (
     state_controller,
 )
 from hubbeam.control.sampling import Sensor as DesignSensor
-from hubbeam.control.shaping import case_shaping_mode
+from hubbeam.control.shaping import ShapingMode, case_shaping_mode
 from hubbeam.linear.discrete import discretise
 from hubbeam.linear.export import state_units
 from hubbeam.linear.lumped import LUMPED_SIGNALS
 from hubbeam.linear.reduction import MODAL_PREFIX, reduce_for_sampling
 from hubbeam.linear.statespace import OUTPUTS, linear_model
+from hubbeam.model.eigen import critical_speed
 from hubbeam.model.maneuvers import StateFeedback
 from hubbeam.model.shapers import Shaper, check_sampling, rounded
+from hubbeam.results.reader import simulation_inputs
 from hubbeam.simulation.errors import SimulationError
 from hubbeam.simulation.sampled import SampledLoop, Sensor
 from hubbeam.simulation.simulate import Resolved, case_matrices, needs_resolving, simulate
+from hubbeam.study.shaping import REFERENCE_MODEL, shaping_speeds
 
 
 def sampling_of(case: Case):
@@ -131,6 +134,39 @@ def case_shaper(case: Case, beam, sm, sample_time: float | None = None) -> Shape
         return shaper
     check_sampling(shaper, sample_time)
     return rounded(shaper, sample_time)
+
+
+def dataset_shaping_mode(ds, model: str, speed: float | None = None) -> ShapingMode:
+    """The mode :func:`case_shaper` would tune the case of the simulation dataset ``ds`` to
+    (:func:`~hubbeam.control.shaping.case_shaping_mode`, its first mode) on ``model``'s
+    linearisation at ``speed`` (default the maneuver's final speed): the case, beam and matrices
+    rebuilt from the dataset's attributes (:func:`hubbeam.results.reader.simulation_inputs`). A
+    study finds the mode a shaper should have been tuned to on the model it ran on this way."""
+    inputs = simulation_inputs(ds.attrs)
+    beam = inputs["params"]
+    case, numerics = simulation_settings(inputs["case"], inputs["numerics"], beam.L)
+    sm = case_matrices(case, beam, numerics)
+    return case_shaping_mode(case, beam, sm, case.maneuver.final_speed if speed is None else speed, model=model)
+
+
+def reference_modes(datasets) -> dict[float, tuple[float, float]]:
+    """Per final speed of a shaping study's runs (``hubbeam.study.shaping.shaping_speeds``), the
+    ``(omega, zeta)`` of the mode a shaper tuned on the reference model itself would cancel
+    (:func:`dataset_shaping_mode` on :data:`hubbeam.study.shaping.REFERENCE_MODEL`)."""
+    found = {}
+    for case, speed in shaping_speeds(datasets):
+        mode = dataset_shaping_mode(datasets[case], REFERENCE_MODEL, speed)
+        found[speed] = (mode.omega, mode.zeta)
+    return found
+
+
+def dataset_critical_speed(ds, model: str = "TLAM", search_max: float = 100.0) -> float:
+    """``model``'s critical speed (rad s-1; NaN when none up to ``search_max``) for the beam, tip
+    mass and modes of the simulation dataset ``ds`` (:func:`hubbeam.model.eigen.critical_speed`)."""
+    inputs = simulation_inputs(ds.attrs)
+    beam = inputs["params"]
+    case, numerics = simulation_settings(inputs["case"], inputs["numerics"], beam.L)
+    return critical_speed(model, beam, case.tip_mass, case.modes, search_max, numerics.quadrature_points)
 
 
 def resolve(case: Case, sm, beam) -> Resolved:

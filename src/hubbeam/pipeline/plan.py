@@ -59,6 +59,7 @@ from hubbeam.reporting.products import (
     LINEAR_NC,
     PAPER,
     PAPER_PRODUCTS,
+    SHAPING_FIGURE,
     SIMULATION_FIGURE,
     TABLE,
     TABLE2_CSV,
@@ -484,15 +485,20 @@ class _Planner:
                              input={"simulations": self.comparison_simulations},
                              params={**common, "per_case": False, "cases": self.comparison, "name": "{comparison}"},
                              wildcards=[{"comparison": name} for name in sorted(self.comparisons)])
-        designed = designed_cases(self.cfg)
         name = self.settings.study.name if self.settings.study is not None else key
+        if product.kind == SHAPING_FIGURE:
+            return self.step("study_figure.py", output=self.figure(key), log=log, modules=(product.module,),
+                             input={"simulations": self.simulations(self.cases)},
+                             params={**common, "per_case": False, "cases": list(self.cases), "name": name})
+        designed = designed_cases(self.cfg)
         return self.step("study_figure.py", output=self.figure(key), log=log, modules=(product.module,),
                          input={"simulations": self.simulations(designed)},
                          params={**common, "per_case": False, "cases": designed, "name": name})
 
     def figure_steps(self) -> dict[str, Step]:
         return {f"figure_{key}": self.figure_step(key, product) for key, product in self.products.items()
-                if product.kind in (SIMULATION_FIGURE, FILES_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE)}
+                if product.kind in (SIMULATION_FIGURE, FILES_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE,
+                                    SHAPING_FIGURE)}
 
     def figure_targets(self) -> list[str]:
         """The PDF and PNG of every figure of the configuration."""

@@ -26,19 +26,22 @@ from hubbeam.reporting.products import (
     DESIGNS_SECTION,
     EIGEN_SECTION,
     LINEAR_SECTION,
+    SHAPING_SECTION,
 )
 from hubbeam.study.summary import NO_SHAPER
 from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, verdicts
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
-                   figures: Mapping[str, Mapping[str, str]], designs: Sequence[Mapping] = ()) -> str:
+                   figures: Mapping[str, Mapping[str, str]], designs: Sequence[Mapping] = (),
+                   shaping: Mapping | None = None) -> str:
     """The report in Markdown. ``rows`` are summary rows, ``designs`` the rows of
     :func:`hubbeam.study.trust.design_table`; ``figures`` gives, per section of the report (the
     products' ``section``, :data:`hubbeam.reporting.products.SECTIONS`), the PNG paths relative
     to the report by label: the case of a figure per case, the comparison of a figure per
     comparison, the figure's name otherwise. Sections the study report has no place for (the
-    paper's) are left out."""
+    paper's) are left out. ``shaping``: the section of a command-shaping study
+    (:func:`hubbeam.study.shaping.shaping_section`), None without one."""
     def first(section: str) -> str | None:
         return next(iter(figures.get(section, {}).values()), None)
 
@@ -51,7 +54,8 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                   verdicts=verdicts(list(designs)), design_figure=first(DESIGNS_SECTION),
                   reference_model=REFERENCE_MODEL, settling_band=SETTLING_BAND,
                   trust_tolerance=TRUST_TOLERANCE,
-                  eigen_figures=figures.get(EIGEN_SECTION, {}), linear_figures=figures.get(LINEAR_SECTION, {}))
+                  eigen_figures=figures.get(EIGEN_SECTION, {}), linear_figures=figures.get(LINEAR_SECTION, {}),
+                  shaping=shaping, shaping_figures=figures.get(SHAPING_SECTION, {}))
 
 
 def beam_summary(beam: Mapping) -> list[dict]:

@@ -9,6 +9,7 @@ import logging
 import os
 from pathlib import Path
 
+from hubbeam.control.cases import dataset_critical_speed, reference_modes
 from hubbeam.paper.claims import read_claims
 from hubbeam.paper.explain import section
 from hubbeam.paper.readings import read_rows
@@ -18,6 +19,7 @@ from hubbeam.reporting.archive import build_archive, verify_archive
 from hubbeam.reporting.document import markdown_to_html
 from hubbeam.results.io import open_result, staged, write_text
 from hubbeam.study.report import study_html, study_markdown
+from hubbeam.study.shaping import is_shaping_study, shaped_runs, shaping_section
 from hubbeam.study.summary import COLUMNS, case_summary
 from hubbeam.study.trust import design_table
 from hubbeam.validation.report import published_section, validation_markdown
@@ -57,7 +59,12 @@ def study_report(job: Job) -> None:
     rows = [case_summary(case, ds) for case, ds in datasets.items()]
     figures = {name: {label: os.path.relpath(path, report_dir) for label, path in shown.items()}
                for name, shown in p["figures"].items()}
-    markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets))
+    shaping = None
+    if is_shaping_study(datasets):
+        runs = shaped_runs(datasets)
+        shaping = shaping_section(runs, reference_modes(datasets),
+                                  dataset_critical_speed(datasets[runs[0]["case"]], "TLAM"))
+    markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets), shaping=shaping)
     write_text(out["markdown"], markdown)
     write_text(out["html"], study_html(markdown, p["study"].get("title", p["study"]["name"]), report_dir))
     with staged(out["summary"]) as (summary,), open(summary, "w", newline="") as handle:

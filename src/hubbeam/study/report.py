@@ -29,7 +29,7 @@ from hubbeam.reporting.products import (
     SHAPING_SECTION,
 )
 from hubbeam.study.summary import NO_SHAPER
-from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, verdicts
+from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, performance, verdicts
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
@@ -51,7 +51,8 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                   comparison_figures=figures.get(COMPARISONS_SECTION, {}),
                   beam_figure=first(BEAM_SECTION),
                   designs_table=designs_markdown(designs) if designs else "",
-                  verdicts=verdicts(list(designs)), design_figure=first(DESIGNS_SECTION),
+                  verdicts=verdicts(list(designs)), performance=performance(list(designs)),
+                  design_figure=first(DESIGNS_SECTION),
                   reference_model=REFERENCE_MODEL, settling_band=SETTLING_BAND,
                   trust_tolerance=TRUST_TOLERANCE,
                   eigen_figures=figures.get(EIGEN_SECTION, {}), linear_figures=figures.get(LINEAR_SECTION, {}),

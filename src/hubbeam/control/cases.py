@@ -53,7 +53,6 @@ from hubbeam.results.reader import simulation_inputs
 from hubbeam.simulation.errors import SimulationError
 from hubbeam.simulation.sampled import SampledLoop, Sensor
 from hubbeam.simulation.simulate import Resolved, case_matrices, needs_resolving, simulate
-from hubbeam.study.shaping import REFERENCE_MODEL, shaping_speeds
 
 
 def sampling_of(case: Case):
@@ -147,17 +146,6 @@ def dataset_shaping_mode(ds, model: str, speed: float | None = None) -> ShapingM
     case, numerics = simulation_settings(inputs["case"], inputs["numerics"], beam.L)
     sm = case_matrices(case, beam, numerics)
     return case_shaping_mode(case, beam, sm, case.maneuver.final_speed if speed is None else speed, model=model)
-
-
-def reference_modes(datasets) -> dict[float, tuple[float, float]]:
-    """Per final speed of a shaping study's runs (``hubbeam.study.shaping.shaping_speeds``), the
-    ``(omega, zeta)`` of the mode a shaper tuned on the reference model itself would cancel
-    (:func:`dataset_shaping_mode` on :data:`hubbeam.study.shaping.REFERENCE_MODEL`)."""
-    found = {}
-    for case, speed in shaping_speeds(datasets):
-        mode = dataset_shaping_mode(datasets[case], REFERENCE_MODEL, speed)
-        found[speed] = (mode.omega, mode.zeta)
-    return found
 
 
 def dataset_critical_speed(ds, model: str = "TLAM", search_max: float = 100.0) -> float:

@@ -18,9 +18,16 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from hubbeam.control.cases import dataset_critical_speed, reference_modes
+from hubbeam.control.cases import dataset_critical_speed, dataset_shaping_mode
 from hubbeam.plotting.style import SEQUENCE_COLORS, axis_label, new_figure, panel_title
-from hubbeam.study.shaping import AT_REST, REFERENCE_MODEL, TUNINGS, closed_form_insensitivity, shaped_runs
+from hubbeam.study.shaping import (
+    AT_REST,
+    REFERENCE_MODEL,
+    TUNINGS,
+    closed_form_insensitivity,
+    reference_modes,
+    shaped_runs,
+)
 
 #: the ratios of the closed-form curve of an insensitivity figure, beyond the measured ones
 CURVE_POINTS = 161
@@ -63,7 +70,7 @@ def insensitivity(kind: str, name: str, datasets: Mapping[str, xr.Dataset]):
     """The insensitivity curve of the ``kind`` shaper (module docstring), one line per speed."""
     runs = [run for run in shaped_runs(datasets) if run["kind"] == kind and run["ratio"] is not None]
     speeds = sorted({run["speed"] for run in runs})
-    modes = reference_modes(datasets)
+    modes = reference_modes(datasets, dataset_shaping_mode)
     fig, axes = new_figure(1, 1)
     ax = axes[0, 0]
     ratios = [run["ratio"] for run in runs]

@@ -9,7 +9,7 @@ import logging
 import os
 from pathlib import Path
 
-from hubbeam.control.cases import dataset_critical_speed, reference_modes
+from hubbeam.control.cases import dataset_critical_speed, dataset_shaping_mode
 from hubbeam.paper.claims import read_claims
 from hubbeam.paper.explain import section
 from hubbeam.paper.readings import read_rows
@@ -19,7 +19,8 @@ from hubbeam.reporting.archive import build_archive, verify_archive
 from hubbeam.reporting.document import markdown_to_html
 from hubbeam.results.io import open_result, staged, write_text
 from hubbeam.study.report import study_html, study_markdown
-from hubbeam.study.shaping import is_shaping_study, shaped_runs, shaping_section
+from hubbeam.study.shaping import is_shaping_study, reference_modes, shaped_runs
+from hubbeam.study.shaping_report import shaping_section
 from hubbeam.study.summary import COLUMNS, case_summary
 from hubbeam.study.trust import design_table
 from hubbeam.validation.report import published_section, validation_markdown
@@ -62,7 +63,7 @@ def study_report(job: Job) -> None:
     shaping = None
     if is_shaping_study(datasets):
         runs = shaped_runs(datasets)
-        shaping = shaping_section(runs, reference_modes(datasets),
+        shaping = shaping_section(runs, reference_modes(datasets, dataset_shaping_mode),
                                   dataset_critical_speed(datasets[runs[0]["case"]], "TLAM"))
     markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets), shaping=shaping)
     write_text(out["markdown"], markdown)

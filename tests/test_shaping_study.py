@@ -201,3 +201,53 @@ def test_the_shaping_study_validates_and_its_cases_resolve():
     assert designed("zv_ratio0p6_w1p5") == pytest.approx(0.6 * exact, rel=1e-12)
     assert designed("zv_rest_w1") == designed("zv_rest_w2p5")  # the same mode at rest
     assert designed("zv_rest_w1p5") < exact  # the spin stiffens the mode
+
+
+SHAPING_STUDY = {
+    "study": {"name": "tiny_shaping", "comparisons": {"shaped": ["plain_w1", "zv_foam_w1"]}},
+    "beam": {"length": 2.0, "density": 2700.0, "area": 1.0e-4, "youngs_modulus": 7.0e+10,
+             "second_moment": 1.0e-9, "hub_inertia": 1.0, "hub_radius": 0.1},
+    "numerics": {"modes": 2, "quadrature_points": 16, "rtol": 1.0e-7, "atol": 1.0e-9, "output_step": 0.01,
+                 "max_steps": 100000, "step_warning": 50000, "divergence_limit": 1.0},
+    "eigen": {"speeds": {"start": 0.0, "stop": 4.0, "num": 3}, "positions": {"start": 0.0, "stop": 2.0, "num": 2},
+              "tip_masses": [0.0], "critical_speed_search_max": 200.0},
+    "case_grids": {
+        "plain": {"name": "plain_w{speed}",
+                  "case": {"model": "CFOAM", "maneuver": {"kind": "prescribed", "tf": 1.0}, "t_end": 2.0},
+                  "axes": [{"speed": {"keys": ["maneuver.wf"], "values": [1.0, 2.0]}}]},
+        "tuned": {"name": "zv_{tuning}_w{speed}",
+                  "case": {"model": "CFOAM", "maneuver": {"kind": "prescribed", "tf": 1.0}, "t_end": 2.0,
+                           "shaper": {"kind": "ZV"}},
+                  "axes": [{"speed": {"keys": ["maneuver.wf"], "values": [1.0, 2.0]}},
+                           {"tuning": {"keys": ["shaper.model"], "values": ["TLAM", "FOAM"]}}]},
+        "ratios": {"name": "zv_ratio{ratio}",
+                   "case": {"model": "CFOAM", "maneuver": {"kind": "prescribed", "tf": 1.0, "wf": 2.0}, "t_end": 2.0,
+                            "shaper": {"kind": "ZV", "model": "CFOAM"}},
+                   "axes": [{"ratio": {"keys": ["shaper.frequency_ratio"], "values": [0.8, 1.2]}}]},
+    },
+}
+
+
+@pytest.mark.workflow
+def test_a_reduced_shaping_study_builds_its_figures_report_section_and_numbers(tmp_path):
+    """A short shaping study on a 2 m beam (its first held-hub mode near 28 rad/s, shaper durations
+    about 0.1 s) by Snakemake: the residual and ZV insensitivity figures, the report's section with
+    the two questions apart, and report/shaping.nc with every tuned run's residual."""
+    from test_study import run_study
+
+    (tmp_path / "studies").mkdir()
+    folder = run_study(tmp_path, SHAPING_STUDY)
+    for name in ("shaping_residuals", "shaping_insensitivity_zv", "compare_shaped"):
+        assert (folder / "figures" / f"{name}.png").stat().st_size > 0
+    assert not (folder / "figures" / "shaping_insensitivity_zvd.png").exists()  # no ZVD ratio runs
+    markdown = (folder / "report" / "report.md").read_text()
+    assert "### Prediction: how well the tuning model foresees the run on CFOAM" in markdown
+    assert "### Performance on CFOAM, against the alternatives" in markdown
+    assert "* **ZV tuned on TLAM**: at 1, 2 rad/s its mode frequency is off by" in markdown
+    with xr.open_dataset(folder / "report" / "shaping.nc") as ds:
+        assert list(ds["tuning"].values) == ["TLAM", "FOAM"] and list(ds["speed"].values) == [1.0, 2.0]
+        assert np.all(np.isfinite(ds["residual"].values)) and np.all(ds["move_time_penalty"].values > 0)
+        assert list(ds["ratio"].values) == [0.8, 1.2]
+        # ZV's closed form designed at r * omega: |cos(pi / (2 r))| undamped; the beam is undamped here
+        np.testing.assert_allclose(ds["insensitivity_closed_form"].values.ravel(),
+                                   np.abs(np.cos(np.pi / (2 * np.array([0.8, 1.2])))), rtol=1e-9)

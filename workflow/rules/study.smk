@@ -45,6 +45,7 @@ rule study_report:
         markdown=STEPS["study_report"].output["markdown"],
         html=STEPS["study_report"].output["html"],
         summary=STEPS["study_report"].output["summary"],
+        **{key: path for key, path in STEPS["study_report"].output.items() if key == "shaping"},
     params:
         **STEPS["study_report"].params,
     log:

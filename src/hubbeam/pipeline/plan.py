@@ -70,6 +70,7 @@ from hubbeam.reporting.products import (
     product_cases,
     product_sets,
     products_for,
+    shaped_cases,
 )
 from hubbeam.reporting.sourcedeps import script_dependencies
 from hubbeam.results.paths import FIGURE_FORMATS, SHARED, TABLE_FORMATS, StudyPaths, study_paths
@@ -619,8 +620,15 @@ class _Planner:
         """The reports the configuration asks for: the claims and the reproduction report with the
         paper's products, the study report with a ``study`` section."""
         paper = [self.paths.claims(), self.paths.reproduction("md"), self.paths.reproduction("html")]
-        study = [self.paths.study_report("md"), self.paths.study_report("html"), self.paths.summary()]
+        study = [self.paths.study_report("md"), self.paths.study_report("html"), self.paths.summary(),
+                 *self.shaping_data().values()]
         return (paper if self.with_paper else []) + (study if self.settings.study is not None else [])
+
+    def shaping_data(self) -> dict[str, str]:
+        """The numbers of a study that shapes commands (``hubbeam.study.shaping``), written with its
+        report: ``{"shaping": report/shaping.nc}``, or nothing."""
+        shaped = self.settings.study is not None and shaped_cases(self.cfg)
+        return {"shaping": self.paths.report("shaping.nc")} if shaped else {}
 
     def report_steps(self) -> dict[str, Step]:
         paths, cfg = self.paths, self.cfg
@@ -641,7 +649,7 @@ class _Planner:
                 params={"cases": list(self.cases), "numerics": cfg["numerics"], "readings": cfg.get("readings", {})}),
             "study_report": self.step(
                 "study_report.py", output={"markdown": paths.study_report("md"), "html": paths.study_report("html"),
-                                           "summary": paths.summary()},
+                                           "summary": paths.summary(), **self.shaping_data()},
                 log=paths.log("report", "report.log"),
                 input={"simulations": self.simulations(self.cases), "figures": list(self.figure_files("png").values())},
                 params={"study": cfg.get("study"), "beam": cfg["beam"], "cases": list(self.cases),

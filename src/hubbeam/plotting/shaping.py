@@ -31,6 +31,10 @@ from hubbeam.study.shaping import (
 
 #: the ratios of the closed-form curve of an insensitivity figure, beyond the measured ones
 CURVE_POINTS = 161
+#: line, marker, marker size and fill per tuning: SFOAM's and FOAM's modes nearly coincide, so
+#: their lines must stay apart to the eye (hollow triangles over small dots)
+TUNING_STYLE = {"TLAM": ("-", "s", 4, "full"), "SFOAM": ("-", "^", 8, "none"), "FOAM": (":", "o", 3, "full"),
+                "CFOAM": ("-.", "d", 5, "none"), AT_REST: ("--", "s", 5, "none")}
 
 
 def _tuning_label(tuning: str) -> str:
@@ -51,9 +55,9 @@ def residuals(name: str, datasets: Mapping[str, xr.Dataset]):
             points = sorted((run["speed"], run["residual_m"]) for run in tuned
                             if run["kind"] == kind and run["tuning"] == tuning)
             if points:
-                ax.semilogy(*zip(*points), "--s" if tuning == AT_REST else "-s",
-                            color=SEQUENCE_COLORS[j % len(SEQUENCE_COLORS)], markersize=4,
-                            fillstyle="none" if tuning == AT_REST else "full", label=_tuning_label(tuning))
+                line, marker, size, fill = TUNING_STYLE[tuning]
+                ax.semilogy(*zip(*points), linestyle=line, marker=marker, markersize=size, fillstyle=fill,
+                            color=SEQUENCE_COLORS[j % len(SEQUENCE_COLORS)], label=_tuning_label(tuning))
         if math.isfinite(critical):
             ax.axvline(critical, color="0.5", linestyle=":", linewidth=1.0)
             ax.annotate(f"TLAM critical speed {critical:.3g} rad/s", (critical, 1.0),

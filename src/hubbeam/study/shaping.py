@@ -84,12 +84,6 @@ def shaped_runs(datasets: Mapping[str, xr.Dataset]) -> list[dict]:
     return runs
 
 
-def is_shaping_study(datasets: Mapping[str, xr.Dataset]) -> bool:
-    """Whether the study shapes any run on :data:`REFERENCE_MODEL` and has an unshaped one to compare."""
-    runs = shaped_runs(datasets)
-    return any(run["kind"] for run in runs) and any(run["kind"] is None for run in runs)
-
-
 def shaping_speeds(datasets: Mapping[str, xr.Dataset]) -> list[tuple[str, float]]:
     """``(case, speed)`` of one run per final speed of the shaped runs on :data:`REFERENCE_MODEL`:
     where the caller finds the reference model's own mode (``reference_modes``)."""
@@ -168,8 +162,12 @@ def closed_form_insensitivity(kind: str, omega: float, zeta: float, ratios, **op
                      for ratio in np.asarray(ratios, dtype=float)])
 
 
+#: a relative residual below this is a cancellation to rounding (the closed form of ZV or ZVD on its own mode)
+ROUNDING = 1e-12
+
+
 def _percent(values) -> str:
-    return ", ".join(f"{100 * value:.2g}" for value in values) + " %"
+    return ", ".join("0" if abs(value) < ROUNDING else f"{100 * value:.2g}" for value in values) + " %"
 
 
 def _speeds(rows) -> str:
@@ -226,3 +224,58 @@ def when_tuning_matters(table: Sequence[Mapping]) -> dict[str, str]:
                if len(matters) < len(spread) else ""))
     return out
 
+
+
+def shaping_dataset(runs: Sequence[Mapping], reference_modes: Mapping[float, tuple[float, float]],
+                    critical_speed: float) -> xr.Dataset:
+    """The study's numbers as a dataset (``report/shaping.nc``): per final speed the unshaped
+    residual and the reference model's mode; per shaper kind, tuning and speed the residual, its
+    share of the unshaped one, the frequency error and the move-time penalty (:func:`tuning_table`;
+    NaN where not run); per kind, speed and design-frequency ratio the insensitivity measured on
+    the reference model and its closed form (:func:`insensitivity_table`). TLAM's critical speed
+    is an attribute."""
+    table = tuning_table(runs, reference_modes)
+    ratios = insensitivity_table(runs, reference_modes)
+    speeds = sorted({run["speed"] for run in runs})
+    kinds = list(dict.fromkeys(row["kind"] for row in table)) or ["none"]
+    tunings = [name for name in TUNINGS if any(row["tuning"] == name for row in table)] or ["none"]
+    grid = np.full((len(kinds), len(tunings), len(speeds)), math.nan)
+    tuned = {key: grid.copy() for key in ("residual_m", "relative", "frequency_error", "penalty_s")}
+    for row in table:
+        at = (kinds.index(row["kind"]), tunings.index(row["tuning"]), speeds.index(row["speed"]))
+        for key, values in tuned.items():
+            values[at] = row[key]
+    unshaped = {run["speed"]: run["residual_m"] for run in runs if run["kind"] is None}
+    modes = [reference_modes.get(speed, (math.nan, math.nan)) for speed in speeds]
+    r_kinds = list(dict.fromkeys(row["kind"] for row in ratios)) or ["none"]
+    r_speeds = sorted({row["speed"] for row in ratios}) or [math.nan]
+    r_values = sorted({row["ratio"] for row in ratios}) or [math.nan]
+    measured = np.full((len(r_kinds), len(r_speeds), len(r_values)), math.nan)
+    closed = measured.copy()
+    for row in ratios:
+        at = (r_kinds.index(row["kind"]), r_speeds.index(row["speed"]), r_values.index(row["ratio"]))
+        measured[at], closed[at] = row["relative"], row["predicted"]
+    tuned_dims = ("kind", "tuning", "speed")
+    ratio_dims = ("insensitivity_kind", "insensitivity_speed", "ratio")
+    return xr.Dataset(
+        {"unshaped_residual": ("speed", [unshaped.get(speed, math.nan) for speed in speeds],
+                               {"units": "m", "long_name": "max |v(L)| after the unshaped maneuver ends"}),
+         "reference_omega": ("speed", [mode[0] for mode in modes],
+                             {"units": "rad s-1", "long_name": f"{REFERENCE_MODEL}'s first mode the shaper excites"}),
+         "reference_zeta": ("speed", [mode[1] for mode in modes], {"units": "1", "long_name": "its damping ratio"}),
+         "residual": (tuned_dims, tuned["residual_m"],
+                      {"units": "m", "long_name": "max |v(L)| after the shaped command ends"}),
+         "relative_residual": (tuned_dims, tuned["relative"], {"units": "1", "long_name": "residual / unshaped"}),
+         "frequency_error": (tuned_dims, tuned["frequency_error"],
+                             {"units": "1", "long_name": f"tuned mode frequency / {REFERENCE_MODEL}'s - 1"}),
+         "move_time_penalty": (tuned_dims, tuned["penalty_s"], {"units": "s", "long_name": "shaper duration"}),
+         "insensitivity_measured": (ratio_dims, measured,
+                                    {"units": "1", "long_name": f"residual / unshaped, measured on {REFERENCE_MODEL}"}),
+         "insensitivity_closed_form": (ratio_dims, closed,
+                                       {"units": "1", "long_name": "closed form for the linear mode"})},
+        coords={"kind": kinds, "tuning": tunings, "speed": ("speed", speeds, {"units": "rad s-1"}),
+                "insensitivity_kind": r_kinds, "insensitivity_speed": ("insensitivity_speed", r_speeds,
+                                                                      {"units": "rad s-1"}),
+                "ratio": ("ratio", r_values, {"long_name": "design frequency / true frequency"})},
+        attrs={"title": "hubbeam command-shaping study", "reference_model": REFERENCE_MODEL,
+               "tlam_critical_speed_rad_s": float(critical_speed)})

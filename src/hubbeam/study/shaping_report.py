@@ -10,6 +10,7 @@ from hubbeam.reporting.document import markdown_table
 from hubbeam.reporting.formatting import number
 from hubbeam.study.shaping import (
     REFERENCE_MODEL,
+    ROUNDING,
     insensitivity_table,
     shaping_verdicts,
     tuning_table,
@@ -18,7 +19,7 @@ from hubbeam.study.shaping import (
 
 
 def _pct(value: float) -> str:
-    return number(100 * value, 3)
+    return "0" if abs(value) < ROUNDING else number(100 * value, 3)
 
 
 def shaping_section(runs: Sequence[Mapping], reference_modes: Mapping[float, tuple[float, float]],

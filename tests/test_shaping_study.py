@@ -118,6 +118,18 @@ def _mark_best(rows):
     return rows
 
 
+def test_tunings_within_the_tie_share_the_least_residual():
+    """SFOAM's and FOAM's tunings leave residuals equal to three figures: both are the least (within
+    TIE), not the one that happens to be smaller in the last digits."""
+    omega = 2.0
+    runs = {"plain": oscillator_run(omega, 0.0)}
+    for name, ratio in (("sfoam", 1.1), ("foam", 1.1 * (1 + 1e-6)), ("tlam", 1.4)):
+        runs[name] = oscillator_run(omega, 0.0, multi_mode([(ratio * omega, 0.0)], "ZV"),
+                                    {"kind": "ZV", "model": name.upper()})
+    rows = {row["tuning"]: row for row in tuning_table(shaped_runs(runs), {WF: (omega, 0.0)})}
+    assert rows["SFOAM"]["best"] and rows["FOAM"]["best"] and not rows["TLAM"]["best"]
+
+
 def test_the_verdicts_keep_prediction_and_performance_apart():
     """TLAM's mode is 30 % off CFOAM's (a poor prediction: it expects no residual, CFOAM keeps 20 %),
     yet its shaper leaves the least residual at 1.5 rad/s: the verdicts say both."""

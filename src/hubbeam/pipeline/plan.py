@@ -628,7 +628,7 @@ class _Planner:
         """The numbers of a study that shapes commands (``hubbeam.study.shaping``), written with its
         report: ``{"shaping": report/shaping.nc}``, or nothing."""
         shaped = self.settings.study is not None and shaped_cases(self.cfg)
-        return {"shaping": self.paths.report("shaping.nc")} if shaped else {}
+        return {"shaping": self.paths.shaping()} if shaped else {}
 
     def report_steps(self) -> dict[str, Step]:
         paths, cfg = self.paths, self.cfg

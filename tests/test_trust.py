@@ -65,3 +65,12 @@ def test_a_poor_prediction_and_the_best_performance_are_stated_apart():
         "FOAM": "the least residual vibration on CFOAM of the designs at 1 rad/s (0.15 m against 0.21 m (TLAM)); "
                 "more than another design at 2 rad/s (0.5 m against 0.3 m (TLAM))",
         "SFOAM": "unstable on CFOAM at 2 rad/s"}
+
+
+def test_designs_within_the_tie_share_the_least_residual():
+    """Two designs whose residuals differ by 0.5 % are both the least (TIE is 1 %)."""
+    runs = {"f_ref": _run("FOAM", "CFOAM", 1.0, 0.4), "s_ref": _run("SFOAM", "CFOAM", 1.0, 0.402),
+            "t_ref": _run("TLAM", "CFOAM", 1.0, 0.5)}
+    found = performance(design_table(runs))
+    assert found["FOAM"].startswith("the least residual") and found["SFOAM"].startswith("the least residual")
+    assert found["TLAM"].startswith("more than another design at 1 rad/s")

@@ -3,7 +3,7 @@
 #   make test        set up .venv (if needed) and run the test suite (with the import contracts and ruff, and
 #                    the independent Exudyn and pyBModes checks of the `validation` extra)
 #   make test-fast   the same without the tests that run Snakemake or kill processes, or are slow
-#                    (-m "not workflow and not slow", see tests/conftest.py)
+#                    (-m "not workflow and not slow", see tests/conftest.py), on two workers (pytest-xdist)
 #   make test-slurm  bring up the one-node SLURM cluster (profiles/slurm/local-cluster.sh, as root),
 #                    run the workflow on it (pytest -m slurm, tests/test_slurm.py), bring it down
 #   make benchmark   set up .venv (if needed) and time hubbeam against scipy (benchmarks/, results/benchmarks)
@@ -27,7 +27,7 @@ test: $(STAMP)
 	$(VENV_PYTHON) -m pytest -q
 
 test-fast: $(STAMP)
-	$(VENV_PYTHON) -m pytest -q -m "not workflow and not slow"
+	$(VENV_PYTHON) -m pytest -q -n 2 -m "not workflow and not slow"
 
 # The cluster comes down (by the PIDs `up` recorded) even when the tests fail.
 test-slurm: $(STAMP)

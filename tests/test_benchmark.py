@@ -39,7 +39,8 @@ def tiny(_study_config):
 
 @pytest.fixture(scope="module")
 def reference(tiny):
-    tip, info = reference_solution(tiny, 1e-12, 1e-2, cap=60.0)
+    # no wall-time cap: a loaded machine is slower, not wrong
+    tip, info = reference_solution(tiny, 1e-12, 1e-2, cap=None)
     return tip, info
 
 

@@ -17,6 +17,7 @@ hub and loaded by the body at rest (``assemble(..., functions="tip_body")``, ``h
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -37,6 +38,8 @@ from hubbeam.model.parameters import BeamParameters, BeamProducts, TipMass
 from hubbeam.simulation.simulate import simulate
 from hubbeam.validation import fe_beam
 from hubbeam.validation.tip_body import DE_LUCA_SICILIANO, body_frequencies, body_frequency_roots
+
+ROOT = Path(__file__).resolve().parents[1]
 
 #: the De Luca and Siciliano link clamped at the hub, its payload, and the payload 3 cm beyond the tip
 LINK = BeamProducts(L=DE_LUCA_SICILIANO["L"], rhoA=DE_LUCA_SICILIANO["rhoA"], EI=DE_LUCA_SICILIANO["EI"],
@@ -209,3 +212,77 @@ def test_a_request_the_functions_cannot_meet_is_named(request_, message):
     arguments = dict(dict(beam=LINK, tip=PAYLOAD, functions="tip_body"), **request_)
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
         assemble(arguments["beam"], arguments["tip"], 3, functions=arguments["functions"])
+
+
+# --- from a study's configuration ---------------------------------------------------------------
+
+
+def test_the_shipped_link_study_gives_the_published_frequencies():
+    """``studies/deluca_link.yaml`` read through the one check: its payload case (a body on the loaded
+    beam's modes) has, hub held at rest, the closed form's frequencies to 1e-6 and the published 2.18
+    and 15.91 Hz to their two decimals; the same body on the clamped-free functions misses the second
+    by more than 5 %, and as a point mass the second lies above 22 Hz (the error the body removes).
+    The study's beam and payload are compared with the published record, not read from it."""
+    from hubbeam.api import load
+    study = load(ROOT / "studies" / "deluca_link.yaml")
+    beam, tip = study.beam, study.case("payload").tip_mass
+    assert (beam.rhoA, beam.L, beam.EI, beam.rA) == (DE_LUCA_SICILIANO["rhoA"], DE_LUCA_SICILIANO["L"],
+                                                      DE_LUCA_SICILIANO["EI"], 0.0)
+    assert (tip.mass, tip.inertia, tip.position) == (DE_LUCA_SICILIANO["mass"], DE_LUCA_SICILIANO["inertia"], beam.L)
+    exact = body_frequencies(beam, tip, 2) / (2 * math.pi)
+    found = study.natural_frequencies("payload")[:2]
+    np.testing.assert_allclose(found, exact, rtol=1e-6)
+    assert tuple(round(float(f), 2) for f in found) == DE_LUCA_SICILIANO["frequencies_hz"]
+    assert study.natural_frequencies("payload_clamped_free")[1] > 1.05 * exact[1]
+    assert study.natural_frequencies("point_payload")[1] > 22.0
+
+
+def test_the_loaded_functions_are_a_case_key_with_its_own_matrices(tmp_path):
+    """``transverse_functions: tip_body`` reaches the case, its matrices (a configuration name of their
+    own, so the workflow assembles them apart) and its dataset's record; a body away from the end or
+    a beam of sections is refused by the key before anything runs."""
+    import yaml
+
+    from hubbeam.api import load
+    from hubbeam.configuration.load import ConfigError
+    from hubbeam.model.matrices import configuration_name
+
+    cfg = yaml.safe_load((ROOT / "studies" / "deluca_link.yaml").read_text(encoding="utf-8"))
+    case = cfg["cases"]["payload"]
+    study = load(ROOT / "studies" / "deluca_link.yaml")
+    loaded = study.case("payload")
+    assert loaded.transverse_functions == "tip_body" and study.case("point_payload").transverse_functions == \
+        "clamped_free"
+    assert configuration_name(loaded.tip_mass, "tip_body").endswith("_tip_body")
+    assert loaded.to_dict()["transverse_functions"] == "tip_body"
+    assert "transverse_functions" not in study.case("point_payload").to_dict()
+    cfg["cases"] = {"payload": case, "inside": dict(case, tip_mass={"mass": 0.1, "position": 0.4})}
+    cfg["study"].pop("comparisons")
+    path = tmp_path / "inside.yaml"
+    path.write_text(yaml.safe_dump(cfg), encoding="utf-8")
+    with pytest.raises(ConfigError) as error:
+        load(path)
+    assert [problem.path for problem in error.value.problems] == ["cases.inside.transverse_functions"]
+    assert "allowed: 'clamped_free', or the tip mass at the beam's end" in str(error.value)
+
+
+def test_the_study_report_lists_each_case_s_own_frequencies():
+    """The report's table of natural frequencies reads each case's matrices file (here of more modes
+    than the case takes: its leading blocks) and gives the closed form's frequencies for the body on
+    the loaded modes, while a file of the point mass gives the point mass's."""
+    from hubbeam.api import load
+    from hubbeam.study.frequencies import case_frequencies, frequencies_markdown
+
+    study = load(ROOT / "studies" / "deluca_link.yaml")
+    rows = []
+    for name in ("payload", "point_payload"):
+        case = study.case(name)
+        stored = to_dataset(assemble(study.beam, case.tip_mass, case.modes + 3, functions=case.transverse_functions),
+                            study.beam, case.tip_mass, functions=case.transverse_functions)
+        rows.append(case_frequencies(name, case, stored))
+    exact = body_frequencies(study.beam, study.case("payload").tip_mass, 3) / (2 * math.pi)
+    np.testing.assert_allclose(rows[0]["frequencies_hz"], exact, rtol=1e-9)
+    point = body_frequencies(study.beam, study.case("point_payload").tip_mass, 2) / (2 * math.pi)
+    np.testing.assert_allclose(rows[1]["frequencies_hz"][:2], point, rtol=1e-3)  # 6 clamped-free modes
+    table = frequencies_markdown(rows)
+    assert "| payload | 6 | 0.1 | 0.0005 | tip-body | clamped | 2.17833 | 15.9145 |" in table

@@ -141,6 +141,19 @@ def test_a_study_builds_only_in_its_own_folder(in_tmp):
 
 # --- the inputs and params of rules --------------------------------------------------------------------
 
+def test_a_body_on_the_loaded_modes_and_on_the_clamped_free_ones_have_matrices_of_their_own(in_tmp):
+    """The link study's payload on two sets of transverse functions: two matrices files, each
+    assembled with its functions and read by its own case."""
+    study = yaml.safe_load((REPO / "studies" / "deluca_link.yaml").read_text())
+    plan = study_plan(in_tmp, study)
+    loaded, plain = "mt0p1_l0p5_J0p0005_tip_body", "mt0p1_l0p5_J0p0005"
+    for case, name in (("payload", loaded), ("payload_clamped_free", plain), ("point_payload", "mt0p1_l0p5")):
+        assert plan.steps["simulate"].job({"case": case}).input["matrices"].endswith(f"/matrices/{name}.nc")
+    functions = {name: plan.steps["matrices"].job({"config_name": name}).params["configuration"]["functions"]
+                 for name in (loaded, plain)}
+    assert functions == {loaded: "tip_body", plain: "clamped_free"}
+
+
 def test_a_simulation_reads_the_matrices_of_its_tip_mass_and_its_family_s_kernel(paper):
     job = paper.steps["simulate"].job({"case": "fig10_foam_mt0p5"})
     assert job.input["matrices"] == "results/matrices/mt0p5_l8.nc"

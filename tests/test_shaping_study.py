@@ -188,7 +188,6 @@ def test_the_tuning_table_compares_each_run_with_the_unshaped_and_the_rest_tunin
     assert rest["best"] and not model["best"] and model["rest_m"] == rest["residual_m"]
 
 
-@pytest.mark.slow  # 2.5 s: the linear models of the tunings
 def test_the_shaping_study_validates_and_its_cases_resolve():
     """studies/shaping.yaml: the grids' cases (TLAM tunings only below its critical speed), each
     tuned shaper designed where asked: a ratio run at its ratio times the CFOAM tuning's

@@ -25,6 +25,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from hubbeam.configuration.load import ConfigError, merge_configs, read_config_file
 from hubbeam.configuration.settings import Case, Settings
 from hubbeam.control.cases import resolve, sampled_controller, sampling_of, simulate_case
@@ -33,6 +35,7 @@ from hubbeam.control.implementation import write_implementation
 from hubbeam.linear.statespace import linear_model
 from hubbeam.linear.voltage import voltage_model
 from hubbeam.model.damping import damping_matrices
+from hubbeam.model.eigen import natural_frequencies
 from hubbeam.pipeline.plan import checked_configuration
 from hubbeam.simulation.simulate import case_matrices
 from hubbeam.study import base_config_files
@@ -82,6 +85,13 @@ class Configuration:
         """The system matrices of case ``name`` (its modes and tip body, ``numerics.quadrature_points``
         Gauss nodes, a drive's rotor in the hub inertia)."""
         return case_matrices(self.case(name), self.beam, self.settings.numerics)
+
+    def natural_frequencies(self, name: str):
+        """The natural frequencies (Hz, ascending) of case ``name``'s beam with the hub held, at rest:
+        its tip body, modes, transverse functions and root spring
+        (``hubbeam.model.eigen.natural_frequencies``), as a frequency equation gives them."""
+        case = self.case(name)
+        return natural_frequencies(self.matrices(name), case.root_spring) / (2.0 * np.pi)
 
     def simulate(self, name: str, modes: int | None = None):
         """The run of case ``name`` as the workflow writes it (``simulations/<name>.nc``), with

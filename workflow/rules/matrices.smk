@@ -15,7 +15,7 @@ rule matrices:
     params:
         **STEPS["matrices"].params,
     wildcard_constraints:
-        config_name=r"mt[0-9a-z_]+",
+        config_name=r"mt[0-9A-Za-z_]+",
     log:
         STEPS["matrices"].log,
     script:

@@ -33,6 +33,7 @@ from hubbeam.configuration.schema import (
 from hubbeam.model import limits
 from hubbeam.model.maneuvers import MANEUVERS, REFERENCES, maneuver_from_dict
 from hubbeam.model.models import DESIGN_ONLY_MODELS, MODELS
+from hubbeam.model.modes import CLAMPED_FREE, TIP_BODY
 from hubbeam.reporting.products import PAPER
 from hubbeam.results import variables
 from hubbeam.results.paths import PAPER_FOLDERS
@@ -99,7 +100,7 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
         problems += entry_problems + _initial_problems(f"cases.{name}", case, modes, check_speed=not entry_problems)
         problems += _feedback_problems(f"cases.{name}.maneuver", case, modes)
         problems += _drive_problems(f"cases.{name}", case) + _shaper_problems(f"cases.{name}.shaper", case, modes)
-        problems += _root_problems(f"cases.{name}", case)
+        problems += _root_problems(f"cases.{name}", case) + _functions_problems(f"cases.{name}", case, beam, length)
     problems += _beam_problems(beam, length)
     if whole:
         problems += _study_problems(cfg, eigen, cases)
@@ -375,6 +376,21 @@ def _root_problems(where: str, case: Mapping) -> list[Problem]:
         return [Problem(f"{where}.root_spring", "given with a state_feedback maneuver; allowed: a root spring under "
                         "a prescribed, torque, table or pd maneuver (a state feedback on the flexible joint's "
                         "states is not modelled; docs/compliant-root.md)")]
+    return []
+
+
+def _functions_problems(where: str, case: Mapping, beam: Mapping, length: float | None) -> list[Problem]:
+    """The loaded beam's modes (``transverse_functions: tip_body``, ``hubbeam.model.matrices.transverse_load``)
+    are those of a uniform beam carrying the tip mass or body at its end."""
+    if case.get("transverse_functions") != TIP_BODY:
+        return []
+    if "sections" in beam:
+        return [Problem(f"{where}.transverse_functions", f"got {TIP_BODY!r} with a beam of sections; allowed: "
+                        f"{CLAMPED_FREE!r} (the loaded beam's modes are those of a uniform beam)")]
+    position = _number(_section(case, "tip_mass").get("position"))
+    if position is not None and length is not None and position != length:
+        return [Problem(f"{where}.transverse_functions", f"got {TIP_BODY!r} with tip_mass.position = {position}; "
+                        f"allowed: {CLAMPED_FREE!r}, or the tip mass at the beam's end, beam.length = {length}")]
     return []
 
 

@@ -32,6 +32,7 @@ from hubbeam.model.drive import DcMotor
 from hubbeam.model.frozen import FrozenMap, freeze
 from hubbeam.model.limits import MEMORY_BUDGET_MB, SMALL_DEFLECTION_LIMIT
 from hubbeam.model.maneuvers import Maneuver, maneuver_from_dict
+from hubbeam.model.modes import CLAMPED_FREE
 from hubbeam.model.parameters import TipMass, UniformBeam
 from hubbeam.model.root import RootSpring
 from hubbeam.model.shapers import ShaperSpec
@@ -87,6 +88,9 @@ class Case:
     shaper: ShaperSpec | None = None
     #: a compliant root between the hub and the beam (None: clamped to the hub)
     root_spring: RootSpring | None = None
+    #: the assumed transverse functions (``hubbeam.model.modes``): the clamped-free beam's modes or
+    #: the modes of the beam loaded by the tip body (``"tip_body"``)
+    transverse_functions: str = CLAMPED_FREE
 
     @property
     def label(self) -> str:
@@ -113,6 +117,8 @@ class Case:
             settings["shaper"] = self.shaper.to_dict()
         if self.root_spring is not None:
             settings["root_spring"] = self.root_spring.to_dict()
+        if self.transverse_functions != CLAMPED_FREE:
+            settings["transverse_functions"] = self.transverse_functions
         return settings
 
 
@@ -343,7 +349,8 @@ def case_from_config(cfg: Mapping, name: str) -> Case:
                 initial=InitialState.from_dict(case["initial"]) if "initial" in case else None,
                 drive=DcMotor(**case["drive"]) if "drive" in case else None,
                 shaper=ShaperSpec.from_dict(case["shaper"]) if "shaper" in case else None,
-                root_spring=RootSpring(**case["root_spring"]) if "root_spring" in case else None)
+                root_spring=RootSpring(**case["root_spring"]) if "root_spring" in case else None,
+                transverse_functions=case.get("transverse_functions", CLAMPED_FREE))
 
 
 #: the name a case given without one has in messages

@@ -122,7 +122,8 @@ def design_matrices(case: Case, beam, sm):
     modes = case.maneuver.design.modes
     if modes is None or modes == sm.M1.shape[0]:
         return sm
-    return drive_matrices(assemble(beam, case.tip_mass, modes, quadrature_points(sm)), case.drive)
+    matrices = assemble(beam, case.tip_mass, modes, quadrature_points(sm), case.transverse_functions)
+    return drive_matrices(matrices, case.drive)
 
 
 def design_plant(case: Case, beam, sm):

@@ -40,6 +40,7 @@ from hubbeam.model.models import MODELS
 from hubbeam.model.models import model as model_traits
 from hubbeam.model.modes import transverse_modes
 from hubbeam.model.parameters import TipMass
+from hubbeam.model.shapes import unit_peak
 from hubbeam.results.provenance import without_provenance
 
 #: the outputs of the transfer functions from the hub torque (free hub)
@@ -231,10 +232,7 @@ def mode_shapes(campbell_ds: xr.Dataset, beam, count: int = 4, stations: int = 1
                        kind="stable")[..., :count]
     parts = (ends["shape_real"] + 1j * ends["shape_imag"]).sel(coordinate=q2).values
     parts = np.take_along_axis(parts, first[..., None, :, None], axis=-2)
-    v = np.einsum("xk,...k->...x", f2, parts)
-    peak = np.take_along_axis(v, np.argmax(np.abs(v), axis=-1)[..., None], axis=-1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        v = v / peak
+    v = unit_peak(np.einsum("xk,...k->...x", f2, parts))
     labels = np.take_along_axis(ends["mode_label"].values, first, axis=-1)
     dims = ("model", "tip_mass", "hub", "speed", "rank", "x")
     return xr.Dataset(

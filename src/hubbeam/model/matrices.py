@@ -274,9 +274,15 @@ MODE_NORMALISATION = (
 )
 
 
-def configuration_name(tip):
+def configuration_name(tip, functions=CLAMPED_FREE):
     """Wildcard-safe name of a tip-mass configuration: ``mt0``, ``mt0p1_l8``, ``mt0p5_l7p5``; a
-    body adds its rotary inertia and offset, ``mt0p1_l0p5_J0p0005_e0p02``."""
+    body adds its rotary inertia and offset, ``mt0p1_l0p5_J0p0005_e0p02``; transverse functions
+    other than the clamped-free ones add their name, ``mt0p1_l0p5_J0p0005_tip_body``."""
+    name = _tip_name(tip)
+    return name if functions == CLAMPED_FREE else f"{name}_{functions}"
+
+
+def _tip_name(tip):
 
     def token(value):
         return f"{float(value):.10g}".replace("-", "m").replace(".", "p").replace("+", "")
@@ -319,8 +325,8 @@ def to_dataset(sm, params, tip, n_quad_requested=None, functions=CLAMPED_FREE):
                   {"long_name": "point-cloud index (last = tip body's centre)", "units": "1"}),
     }
     attrs = {
-        "title": f"hub-beam system matrices, configuration {configuration_name(tip)}",
-        "configuration": configuration_name(tip),
+        "title": f"hub-beam system matrices, configuration {configuration_name(tip, functions)}",
+        "configuration": configuration_name(tip, functions),
         "tip_mass_kg": body.mass,
         "tip_position_m": body.position,
         "tip_inertia_kg_m2": body.inertia,
@@ -341,8 +347,12 @@ def to_dataset(sm, params, tip, n_quad_requested=None, functions=CLAMPED_FREE):
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 
-def from_dataset(ds):
-    """The :class:`SystemMatrices` stored in a dataset written from :func:`to_dataset`."""
+def from_dataset(ds, modes=None):
+    """The :class:`SystemMatrices` stored in a dataset written from :func:`to_dataset`; with ``modes``,
+    those of its first ``modes`` modes (the leading blocks: the functions of a count are the first
+    of a larger count's)."""
+    if modes is not None:
+        ds = ds.isel(mode=slice(0, modes), mode_j=slice(0, modes))
     fields = {}
     for name, (_, _, dims) in _FIELD_META.items():
         value = ds[name].values

@@ -43,8 +43,6 @@ Q_THETA_PERCENT_OF_TAU_MAX_400 = 6.5
 PEAK_TIP_DEFLECTION_WF2P8 = {"TLAM": 0.49, "FOAM": 0.22}
 #: Section 4.2, w_f = 2.8 rad/s: residual vibration amplitude TLAM / FOAM ("approximately 100").
 RESIDUAL_RATIO_TLAM_FOAM_WF2P8 = 100.0
-#: Section 4.2: TLAM's response diverges for angular velocities above this (rad s-1).
-TLAM_DIVERGENCE_SPEED = 3.0
 #: Section 4.3, FOAM, w_f = 5 rad/s, t_f = 30 s: peak transverse / peak axial tip response.
 TRANSVERSE_AXIAL_PEAK_RATIO_WF5 = 1500.0
 #: Section 4.3, tau_max = 200 N m: residual vibration of SFOAM against FOAM.

@@ -4,8 +4,8 @@ cases, and its first transverse mode shapes at rest and at speed (:func:`beam_da
 
 At a constant hub speed ``Omega`` the free transverse vibrations obey ``K22(Omega) v = omega^2 M2 v``
 (Eq. 31, :mod:`hubbeam.model.eigen`; ``M2`` with a tip body's rotary inertia); mode ``i`` has the
-shape ``w_i(x) = f2(x) v_i`` (Eq. 8), scaled so that its largest deflection is 1 in magnitude and
-its tip deflection is positive. A direction in
+shape ``w_i(x) = f2(x) v_i`` (Eq. 8), scaled by :func:`unit_peak` (its largest deflection is +1), as
+the damped modes' shapes of the linear models are (``hubbeam.linear.datasets.mode_shapes``). A direction in
 which ``K22`` is not positive definite (TLAM beyond its critical speed) has no vibration: its
 frequency and shape are NaN.
 """
@@ -36,6 +36,16 @@ def span(params) -> np.ndarray:
     return np.union1d(np.linspace(0.0, params.L, SPAN_POINTS), params.stations)
 
 
+def unit_peak(v):
+    """Shapes ``v`` (real or complex, along the last axis) divided by their value of largest
+    magnitude: ``max |v| = 1``, that point real and positive. The one normalisation of every mode
+    shape hubbeam stores; an all-zero shape gives NaN."""
+    v = np.asarray(v)
+    peak = np.take_along_axis(v, np.argmax(np.abs(v), axis=-1)[..., None], axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return v / peak
+
+
 def mode_shapes(params, tip: TipMass, speeds, n_shapes: int, n_modes: int, n_quad: int = 64):
     """Frequencies (Hz), shape ``(model, speed, mode)``, and shapes ``w(x)``, shape ``(model,
     speed, mode, x)`` on :func:`span`, of the first ``n_shapes`` transverse modes."""
@@ -47,8 +57,7 @@ def mode_shapes(params, tip: TipMass, speeds, n_shapes: int, n_modes: int, n_qua
         for s, speed in enumerate(speeds):
             omega2, vectors = scipy.linalg.eigh(K22(sm, model, speed), transverse_mass(sm))
             for i in np.flatnonzero(omega2[:n_shapes] > 0.0):
-                w = shapes_x @ vectors[:, i]
-                shapes[m, s, i] = w / np.max(np.abs(w)) * (1.0 if w[-1] >= 0.0 else -1.0)
+                shapes[m, s, i] = unit_peak(shapes_x @ vectors[:, i])
                 frequencies[m, s, i] = np.sqrt(omega2[i]) / (2.0 * np.pi)
     return frequencies, shapes
 

@@ -340,16 +340,17 @@ class _Planner:
     # --- simulations (simulate.smk, matrices.smk) ------------------------------------------------
 
     def _matrices_configurations(self) -> dict[str, dict]:
-        """``{name: {mass, position, inertia, offset, modes}}`` of the tip masses (or bodies) of the
-        cases, each with the most modes a case using it takes (the others read leading blocks)."""
+        """``{name: {mass, position, inertia, offset, functions, modes}}`` of the tip masses (or bodies)
+        and transverse functions of the cases, each with the most modes a case using it takes (the
+        others read leading blocks: the functions of a count are the first of a larger count's)."""
         configurations = {}
         for case in self.settings.cases.values():
             tip = case.tip_mass
             if tip.mass == 0.0 and tip.is_point:
                 tip = TipMass(mass=0.0, position=self.cfg["beam"]["length"])
-            entry = configurations.setdefault(configuration_name(tip), {
+            entry = configurations.setdefault(configuration_name(tip, case.transverse_functions), {
                 "mass": tip.mass, "position": tip.position, "inertia": tip.inertia, "offset": tip.offset,
-                "modes": case.modes})
+                "functions": case.transverse_functions, "modes": case.modes})
             entry["modes"] = max(entry["modes"], case.modes)
         return configurations
 
@@ -362,8 +363,12 @@ class _Planner:
         return configurations[wildcards.config_name]
 
     def case_matrices(self, wildcards) -> str:
-        """The matrices file of a job's case: that of its tip-mass configuration."""
-        return self.paths.matrices(configuration_name(self.case(wildcards).tip_mass))
+        """The matrices file of a job's case (:meth:`matrices_file`)."""
+        return self.matrices_file(self.case(wildcards))
+
+    def matrices_file(self, case) -> str:
+        """The matrices file of ``case``: that of its tip-mass configuration and transverse functions."""
+        return self.paths.matrices(configuration_name(case.tip_mass, case.transverse_functions))
 
     def case_kernel(self, wildcards) -> str:
         """The marker of the compiled kernel a job's case runs: its family's, or its sampled-controller
@@ -631,7 +636,7 @@ class _Planner:
         return {"shaping": self.paths.shaping()} if shaped else {}
 
     def report_steps(self) -> dict[str, Step]:
-        paths, cfg = self.paths, self.cfg
+        paths, cfg, settings = self.paths, self.cfg, self.settings
         claim_cases = product_cases(PAPER_PRODUCTS)
         return {
             "claims": self.step(
@@ -651,8 +656,11 @@ class _Planner:
                 "study_report.py", output={"markdown": paths.study_report("md"), "html": paths.study_report("html"),
                                            "summary": paths.summary(), **self.shaping_data()},
                 log=paths.log("report", "report.log"),
-                input={"simulations": self.simulations(self.cases), "figures": list(self.figure_files("png").values())},
+                input={"simulations": self.simulations(self.cases), "figures": list(self.figure_files("png").values()),
+                       "matrices": [self.matrices_file(settings.case(case)) for case in self.cases]},
                 params={"study": cfg.get("study"), "beam": cfg["beam"], "cases": list(self.cases),
+                        "case_settings": [settings.case(case) for case in self.cases],
+                        "settings": fingerprint(*(settings.case(case) for case in self.cases)),
                         "figures": self.report_figures()}),
             "archive": self.step(
                 "archive.py", output={"archive": paths.archive()}, log=paths.log("report", "archive.log"),

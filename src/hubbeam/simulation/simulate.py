@@ -113,14 +113,15 @@ def kernel_matrices(sm: SystemMatrices) -> SystemMatrices:
 
 def case_matrices(case: Case, params: BeamParameters, numerics: Numerics,
                   matrices: SystemMatrices | None = None) -> SystemMatrices:
-    """The system matrices of ``case``: ``matrices`` (checked) or assembled from ``params``, with the
+    """The system matrices of ``case``: ``matrices`` (checked) or assembled from ``params`` (the case's
+    tip body, modes and transverse functions), with the
     reflected inertia of the case's drive rotor in the hub's (:func:`drive_matrices`)."""
     n = case.modes
     if matrices is None:
         if numerics.quadrature_points is None:
             raise SimulationError(f"numerics.quadrature_points: missing (required when no matrices are "
                                   f"given); allowed: an integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
-        matrices = assemble(params, case.tip_mass, n, numerics.quadrature_points)
+        matrices = assemble(params, case.tip_mass, n, numerics.quadrature_points, case.transverse_functions)
     if np.shape(matrices.K1) != (n, n):
         raise SimulationError(f"cases.{case.label}.modes = {n}, but the matrices given have "
                               f"{np.shape(matrices.K1)[0]} modes; allowed: matrices assembled with the case's "

@@ -28,15 +28,17 @@ from hubbeam.reporting.products import (
     LINEAR_SECTION,
     SHAPING_SECTION,
 )
+from hubbeam.study.frequencies import frequencies_markdown
 from hubbeam.study.summary import NO_SHAPER
 from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, performance, verdicts
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                    figures: Mapping[str, Mapping[str, str]], designs: Sequence[Mapping] = (),
-                   shaping: Mapping | None = None) -> str:
+                   frequencies: Sequence[Mapping] = (), shaping: Mapping | None = None) -> str:
     """The report in Markdown. ``rows`` are summary rows, ``designs`` the rows of
-    :func:`hubbeam.study.trust.design_table`; ``figures`` gives, per section of the report (the
+    :func:`hubbeam.study.trust.design_table`, ``frequencies`` those of
+    :func:`hubbeam.study.frequencies.case_frequencies`; ``figures`` gives, per section of the report (the
     products' ``section``, :data:`hubbeam.reporting.products.SECTIONS`), the PNG paths relative
     to the report by label: the case of a figure per case, the comparison of a figure per
     comparison, the figure's name otherwise. Sections the study report has no place for (the
@@ -47,6 +49,7 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
 
     return render("study_report.md.j2", study=study, beam=beam, rows=rows,
                   beam_table=beam_markdown(beam), cases_table=cases_markdown(rows),
+                  frequencies_table=frequencies_markdown(frequencies) if frequencies else "",
                   case_figures=figures.get(CASES_SECTION, {}),
                   comparison_figures=figures.get(COMPARISONS_SECTION, {}),
                   beam_figure=first(BEAM_SECTION),

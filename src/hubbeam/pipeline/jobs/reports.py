@@ -18,6 +18,7 @@ from hubbeam.pipeline.runner import Job
 from hubbeam.reporting.archive import build_archive, verify_archive
 from hubbeam.reporting.document import markdown_to_html
 from hubbeam.results.io import open_result, staged, write_netcdf, write_text
+from hubbeam.study.frequencies import case_frequencies
 from hubbeam.study.report import study_html, study_markdown
 from hubbeam.study.shaping import reference_modes, shaped_runs, shaping_dataset
 from hubbeam.study.shaping_report import shaping_section
@@ -53,13 +54,16 @@ def reproduction_report(job: Job) -> None:
 
 def study_report(job: Job) -> None:
     """A study's report (Markdown, HTML) and its summary.csv, a row per case (``input.simulations``
-    of ``params.cases``); its figures by section of the report (``params.figures``). With an
-    output ``shaping`` (a study that shapes commands), the section and the numbers of
+    of ``params.cases``); the natural frequencies of each case (``params.case_settings``) from its
+    matrices (``input.matrices``); its figures by section of the report (``params.figures``). With
+    an output ``shaping`` (a study that shapes commands), the section and the numbers of
     :mod:`hubbeam.study.shaping`, on the reference model's modes from the linear models."""
     p, out = job.params, job.output
     report_dir = Path(out["markdown"]).parent
     datasets = {case: open_result(path) for case, path in zip(p["cases"], job.input["simulations"])}
     rows = [case_summary(case, ds) for case, ds in datasets.items()]
+    frequencies = [case_frequencies(name, case, open_result(path))
+                   for name, case, path in zip(p["cases"], p["case_settings"], job.input["matrices"])]
     figures = {name: {label: os.path.relpath(path, report_dir) for label, path in shown.items()}
                for name, shown in p["figures"].items()}
     shaping = None
@@ -68,7 +72,8 @@ def study_report(job: Job) -> None:
         modes = reference_modes(datasets, dataset_shaping_mode)
         critical = dataset_critical_speed(next(iter(datasets.values())), "TLAM")
         shaping = shaping_section(runs, modes, critical)
-    markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets), shaping=shaping)
+    markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets),
+                              frequencies=frequencies, shaping=shaping)
     write_text(out["markdown"], markdown)
     write_text(out["html"], study_html(markdown, p["study"].get("title", p["study"]["name"]), report_dir))
     with staged(out["summary"]) as (summary,), open(summary, "w", newline="") as handle:

@@ -33,13 +33,14 @@ def simulation_kernel(job: Job) -> None:
 
 def matrices(job: Job) -> None:
     """The system matrices (Eqs. 13-20, Appendix) of one tip-mass configuration,
-    ``params.configuration`` (its tip mass or body and mode count), -> ``output.nc``."""
+    ``params.configuration`` (its tip mass or body, transverse functions and mode count), -> ``output.nc``."""
     p = job.params
     beam = beam_from_config(p["beam"])
     configuration = dict(p["configuration"])
-    modes = configuration.pop("modes")
+    modes, functions = configuration.pop("modes"), configuration.pop("functions")
     tip = TipMass(**configuration)
-    ds = to_dataset(assemble(beam, tip, modes, p["n_quad"]), beam, tip, n_quad_requested=p["n_quad"])
+    ds = to_dataset(assemble(beam, tip, modes, p["n_quad"], functions), beam, tip, n_quad_requested=p["n_quad"],
+                    functions=functions)
     ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
     write_netcdf(ds, job.output["nc"])
     LOG.info("%s: %d modes, %d Gauss nodes (requested %d) -> %s", ds.attrs["configuration"],
@@ -51,8 +52,7 @@ def simulate(job: Job) -> None:
     configuration (``input.matrices``, possibly of more modes) -> ``output.nc``."""
     p = job.params
     n_modes = p["case"].modes
-    stored = open_result(job.input["matrices"])
-    matrices = from_dataset(stored.isel(mode=slice(0, n_modes), mode_j=slice(0, n_modes)))
+    matrices = from_dataset(open_result(job.input["matrices"]), n_modes)
     ds = simulate_case(p["case"], p["beam"], p["numerics"], matrices, convergence_check=p["convergence_check"])
     write_netcdf(ds, job.output["nc"])
     LOG.info("case %s (%s, %d modes): %s -> %s", p["case"].label, p["case"].model, n_modes, ds.attrs["validity"],

@@ -31,6 +31,7 @@ SLOW_MODULES = {"test_reference", "test_config_install", "test_validation_pybmod
 #: the kernels compiled: whole figure sets, long nonlinear closed loops, the finite-element and
 #: Exudyn references, the scipy reference of the benchmark (``pytest --durations=60`` lists them)
 SLOW_TESTS = {
+    "test_shaping_study::test_the_shaping_study_validates_and_its_cases_resolve",
     "test_reliability::test_every_job_of_all_puts_each_output_in_place_by_rename",
     "test_reliability::test_a_case_gives_identical_results_in_one_process_and_in_two",
     "test_reliability::test_the_map_gathered_by_the_jobs_is_the_map_of_the_configuration_s_sweep",

@@ -17,6 +17,7 @@ from hubbeam.reporting.products import (
     DESIGNS_FIGURE,
     GENERAL_PRODUCTS,
     PAPER_PRODUCTS,
+    SHAPING_FIGURE,
     SIMULATION_FIGURE,
     Product,
     ProductError,
@@ -148,7 +149,8 @@ def test_a_study_may_ask_for_the_paper_products_too():
     products = products_for(study() | {"products": ["paper"]})
     designs = set(of_kind(GENERAL_PRODUCTS, DESIGNS_FIGURE))  # the study designs no feedback
     control = {"sample_time_sweep", "robustness"}  # nor has a `control` section
-    assert set(products) == set(PAPER_PRODUCTS) | set(GENERAL_PRODUCTS) - designs - control
+    shaping = set(of_kind(GENERAL_PRODUCTS, SHAPING_FIGURE))  # and shapes no command
+    assert set(products) == set(PAPER_PRODUCTS) | set(GENERAL_PRODUCTS) - designs - control - shaping
 
 
 def test_the_figure_of_the_feedback_designs_needs_a_designed_case():

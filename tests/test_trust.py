@@ -7,7 +7,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from hubbeam.study.trust import SETTLING_BAND, closed_loop_measures, design_table, verdicts
+from hubbeam.study.trust import SETTLING_BAND, closed_loop_measures, design_table, performance, verdicts
 
 TF = 2.0
 
@@ -45,3 +45,32 @@ def test_a_design_is_good_enough_while_the_truth_stays_within_the_tolerance():
     assert verdicts(table) == {"TLAM": "good enough up to 1 rad/s (largest gap 5 %); at 2 rad/s its "
                                        "CFOAM tip deflections differ by 50 % from its prediction; "
                                        "unstable on CFOAM from 3 rad/s"}
+
+
+def test_a_poor_prediction_and_the_best_performance_are_stated_apart():
+    """TLAM's design is 50 % off its prediction at 2 rad/s (not good enough) yet leaves the least
+    residual on CFOAM there (residual half the amplitude of v(L) during the spin-up): prediction
+    and performance are two statements with their numbers."""
+    runs = {"t_own1": _run("TLAM", "TLAM", 1.0, 0.4), "t_ref1": _run("TLAM", "CFOAM", 1.0, 0.42),
+            "t_own2": _run("TLAM", "TLAM", 2.0, 0.4), "t_ref2": _run("TLAM", "CFOAM", 2.0, 0.6),
+            "f_own1": _run("FOAM", "FOAM", 1.0, 0.3), "f_ref1": _run("FOAM", "CFOAM", 1.0, 0.3),
+            "f_own2": _run("FOAM", "FOAM", 2.0, 1.0), "f_ref2": _run("FOAM", "CFOAM", 2.0, 1.0),
+            "s_ref2": _run("SFOAM", "CFOAM", 2.0, 0.8, "left_range")}
+    table = design_table(runs)
+    assert verdicts(table)["TLAM"].startswith("good enough up to 1 rad/s (largest gap 5 %); at 2 rad/s its CFOAM")
+    # residuals: the first sample after TF, 0.5 * amplitude * exp(-1e-3) cos(1e-2), to two figures
+    assert performance(table) == {
+        "TLAM": "the least residual vibration on CFOAM of the designs at 2 rad/s (0.3 m against 0.5 m (FOAM)); "
+                "more than another design at 1 rad/s (0.21 m against 0.15 m (FOAM))",
+        "FOAM": "the least residual vibration on CFOAM of the designs at 1 rad/s (0.15 m against 0.21 m (TLAM)); "
+                "more than another design at 2 rad/s (0.5 m against 0.3 m (TLAM))",
+        "SFOAM": "unstable on CFOAM at 2 rad/s"}
+
+
+def test_designs_within_the_tie_share_the_least_residual():
+    """Two designs whose residuals differ by 0.5 % are both the least (TIE is 1 %)."""
+    runs = {"f_ref": _run("FOAM", "CFOAM", 1.0, 0.4), "s_ref": _run("SFOAM", "CFOAM", 1.0, 0.402),
+            "t_ref": _run("TLAM", "CFOAM", 1.0, 0.5)}
+    found = performance(design_table(runs))
+    assert found["FOAM"].startswith("the least residual") and found["SFOAM"].startswith("the least residual")
+    assert found["TLAM"].startswith("more than another design at 1 rad/s")

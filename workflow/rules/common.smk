@@ -10,7 +10,7 @@ file is read, that each rule runs the script its step names. Every path comes fr
 """
 
 from hubbeam.reporting.products import (CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE, FILES_FIGURE,
-                                        SIMULATION_FIGURE, of_kind)
+                                        SHAPING_FIGURE, SIMULATION_FIGURE, of_kind)
 
 #: the step of every rule that runs a script, by rule name
 STEPS = PLAN.steps

@@ -16,7 +16,7 @@ wildcard_constraints:
     comparison=CASE_NAME_PATTERN,
 
 
-for _key, _product in of_kind(PLAN.products, CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE).items():
+for _key, _product in of_kind(PLAN.products, CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE, SHAPING_FIGURE).items():
     _step = STEPS[f"figure_{_key}"]
 
     rule:
@@ -45,6 +45,7 @@ rule study_report:
         markdown=STEPS["study_report"].output["markdown"],
         html=STEPS["study_report"].output["html"],
         summary=STEPS["study_report"].output["summary"],
+        **{key: path for key, path in STEPS["study_report"].output.items() if key == "shaping"},
     params:
         **STEPS["study_report"].params,
     log:

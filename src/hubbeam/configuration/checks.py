@@ -403,9 +403,9 @@ def _shaper_problems(where: str, case: Mapping, modes: int | None) -> list[Probl
     problems = []
     frequencies = shaper.get("frequencies")
     if frequencies is not None:
-        tuning = [key for key in ("model", "speed", "modes") if key in shaper]
+        tuning = [key for key in ("model", "speed", "modes", "frequency_ratio") if key in shaper]
         problems += [Problem(f"{where}.{key}", "given with frequencies; allowed: either frequencies (and damping) "
-                             "or the tuning keys model, speed and modes") for key in tuning]
+                             "or the tuning keys model, speed, modes and frequency_ratio") for key in tuning]
         damping = shaper.get("damping")
         if isinstance(damping, list) and isinstance(frequencies, list) and len(damping) != len(frequencies):
             problems.append(Problem(f"{where}.damping", f"got {len(damping)} ratios; allowed: one per frequency "

@@ -28,7 +28,7 @@ import functools
 import math
 
 from hubbeam.configuration.schema import Problem
-from hubbeam.configuration.settings import Case, Settings
+from hubbeam.configuration.settings import Case, Settings, simulation_settings
 from hubbeam.control.dlqr import continuous_lqr, discrete_lqr
 from hubbeam.control.feedback import FeedbackError, design_plant, feedback_law
 from hubbeam.control.kalman import kalman_filter
@@ -40,14 +40,16 @@ from hubbeam.control.sampled import (
     state_controller,
 )
 from hubbeam.control.sampling import Sensor as DesignSensor
-from hubbeam.control.shaping import case_shaping_mode
+from hubbeam.control.shaping import ShapingMode, case_shaping_mode
 from hubbeam.linear.discrete import discretise
 from hubbeam.linear.export import state_units
 from hubbeam.linear.lumped import LUMPED_SIGNALS
 from hubbeam.linear.reduction import MODAL_PREFIX, reduce_for_sampling
 from hubbeam.linear.statespace import OUTPUTS, linear_model
+from hubbeam.model.eigen import critical_speed
 from hubbeam.model.maneuvers import StateFeedback
 from hubbeam.model.shapers import Shaper, check_sampling, rounded
+from hubbeam.results.reader import simulation_inputs
 from hubbeam.simulation.errors import SimulationError
 from hubbeam.simulation.sampled import SampledLoop, Sensor
 from hubbeam.simulation.simulate import Resolved, case_matrices, needs_resolving, simulate
@@ -117,19 +119,42 @@ def sampled_loop(case: Case, controller: SampledController) -> SampledLoop:
 def case_shaper(case: Case, beam, sm, sample_time: float | None = None) -> Shaper:
     """The command shaper of ``case`` (``case.shaper``): on its given frequencies, or tuned on the
     modes the command excites in the linearisation of its model (or the shaper's) at the shaper's
-    speed (default the maneuver's final speed); with a ``sample_time``, checked against it and
+    speed (default the maneuver's final speed), designed at its ``frequency_ratio`` times their
+    frequencies if it has one; with a ``sample_time``, checked against it and
     rounded to its samples (``hubbeam.model.shapers``)."""
     spec = case.shaper
     modes = spec.given_modes()
     if modes is None:
         speed = case.maneuver.final_speed if spec.speed is None else spec.speed
         found = [case_shaping_mode(case, beam, sm, speed, mode=number, model=spec.model) for number in spec.modes]
-        modes = [(mode.omega, mode.zeta) for mode in found]
+        modes = spec.design_modes([(mode.omega, mode.zeta) for mode in found])
     shaper = spec.shaper(modes)
     if sample_time is None:
         return shaper
     check_sampling(shaper, sample_time)
     return rounded(shaper, sample_time)
+
+
+def dataset_shaping_mode(ds, model: str, speed: float | None = None) -> ShapingMode:
+    """The mode :func:`case_shaper` would tune the case of the simulation dataset ``ds`` to
+    (:func:`~hubbeam.control.shaping.case_shaping_mode`, its first mode) on ``model``'s
+    linearisation at ``speed`` (default the maneuver's final speed): the case, beam and matrices
+    rebuilt from the dataset's attributes (:func:`hubbeam.results.reader.simulation_inputs`). A
+    study finds the mode a shaper should have been tuned to on the model it ran on this way."""
+    inputs = simulation_inputs(ds.attrs)
+    beam = inputs["params"]
+    case, numerics = simulation_settings(inputs["case"], inputs["numerics"], beam.L)
+    sm = case_matrices(case, beam, numerics)
+    return case_shaping_mode(case, beam, sm, case.maneuver.final_speed if speed is None else speed, model=model)
+
+
+def dataset_critical_speed(ds, model: str = "TLAM", search_max: float = 100.0) -> float:
+    """``model``'s critical speed (rad s-1; NaN when none up to ``search_max``) for the beam, tip
+    mass and modes of the simulation dataset ``ds`` (:func:`hubbeam.model.eigen.critical_speed`)."""
+    inputs = simulation_inputs(ds.attrs)
+    beam = inputs["params"]
+    case, numerics = simulation_settings(inputs["case"], inputs["numerics"], beam.L)
+    return critical_speed(model, beam, case.tip_mass, case.modes, search_max, numerics.quadrature_points)
 
 
 def resolve(case: Case, sm, beam) -> Resolved:

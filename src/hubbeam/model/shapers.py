@@ -249,8 +249,10 @@ class ShaperSpec:
     """A case's shaper as configured (schema ``shaper``): the design ``kind`` (:data:`DESIGNS`),
     EI's ``v_tol``, and either given ``frequencies`` (rad s-1) and ``damping`` ratios, or the
     ``modes`` (numbers) of ``model``'s linearisation at ``speed`` to tune to (``hubbeam.control.shaping``;
-    None: the case's model, the maneuver's final speed). :func:`shaper_of` builds the shaper of
-    given frequencies; a tuned one needs the linear models."""
+    None: the case's model, the maneuver's final speed), each designed at ``frequency_ratio`` times
+    its frequency (None: at the frequency itself; another ratio puts a known frequency error into
+    the design, the horizontal axis of an insensitivity curve measured on a model).
+    :meth:`given_modes` gives the modes of given frequencies; a tuned one needs the linear models."""
 
     kind: str
     v_tol: float | None = None
@@ -259,11 +261,12 @@ class ShaperSpec:
     speed: float | None = None
     frequencies: tuple[float, ...] | None = None
     damping: tuple[float, ...] | None = None
+    frequency_ratio: float | None = None
 
     @classmethod
     def from_dict(cls, entry) -> ShaperSpec:
         values = {"kind": entry["kind"]}
-        for key in ("v_tol", "speed"):
+        for key in ("v_tol", "speed", "frequency_ratio"):
             if key in entry:
                 values[key] = float(entry[key])
         if "model" in entry:
@@ -277,7 +280,7 @@ class ShaperSpec:
 
     def to_dict(self) -> dict:
         plain = {"kind": self.kind, "modes": list(self.modes)}
-        for key in ("v_tol", "model", "speed", "frequencies", "damping"):
+        for key in ("v_tol", "model", "speed", "frequencies", "damping", "frequency_ratio"):
             value = getattr(self, key)
             if value is not None:
                 plain[key] = list(value) if isinstance(value, tuple) else value
@@ -291,6 +294,13 @@ class ShaperSpec:
     def shaper(self, modes) -> Shaper:
         """The shaper of this design for the ``(omega, zeta)`` pairs ``modes``."""
         return multi_mode(modes, self.kind, **self.options)
+
+    def design_modes(self, modes) -> list[tuple[float, float]]:
+        """The ``(omega, zeta)`` pairs the shaper is designed for, from the tuned ``modes``: each
+        frequency times :attr:`frequency_ratio` (the pairs unchanged without one)."""
+        if self.frequency_ratio is None:
+            return list(modes)
+        return [(self.frequency_ratio * omega, zeta) for omega, zeta in modes]
 
     def given_modes(self) -> list[tuple[float, float]] | None:
         """The ``(omega, zeta)`` pairs of given frequencies (None when tuned on a model)."""

@@ -62,6 +62,7 @@ from hubbeam.reporting.products import (
     LINEAR_NC,
     PAPER,
     PAPER_PRODUCTS,
+    SHAPING_FIGURE,
     SIMULATION_FIGURE,
     TABLE,
     TABLE2_CSV,
@@ -72,6 +73,7 @@ from hubbeam.reporting.products import (
     product_cases,
     product_sets,
     products_for,
+    shaped_cases,
 )
 from hubbeam.reporting.sourcedeps import script_dependencies
 from hubbeam.results.paths import FIGURE_FORMATS, SHARED, TABLE_FORMATS, StudyPaths, study_paths
@@ -492,15 +494,20 @@ class _Planner:
                              input={"simulations": self.comparison_simulations},
                              params={**common, "per_case": False, "cases": self.comparison, "name": "{comparison}"},
                              wildcards=[{"comparison": name} for name in sorted(self.comparisons)])
-        designed = designed_cases(self.cfg)
         name = self.settings.study.name if self.settings.study is not None else key
+        if product.kind == SHAPING_FIGURE:
+            return self.step("study_figure.py", output=self.figure(key), log=log, modules=(product.module,),
+                             input={"simulations": self.simulations(self.cases)},
+                             params={**common, "per_case": False, "cases": list(self.cases), "name": name})
+        designed = designed_cases(self.cfg)
         return self.step("study_figure.py", output=self.figure(key), log=log, modules=(product.module,),
                          input={"simulations": self.simulations(designed)},
                          params={**common, "per_case": False, "cases": designed, "name": name})
 
     def figure_steps(self) -> dict[str, Step]:
         return {f"figure_{key}": self.figure_step(key, product) for key, product in self.products.items()
-                if product.kind in (SIMULATION_FIGURE, FILES_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE)}
+                if product.kind in (SIMULATION_FIGURE, FILES_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, DESIGNS_FIGURE,
+                                    SHAPING_FIGURE)}
 
     def figure_targets(self) -> list[str]:
         """The PDF and PNG of every figure of the configuration."""
@@ -621,8 +628,15 @@ class _Planner:
         """The reports the configuration asks for: the claims and the reproduction report with the
         paper's products, the study report with a ``study`` section."""
         paper = [self.paths.claims(), self.paths.reproduction("md"), self.paths.reproduction("html")]
-        study = [self.paths.study_report("md"), self.paths.study_report("html"), self.paths.summary()]
+        study = [self.paths.study_report("md"), self.paths.study_report("html"), self.paths.summary(),
+                 *self.shaping_data().values()]
         return (paper if self.with_paper else []) + (study if self.settings.study is not None else [])
+
+    def shaping_data(self) -> dict[str, str]:
+        """The numbers of a study that shapes commands (``hubbeam.study.shaping``), written with its
+        report: ``{"shaping": report/shaping.nc}``, or nothing."""
+        shaped = self.settings.study is not None and shaped_cases(self.cfg)
+        return {"shaping": self.paths.shaping()} if shaped else {}
 
     def report_steps(self) -> dict[str, Step]:
         paths, cfg, settings = self.paths, self.cfg, self.settings
@@ -643,7 +657,7 @@ class _Planner:
                 params={"cases": list(self.cases), "numerics": cfg["numerics"], "readings": cfg.get("readings", {})}),
             "study_report": self.step(
                 "study_report.py", output={"markdown": paths.study_report("md"), "html": paths.study_report("html"),
-                                           "summary": paths.summary()},
+                                           "summary": paths.summary(), **self.shaping_data()},
                 log=paths.log("report", "report.log"),
                 input={"simulations": self.simulations(self.cases), "figures": list(self.figure_files("png").values()),
                        "matrices": [self.matrices_file(settings.case(case)) for case in self.cases],

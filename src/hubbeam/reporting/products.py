@@ -41,8 +41,11 @@ COMPARISON_FIGURE = "figure per comparison"
 FILES_FIGURE = "figure of result files"
 #: one figure (``<key>``) of every case whose state feedback was designed (``maneuver.design``)
 DESIGNS_FIGURE = "figure of the feedback designs"
+#: one figure (``<key>``) of every run of a study that shapes a case's command (``shaper``); its
+#: ``options`` select the shapers it needs (:func:`shaped_cases`)
+SHAPING_FIGURE = "figure of the shaped commands"
 TABLE = "table"
-KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, FILES_FIGURE, DESIGNS_FIGURE, TABLE)
+KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, FILES_FIGURE, DESIGNS_FIGURE, SHAPING_FIGURE, TABLE)
 
 #: the section of the reports a product is shown in: the paper's reproduction report, or a
 #: section of the study report (the beam, the cases, the comparisons, the feedback designs, the
@@ -54,8 +57,9 @@ COMPARISONS_SECTION = "comparisons"
 DESIGNS_SECTION = "designs"
 EIGEN_SECTION = "eigen"
 LINEAR_SECTION = "linear"
+SHAPING_SECTION = "shaping"
 SECTIONS = (PAPER_SECTION, BEAM_SECTION, CASES_SECTION, COMPARISONS_SECTION, DESIGNS_SECTION, EIGEN_SECTION,
-            LINEAR_SECTION)
+            LINEAR_SECTION, SHAPING_SECTION)
 
 # the result files the products and the claims read, relative to a results folder: each named once
 K22_NC = IN_RESULTS.eigen("k22")
@@ -135,9 +139,11 @@ class Product:
 
     def is_built_for(self, cfg: Mapping) -> bool:
         """Whether the configuration ``cfg`` has every key the product needs (and, for a figure of
-        the feedback designs, a designed case)."""
+        the feedback designs, a designed case; for a figure of the shaped commands, a case with
+        the shaper its ``options`` select)."""
         return (all(_has(cfg, key.split(".")) for key in self.needs)
-                and (self.kind != DESIGNS_FIGURE or bool(designed_cases(cfg))))
+                and (self.kind != DESIGNS_FIGURE or bool(designed_cases(cfg)))
+                and (self.kind != SHAPING_FIGURE or bool(shaped_cases(cfg, **self.options))))
 
     @property
     def module(self) -> str:
@@ -161,6 +167,15 @@ def designed_cases(cfg: Mapping) -> list[str]:
     """The cases of ``cfg`` whose state feedback is designed by LQR (``maneuver.design``), sorted."""
     return sorted(name for name, case in cfg.get("cases", {}).items()
                   if isinstance(case, Mapping) and "design" in case.get("maneuver", {}))
+
+
+def shaped_cases(cfg: Mapping, kind: str | None = None, ratios: bool = False) -> list[str]:
+    """The cases of ``cfg`` whose command is shaped (``shaper``), of the shaper ``kind`` if given,
+    only those designed at a ``frequency_ratio`` with ``ratios``; sorted."""
+    return sorted(name for name, case in cfg.get("cases", {}).items()
+                  if isinstance(case, Mapping) and isinstance(case.get("shaper"), Mapping)
+                  and kind in (None, case["shaper"].get("kind"))
+                  and (not ratios or "frequency_ratio" in case["shaper"]))
 
 
 def _has(cfg, keys: list[str]) -> bool:
@@ -312,6 +327,22 @@ GENERAL_PRODUCTS: Mapping[str, Product] = registry(
              "linear model, one parameter moved over its range at a time (payload, EI, Beq, kt = km, Rm); "
              "the nominal value marked; above 1 the loop is unstable.",
         files={"robustness": CONTROL_NC["robustness"]}, needs=("control.robustness",), section=DESIGNS_SECTION),
+    Product(
+        "shaping_residuals", SHAPING_FIGURE, "hubbeam.plotting.shaping:residuals",
+        "Residual vibration of shaped spin-ups against final speed", in_paper=False,
+        ours="The tip's residual vibration on CFOAM after the shaped command ends, per shaper and the "
+             "model it was tuned on (or at rest), against the final speed, with the unshaped runs and "
+             "TLAM's critical speed marked.",
+        needs=("study",), section=SHAPING_SECTION),
+    *(Product(
+        f"shaping_insensitivity_{kind.lower()}", SHAPING_FIGURE,
+        f"hubbeam.plotting.shaping:insensitivity_{kind.lower()}",
+        f"Insensitivity of the {kind} shaper on CFOAM", in_paper=False,
+        ours=f"The residual vibration a {kind} shaper designed at a multiple of CFOAM's own mode leaves on "
+             "CFOAM, relative to the unshaped run's, against that multiple (the frequency error), beside "
+             "the closed form for the linear mode.",
+        needs=("study",), options={"kind": kind, "ratios": True}, section=SHAPING_SECTION)
+      for kind in ("ZV", "ZVD", "EI")),
 )
 
 # --- the paper's products ------------------------------------------------------------------------

@@ -142,6 +142,10 @@ class StudyPaths:
         """A study's summary, a row per case."""
         return self.report("summary.csv")
 
+    def shaping(self) -> str:
+        """The numbers of a study that shapes commands (``hubbeam.study.shaping``), beside its report."""
+        return self.report("shaping.nc")
+
     def validation_report(self, ext: str) -> str:
         """The report of the independent validation (``md`` or ``html``; ``snakemake validate``)."""
         return self.report(f"validation_exudyn.{ext}")

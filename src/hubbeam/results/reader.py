@@ -87,13 +87,37 @@ def tip_position(case: str, ds: xr.Dataset) -> float:
     return float(attr(case, ds, "tip_position_m"))
 
 
-def maneuver(case: str, ds: xr.Dataset) -> dict:
-    """The ``maneuver`` attribute (JSON) as a dict, e.g. ``{"kind": "prescribed", "wf": 3.0, ...}``."""
-    raw = attr(case, ds, "maneuver")
+def _json(case: str, ds: xr.Dataset, key: str) -> dict:
+    """The JSON attribute ``key`` as a dict."""
+    raw = attr(case, ds, key)
     try:
         return json.loads(raw) if isinstance(raw, str) else dict(raw)
     except (TypeError, ValueError) as err:
-        raise DatasetError(f"case {case!r}: attribute 'maneuver' is not JSON: {raw!r}") from err
+        raise DatasetError(f"case {case!r}: attribute {key!r} is not JSON: {raw!r}") from err
+
+
+def maneuver(case: str, ds: xr.Dataset) -> dict:
+    """The ``maneuver`` attribute (JSON) as a dict, e.g. ``{"kind": "prescribed", "wf": 3.0, ...}``."""
+    return _json(case, ds, "maneuver")
+
+
+def case_config(case: str, ds: xr.Dataset) -> dict:
+    """The case's settings as the run resolved them (the ``case_config`` attribute, JSON)."""
+    return _json(case, ds, "case_config")
+
+
+def shaper(case: str, ds: xr.Dataset) -> dict | None:
+    """The command shaper of a shaped run (the ``shaper`` attribute, JSON: ``name``, ``times``,
+    ``amplitudes``, ``modes`` as ``[omega, zeta]`` pairs; ``hubbeam.model.shapers.Shaper.to_dict``),
+    None for an unshaped run (which has no such attribute)."""
+    return _json(case, ds, "shaper") if "shaper" in ds.attrs else None
+
+
+def shaper_duration(case: str, ds: xr.Dataset) -> float:
+    """How much later the run's shaped command ends than the maneuver (s): its shaper's last
+    impulse time, 0 for an unshaped run."""
+    found = shaper(case, ds)
+    return 0.0 if found is None else float(found["times"][-1])
 
 
 def maneuver_value(case: str, ds: xr.Dataset, key: str) -> float:

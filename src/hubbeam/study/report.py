@@ -26,14 +26,17 @@ from hubbeam.reporting.products import (
     DESIGNS_SECTION,
     EIGEN_SECTION,
     LINEAR_SECTION,
+    SHAPING_SECTION,
 )
 from hubbeam.study.frequencies import frequencies_markdown
-from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, verdicts
+from hubbeam.study.summary import NO_SHAPER
+from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, performance, verdicts
 
 
 def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                    figures: Mapping[str, Mapping[str, str]], designs: Sequence[Mapping] = (),
-                   frequencies: Sequence[Mapping] = (), controllers: str = "") -> str:
+                   frequencies: Sequence[Mapping] = (), controllers: str = "",
+                   shaping: Mapping | None = None) -> str:
     """The report in Markdown. ``rows`` are summary rows, ``designs`` the rows of
     :func:`hubbeam.study.trust.design_table`, ``frequencies`` those of
     :func:`hubbeam.study.frequencies.case_frequencies`; ``figures`` gives, per section of the report (the
@@ -41,7 +44,9 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
     to the report by label: the case of a figure per case, the comparison of a figure per
     comparison, the figure's name otherwise. Sections the study report has no place for (the
     paper's) are left out. ``controllers``: the section on sampled controllers
-    (:func:`hubbeam.study.controllers.controllers_markdown`), shown before the case figures."""
+    (:func:`hubbeam.study.controllers.controllers_markdown`), shown before the case figures;
+    ``shaping``: the section of a command-shaping study (:func:`hubbeam.study.shaping.shaping_section`),
+    None without one."""
     def first(section: str) -> str | None:
         return next(iter(figures.get(section, {}).values()), None)
 
@@ -52,11 +57,13 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                   comparison_figures=figures.get(COMPARISONS_SECTION, {}),
                   beam_figure=first(BEAM_SECTION),
                   designs_table=designs_markdown(designs) if designs else "",
-                  verdicts=verdicts(list(designs)), design_figure=first(DESIGNS_SECTION),
+                  verdicts=verdicts(list(designs)), performance=performance(list(designs)),
+                  design_figure=first(DESIGNS_SECTION),
                   reference_model=REFERENCE_MODEL, settling_band=SETTLING_BAND,
                   trust_tolerance=TRUST_TOLERANCE,
                   eigen_figures=figures.get(EIGEN_SECTION, {}), linear_figures=figures.get(LINEAR_SECTION, {}),
-                  controllers=controllers)
+                  controllers=controllers,
+                  shaping=shaping, shaping_figures=figures.get(SHAPING_SECTION, {}))
 
 
 def beam_summary(beam: Mapping) -> list[dict]:
@@ -80,19 +87,25 @@ def beam_markdown(beam: Mapping) -> str:
 
 
 def cases_markdown(rows: Sequence[Mapping]) -> str:
-    """A line per case: settings, peak and residual tip deflection, validity, convergence check."""
+    """A line per case: settings, peak and residual tip deflection, validity, convergence check;
+    with shaped runs among them, the shaper and its move-time penalty too."""
     def convergence(row):
         if row["convergence"] == "not checked":
             return row["convergence"]
         return (f"{row['convergence']} (tolerance {number(row['convergence_tolerance_diff_m'], 2)} m, "
                 f"modes {number(row['convergence_modes_diff_m'], 2)} m)")
 
+    shaped = any(row["shaper"] != NO_SHAPER for row in rows)
+
+    def shaping(row):
+        return [row["shaper"], number(row["move_time_penalty_s"])] if shaped else []
+
     return markdown_table(
         ("case", "model", "maneuver", "modes", "tip mass (kg)", "peak v(L) (m)", "at t (s)", "end (s)",
-         "residual (m)", "validity", "convergence check"),
+         *(("shaper", "move-time penalty (s)") if shaped else ()), "residual (m)", "validity", "convergence check"),
         ([row["case"], row["model"], row["maneuver"], row["modes"], number(row["tip_mass_kg"]),
           number(row["peak_tip_deflection_m"]), number(row["peak_time_s"]), number(row["maneuver_end_s"]),
-          number(row["residual_amplitude_m"]), row["validity"], convergence(row)] for row in rows))
+          *shaping(row), number(row["residual_amplitude_m"]), row["validity"], convergence(row)] for row in rows))
 
 
 def designs_markdown(designs: Sequence[Mapping]) -> str:

@@ -1,7 +1,9 @@
 """One row of the study report per simulation: the measures of the tip deflection v(L).
 
 Every measure reads the simulation dataset through :mod:`hubbeam.results.reader`: the peak
-``max |v(L)|`` and its time, the residual amplitude ``max |v(L)|`` after the maneuver ends, its
+``max |v(L)|`` and its time, the residual amplitude ``max |v(L)|`` after the command ends (the
+maneuver's end, delayed by the duration of a command shaper, ``hubbeam.model.shapers``), the
+shaper and its move-time penalty (that duration: the shaped command ends so much later), its
 validity (:mod:`hubbeam.model.validity`: beyond the small-deflection range, left the range of the
 models, diverged), and the result of the optional convergence check
 (``numerics.convergence_check``).
@@ -24,6 +26,8 @@ from hubbeam.results.reader import (
     maneuver_end,
     model,
     n_modes,
+    shaper,
+    shaper_duration,
     times,
     tip_mass,
     variable,
@@ -31,9 +35,14 @@ from hubbeam.results.reader import (
 
 #: columns of a summary row, in the order of the report's table and csv file
 COLUMNS = ("case", "model", "maneuver", "modes", "tip_mass_kg", "peak_tip_deflection_m",
-           "peak_time_s", "maneuver_end_s", "residual_amplitude_m", "validity", "max_deflection_ratio",
+           "peak_time_s", "maneuver_end_s", "shaper", "move_time_penalty_s", "residual_amplitude_m", "validity",
+           "max_deflection_ratio",
            "diverged", "diverged_at_s",
            "convergence", "convergence_tolerance_diff_m", "convergence_modes_diff_m")
+
+
+#: the ``shaper`` of an unshaped run's row
+NO_SHAPER = "none"
 
 
 def case_summary(case: str, ds: xr.Dataset) -> dict:
@@ -43,6 +52,8 @@ def case_summary(case: str, ds: xr.Dataset) -> dict:
     tip = variable(case, ds, "tip_transverse").values
     bounded = bool(np.isfinite(tip).any())
     end = maneuver_end(found)
+    shaped = shaper(case, ds)
+    penalty = shaper_duration(case, ds)
     stopped = diverged_at(case, ds)
     return {
         "case": case,
@@ -53,7 +64,9 @@ def case_summary(case: str, ds: xr.Dataset) -> dict:
         "peak_tip_deflection_m": measures.peak(tip) if bounded else math.nan,
         "peak_time_s": measures.peak_time(t, tip) if bounded else math.nan,
         "maneuver_end_s": end,
-        "residual_amplitude_m": measures.residual_amplitude(t, tip, end),
+        "shaper": NO_SHAPER if shaped is None else shaped["name"],
+        "move_time_penalty_s": penalty,
+        "residual_amplitude_m": measures.shaped_residual_amplitude(t, tip, end, penalty),
         "validity": validity.describe(ds.attrs),
         "max_deflection_ratio": float(attr(case, ds, "max_deflection_ratio")),
         "diverged": stopped is not None,

@@ -13,7 +13,10 @@ the reference model (:data:`REFERENCE_MODEL`, the most complete) is the truth. A
 enough* at a speed when the reference loop is stable and its peak and residual tip deflections
 differ from the prediction by at most :data:`TRUST_TOLERANCE` (relative); :func:`verdicts`
 states, per design model, the first speed where it stops being good enough and by how much, and
-the first speed where its loop on the reference model is unstable.
+the first speed where its loop on the reference model is unstable. That is the question of
+*prediction*; :func:`performance` answers the other one, how the design does on the reference
+model against the other designs at the same speed (residual vibration): a design may predict
+poorly and still leave the least vibration.
 """
 
 from __future__ import annotations
@@ -33,6 +36,9 @@ REFERENCE_MODEL = "CFOAM"
 SETTLING_BAND = 0.05
 #: the largest relative gap between prediction and reference that is still good enough
 TRUST_TOLERANCE = 0.10
+#: residual vibrations within this relative difference of the least are tied for the least
+#: (SFOAM's and FOAM's designs leave residuals equal to two figures)
+TIE = 0.01
 #: the measures of a run, in the order of the report's table
 MEASURES = ("peak_tip_deflection_m", "residual_vibration_m", "settling_time_s", "peak_torque_Nm")
 
@@ -113,4 +119,35 @@ def verdicts(table: list[dict]) -> dict[str, str]:
         later = (f"; unstable on {REFERENCE_MODEL} from {min(unstable):g} rad/s"
                  if unstable and min(unstable) > failed["design_speed"] else "")
         out[name] = f"{upto}at {failed['design_speed']:g} rad/s {why}{later}"
+    return out
+
+
+def performance(table: list[dict]) -> dict[str, str]:
+    """Per design model, a sentence on its residual vibration on :data:`REFERENCE_MODEL` against
+    the other design models' at the same design speed (stable loops only): the speeds where it
+    leaves the least (within :data:`TIE`) and where it does not, with its residual and the
+    others' (m)."""
+    out = {}
+    truth = {(row["design_model"], row["design_speed"]): row["reference"]["residual_vibration_m"]
+             for row in table if row["reference"] and row["reference"]["stable"]}
+    for name in dict.fromkeys(row["design_model"] for row in table):
+        best, beaten = [], []
+        for speed in sorted(at for design, at in truth if design == name):
+            others = {design: value for (design, at), value in truth.items() if at == speed and design != name}
+            if not others:
+                continue
+            mine = truth[(name, speed)]
+            compared = (f"{speed:g} rad/s ({mine:.2g} m against "
+                        + ", ".join(f"{value:.2g} m ({design})" for design, value in others.items()) + ")")
+            (best if mine <= (1.0 + TIE) * min(others.values()) else beaten).append(compared)
+        unstable = [row["design_speed"] for row in table if row["design_model"] == name and row["reference"]
+                    and not row["reference"]["stable"]]
+        parts = ([f"the least residual vibration on {REFERENCE_MODEL} of the designs at " + "; ".join(best)]
+                 if best else [])
+        parts += ["more than another design at " + "; ".join(beaten)] if beaten else []
+        if unstable:
+            speeds = ", ".join(f"{speed:g}" for speed in unstable)
+            parts.append(f"unstable on {REFERENCE_MODEL} at {speeds} rad/s")
+        if parts:
+            out[name] = "; ".join(parts)
     return out

@@ -9,6 +9,7 @@ import logging
 import os
 from pathlib import Path
 
+from hubbeam.control.cases import dataset_critical_speed, dataset_shaping_mode
 from hubbeam.paper.claims import read_claims
 from hubbeam.paper.explain import section
 from hubbeam.paper.readings import read_rows
@@ -16,10 +17,12 @@ from hubbeam.paper.report import reproduction_markdown
 from hubbeam.pipeline.runner import Job
 from hubbeam.reporting.archive import build_archive, verify_archive
 from hubbeam.reporting.document import markdown_to_html
-from hubbeam.results.io import open_result, staged, write_text
+from hubbeam.results.io import open_result, staged, write_netcdf, write_text
 from hubbeam.study.controllers import controllers_markdown
 from hubbeam.study.frequencies import case_frequencies
 from hubbeam.study.report import study_html, study_markdown
+from hubbeam.study.shaping import reference_modes, shaped_runs, shaping_dataset
+from hubbeam.study.shaping_report import shaping_section
 from hubbeam.study.summary import COLUMNS, case_summary
 from hubbeam.study.trust import design_table
 from hubbeam.validation.report import published_section, validation_markdown
@@ -53,7 +56,9 @@ def reproduction_report(job: Job) -> None:
 def study_report(job: Job) -> None:
     """A study's report (Markdown, HTML) and its summary.csv, a row per case (``input.simulations``
     of ``params.cases``); the natural frequencies of each case (``params.case_settings``) from its
-    matrices (``input.matrices``); its figures by section of the report (``params.figures``)."""
+    matrices (``input.matrices``); its figures by section of the report (``params.figures``). With
+    an output ``shaping`` (a study that shapes commands), the section and the numbers of
+    :mod:`hubbeam.study.shaping`, on the reference model's modes from the linear models."""
     p, out = job.params, job.output
     report_dir = Path(out["markdown"]).parent
     datasets = {case: open_result(path) for case, path in zip(p["cases"], job.input["simulations"])}
@@ -62,8 +67,14 @@ def study_report(job: Job) -> None:
                    for name, case, path in zip(p["cases"], p["case_settings"], job.input["matrices"])]
     figures = {name: {label: os.path.relpath(path, report_dir) for label, path in shown.items()}
                for name, shown in p["figures"].items()}
+    shaping = None
+    if "shaping" in out:  # a study that shapes commands (its plan)
+        runs = shaped_runs(datasets)
+        modes = reference_modes(datasets, dataset_shaping_mode)
+        critical = dataset_critical_speed(next(iter(datasets.values())), "TLAM")
+        shaping = shaping_section(runs, modes, critical)
     markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets),
-                              frequencies=frequencies,
+                              frequencies=frequencies, shaping=shaping,
                               controllers=_controllers(job, datasets, figures, report_dir))
     write_text(out["markdown"], markdown)
     write_text(out["html"], study_html(markdown, p["study"].get("title", p["study"]["name"]), report_dir))
@@ -71,6 +82,8 @@ def study_report(job: Job) -> None:
         writer = csv.DictWriter(handle, fieldnames=COLUMNS)
         writer.writeheader()
         writer.writerows(rows)
+    if "shaping" in out:
+        write_netcdf(shaping_dataset(runs, modes, critical), out["shaping"])
     LOG.info("%d cases -> %s, %s, %s", len(rows), out["markdown"], out["html"], out["summary"])
 
 

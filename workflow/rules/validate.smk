@@ -24,7 +24,7 @@ without them stops before running anything, saying so. The Exudyn part needs the
 rule validate:
     localrule: True
     input:
-        lambda wildcards: PLAN.validation_targets(),
+        PLAN.validation_targets,
 
 
 rule validate_published:

@@ -162,9 +162,10 @@ class Plan:
         without any)."""
         return "|".join(self.settings.sweeps) or "no-sweeps"
 
-    def validation_targets(self) -> list[str]:
+    def validation_targets(self, wildcards=None) -> list[str]:
         """The files of ``snakemake validate``; :class:`NotPlanned` with the command that installs
-        them when an optional module it needs is not importable."""
+        them when an optional module it needs is not importable. An input function of the rule
+        (``wildcards`` unused): evaluated only when ``validate`` is asked for."""
         missing = [name for name in self.validation_modules if importlib.util.find_spec(name) is None]
         if missing:
             raise NotPlanned(

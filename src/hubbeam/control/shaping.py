@@ -36,15 +36,16 @@ import numpy as np
 
 from hubbeam.configuration.settings import Case
 from hubbeam.control.feedback import coordinate_names, feedback_law
-from hubbeam.linear.datasets import mode_weights
+from hubbeam.linear.datasets import HUB_NAMES, mode_weights
 from hubbeam.linear.statespace import linear_model
 from hubbeam.linear.tracking import dominant_content, numbered_by_frequency, state_modes
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.maneuvers import PRESCRIBED_HUB, Maneuver, PdControl, Tracking
 from hubbeam.model.root import HUB_COORDINATE
 
-#: the loop a command drives -> the hub of the linear model
-LOOPS = {"held": "prescribed", "free": "free", "closed": "free"}
+#: the loop a command drives -> the hub of the linear model: the datasets' hub conditions
+#: (``held``, ``free``) and a closed loop, whose plant has a free hub
+LOOPS = {**HUB_NAMES, "closed": HUB_NAMES["free"]}
 
 
 class ShapingMode(NamedTuple):

@@ -1,7 +1,8 @@
 # hubbeam: the two commands of README.md.
 #   make reproduce   set up .venv (if needed) and run the whole workflow with Snakemake
 #   make test        set up .venv (if needed) and run the test suite (with the import contracts and ruff, and
-#                    the independent Exudyn and pyBModes checks of the `validation` extra)
+#                    the independent Exudyn and pyBModes checks of the `validation` extra) on two workers,
+#                    each test file on one of them (its module fixtures built once)
 #   make test-fast   the same without the tests that run Snakemake or kill processes, or are slow
 #                    (-m "not workflow and not slow", see tests/conftest.py), on two workers (pytest-xdist)
 #   make test-slurm  bring up the one-node SLURM cluster (profiles/slurm/local-cluster.sh, as root),
@@ -24,7 +25,7 @@ reproduce: $(STAMP)
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/snakemake
 
 test: $(STAMP)
-	$(VENV_PYTHON) -m pytest -q
+	$(VENV_PYTHON) -m pytest -q -n 2 --dist loadfile
 
 test-fast: $(STAMP)
 	$(VENV_PYTHON) -m pytest -q -n 2 -m "not workflow and not slow"

@@ -13,12 +13,15 @@ from __future__ import annotations
 
 import copy
 import inspect
+import subprocess
+import sys
 from pathlib import Path
 from types import CodeType
 
 import pytest
 
 from hubbeam.configuration.load import load_config
+from hubbeam.model.models import FAMILIES
 from hubbeam.model.parameters import FLEXIBLE_LINK, BeamParameters
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
@@ -81,6 +84,22 @@ def runs_the_workflow(item: pytest.Item) -> bool:
     return _runs_the_workflow(function) or any(
         _runs_the_workflow(definition.func) for defs in definitions for definition in defs
         if definition.baseid.startswith("tests"))
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """On several workers (``pytest -n``) with the workflow tests selected, compile the simulation
+    kernels once, a process per model family, before the workers start: each worker would otherwise
+    compile the same kernels at once into numba's cache (minutes of CPU each after a source edit).
+    Loading them from a warm cache takes seconds; the fast loop (``not workflow``) skips this."""
+    workers = getattr(config.option, "numprocesses", None)
+    if not workers or hasattr(config, "workerinput") or "not workflow" in (config.option.markexpr or ""):
+        return
+    compiling = [subprocess.Popen([sys.executable, "-c", "from hubbeam.simulation.simulate import compile_kernels; "
+                                   f"compile_kernels({family!r}); compile_kernels({family!r}, sampled=True)"])
+                 for family in FAMILIES]
+    failed = [family for family, process in zip(FAMILIES, compiling) if process.wait() != 0]
+    if failed:
+        raise pytest.UsageError(f"compiling the simulation kernels of {', '.join(failed)} failed (see above)")
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

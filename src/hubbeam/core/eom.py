@@ -49,16 +49,13 @@ from hubbeam.core.shaping import shaped_motion, shaped_torque
 
 
 @kernel
-def free_dofs(traits, kind, n):
-    """Indices of ``y`` that are integrated: theta unless prescribed, q1 if the model keeps it."""
-    count = 2 * n + 1
-    if prescribed(kind):
-        count -= 1
-    if not traits.keeps_axial:
-        count -= n
+def free_indices(traits, n, theta, phi):
+    """Indices of the integrated entries of ``y``: theta (0) if ``theta``, q1 if the model keeps it,
+    q2, and the hub angle of a compliant root (``1 + 2 n``) if ``phi``."""
+    count = n * (2 if traits.keeps_axial else 1) + int(theta) + int(phi)
     free = np.empty(count, dtype=np.int64)
     k = 0
-    if not prescribed(kind):
+    if theta:
         free[k] = 0
         k += 1
     if traits.keeps_axial:
@@ -68,7 +65,15 @@ def free_dofs(traits, kind, n):
     for i in range(n):
         free[k] = 1 + n + i
         k += 1
+    if phi:
+        free[k] = 1 + 2 * n
     return free
+
+
+@kernel
+def free_dofs(traits, kind, n):
+    """Indices of ``y`` that are integrated: theta unless prescribed, q1 if the model keeps it."""
+    return free_indices(traits, n, not prescribed(kind), False)
 
 
 @kernel
@@ -77,29 +82,10 @@ def free_coordinates(inputs):
     ``inputs``: :func:`free_dofs`, and with a compliant root (``y = (theta, q1, q2, phi)``) theta
     always (the link turns on the spring), q1 if the model keeps it, q2, and the hub angle phi
     unless the maneuver prescribes it."""
-    traits = inputs.traits
-    kind = inputs.kind
     n = inputs.sm.M1.shape[0]
     if not has_joint(inputs.root):
-        return free_dofs(traits, kind, n)
-    count = 2 * n + 2
-    if prescribed(kind):
-        count -= 1
-    if not traits.keeps_axial:
-        count -= n
-    free = np.empty(count, dtype=np.int64)
-    free[0] = 0
-    k = 1
-    if traits.keeps_axial:
-        for i in range(n):
-            free[k] = 1 + i
-            k += 1
-    for i in range(n):
-        free[k] = 1 + n + i
-        k += 1
-    if not prescribed(kind):
-        free[k] = 1 + 2 * n
-    return free
+        return free_dofs(inputs.traits, inputs.kind, n)
+    return free_indices(inputs.traits, n, True, not prescribed(inputs.kind))
 
 
 @kernel

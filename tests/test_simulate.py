@@ -46,12 +46,18 @@ def torque_case(model, modes=2):
 def test_energy_and_angular_momentum_are_conserved_after_the_pulse(setup, model, rtol):
     params, numerics, _ = setup
     ds = simulate(torque_case(model), params, dict(numerics, rtol=rtol, atol=1e-2 * rtol))
+    assert_conserved_after(ds, 5.0, rtol)
+
+
+def assert_conserved_after(ds, t_pulse: float, rtol: float) -> None:
+    """After a rest-to-rest torque pulse ending at ``t_pulse`` the run ``ds`` did not diverge, its
+    energy is constant to ``rtol`` and its angular momentum is zero to ``rtol`` of its scale during
+    the pulse (the pulse leaves no net momentum)."""
     assert ds.attrs["diverged"] == 0
-    after = ds.time >= 5.0
+    after = ds.time >= t_pulse
     energy = ds.energy[after].values
     momentum = ds.angular_momentum[after].values
     assert np.ptp(energy) <= rtol * np.max(abs(energy))
-    # the rest-to-rest pulse leaves no net momentum: compare with its scale during the pulse
     assert np.ptp(momentum) <= rtol * float(abs(ds.angular_momentum).max())
     assert abs(momentum[0]) <= rtol * float(abs(ds.angular_momentum).max())
 

@@ -515,21 +515,28 @@ def strain_energy(y, K1, K2):
 
 
 @borrowing_kernel
+def add_kinetic(M, v, e, hub):
+    """``e`` plus the kinetic energy ``v^T M v / 2``, and the angular momentum about the hub axis: the
+    momenta ``(M v)_0`` of theta and, with a compliant root, ``(M v)_hub`` of the hub angle (``hub`` 0
+    without one, counted once)."""
+    p = 0.0
+    for i in range(v.shape[0]):
+        mv = 0.0
+        for j in range(v.shape[0]):
+            mv += M[i, j] * v[j]
+        e += 0.5 * v[i] * mv
+        if i == 0 or i == hub:
+            p += mv
+    return e, p
+
+
+@borrowing_kernel
 def outputs(kind, tau, y, v, sm, free, a_out, ws):
     """Accelerations and ``(torque, Q_theta, energy, angular_momentum)`` of a state whose mass
     matrix and force are already in ``ws.M``, ``ws.F`` (applied torque ``tau``, constrained
     entries of ``y, v, a_out`` imposed): one mass matrix for all of them."""
-    N = y.shape[0]
     torque, q_theta = solve_free(kind, tau, free, a_out, ws, 0)
-    e = strain_energy(y, sm.K1, sm.K2)
-    p = 0.0
-    for i in range(N):
-        mv = 0.0
-        for j in range(N):
-            mv += ws.M[i, j] * v[j]
-        e += 0.5 * v[i] * mv
-        if i == 0:
-            p = mv
+    e, p = add_kinetic(ws.M, v, strain_energy(y, sm.K1, sm.K2), 0)
     return torque, q_theta, e, p
 
 
@@ -539,18 +546,9 @@ def joint_outputs(inputs, tau, y, v, free, a_out, ws):
     angular momentum)``, the energy with the spring's, the angular momentum about the hub axis of
     hub and link (the hub angle's and the root angle's momenta), ``Q_theta`` the root angle's force
     besides the spring and the damper."""
-    N = y.shape[0]
-    hub = N - 1
+    hub = y.shape[0] - 1
     torque, _ = solve_free(inputs.kind, tau, free, a_out, ws, hub)
-    e = strain_energy(y, inputs.sm.K1, inputs.sm.K2) + spring_energy(inputs.root, y)
-    p = 0.0
-    for i in range(N):
-        mv = 0.0
-        for j in range(N):
-            mv += ws.M[i, j] * v[j]
-        e += 0.5 * v[i] * mv
-        if i == 0 or i == hub:
-            p += mv
+    e, p = add_kinetic(ws.M, v, strain_energy(y, inputs.sm.K1, inputs.sm.K2) + spring_energy(inputs.root, y), hub)
     return torque, ws.F[0] - spring_torque(inputs.root, y, v), e, p
 
 

@@ -6,9 +6,10 @@
 The paper is the default study (config/config.yaml, products directly under results/).
 `snakemake --configfile studies/<name>.yaml` runs a study instead (docs/studies.md): a config with
 a `study` section replaces config/config.yaml entirely (Snakemake would otherwise merge the two),
-and its products go to results/<name>/ only. Every configuration runs the same rules; what each
-builds, with which inputs and params, is the configuration's plan (hubbeam.pipeline.plan,
-docs/pipeline.md).
+and its products go to results/<name>/ only. What each configuration builds, with which inputs and
+params, is its plan (hubbeam.pipeline.plan, docs/pipeline.md): one rule per step the families of
+hubbeam.pipeline.families declare (workflow/rules/steps.smk), their target rules
+(workflow/rules/targets.smk) and `all`.
 """
 
 import sys
@@ -30,8 +31,9 @@ for base_config_file in base_config_files(config):
 
 
 # The configuration checked once, every problem in one message (the schema, the physical checks,
-# the feedback designs, the readings, the products' cases, the study's folder), and turned into the
-# plan every rule reads: a bad config stops here, before any rule, without a traceback.
+# the designs, sampled controllers and shapers, the readings, the products' cases, the study's
+# folder), and turned into the plan every rule reads: a bad config stops here, before any rule,
+# without a traceback.
 try:
     PLAN = build_plan(config, workflow.configfiles, workflow.basedir)
 except PlanError as error:
@@ -40,6 +42,7 @@ except PlanError as error:
 
 wildcard_constraints:
     case=CASE_NAME_PATTERN,
+    comparison=CASE_NAME_PATTERN,
 
 
 include: "workflow/rules/common.smk"
@@ -58,7 +61,3 @@ rule all:
     localrule: True
     input:
         PLAN.targets,
-
-
-# each rule runs the script of its step in the plan, and every step has its rule
-PLAN.check_scripts({rule.name: rule.script for rule in workflow.rules})

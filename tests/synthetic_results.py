@@ -267,17 +267,18 @@ def rig_run(case, params, numerics, *, motor=None, loop=None, feedback=None):
     return SimpleNamespace(**result._asdict(), matrices=sm)
 
 
-def run_script(name: str, *, input=None, output=None, params=None, log=None) -> None:
-    """Execute ``workflow/scripts/<name>`` with a ``snakemake`` object as Snakemake would
-    (the log goes to ``log`` or, by default, beside the first output)."""
+def run_script(job: str, *, input=None, output=None, params=None, log=None) -> None:
+    """Execute the workflow's script on the job function ``job`` (``"module:function"``) with a
+    ``snakemake`` object as Snakemake would (the log goes to ``log`` or, by default, beside the
+    first output)."""
     import runpy
     from types import SimpleNamespace
 
     output = dict(output or {})
     log = log or str(Path(next(iter(output.values()))).with_suffix(".log"))
     snakemake = SimpleNamespace(input=Section(input or {}), output=Section(output),
-                                params=Section(params or {}), log=Section({"log": log}))
-    runpy.run_path(str(SCRIPTS / name), init_globals={"snakemake": snakemake}, run_name="__snakemake__")
+                                params=Section({"job": job, **(params or {})}), log=Section({"log": log}))
+    runpy.run_path(str(SCRIPTS / "run_job.py"), init_globals={"snakemake": snakemake}, run_name="__snakemake__")
 
 
 # --- validation results (files of rule validate_published and of `snakemake validate`) ----------

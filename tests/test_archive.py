@@ -47,8 +47,8 @@ def test_archive_holds_files_config_and_a_manifest_that_verifies(files):
     contents = members(out)
     top = archive.TOP
     workflow = archive.workflow_files(REPO)
-    assert "Snakefile" in workflow and "workflow/rules/report.smk" in workflow
-    assert "workflow/scripts/archive.py" in workflow
+    assert "Snakefile" in workflow and "workflow/rules/steps.smk" in workflow
+    assert "workflow/scripts/run_job.py" in workflow
     assert not [name for name in workflow if "__pycache__" in name]
     bundled = [*names, *workflow, archive.CONFIG_NAME, archive.METADATA_NAME]
     assert set(contents) == {f"{top}/{n}" for n in [*bundled, archive.MANIFEST]}
@@ -247,7 +247,7 @@ def test_the_archive_describes_itself_as_a_workflow_run_crate(tiny_workflow, tmp
     files = sorted(str(path.relative_to(crate_dir)) for path in crate_dir.rglob("*") if path.is_file())
     results = [name for name in files if name.startswith("results/")]
     assert sorted(ids(run["result"])) == results
-    assert "workflow/scripts/archive.py" in ids(workflow["hasPart"])
+    assert "workflow/scripts/run_job.py" in ids(workflow["hasPart"])
     described = [name for name in files if name not in (archive.MANIFEST, archive.METADATA_NAME)]
     assert sorted(name for name in graph if name in described) == described
     for name in described:

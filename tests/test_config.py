@@ -14,9 +14,9 @@ import yaml
 
 from hubbeam.configuration.load import (
     ConfigError,
+    check_schema,
     load_config,
     read_config_file,
-    validate_config,
 )
 from hubbeam.configuration.schema import CASE_NAME_PATTERN, SCHEMA
 from hubbeam.configuration.settings import Case, case_from_config, from_config
@@ -41,7 +41,7 @@ def delete_at(cfg: dict, dotted: str) -> None:
 
 def problems_of(cfg: dict, files=()) -> list[str]:
     with pytest.raises(ConfigError) as caught:
-        validate_config(cfg, files=files)
+        check_schema(cfg, files=files)
     message = str(caught.value)
     assert all(str(problem) in message for problem in caught.value.problems)
     return [str(problem) for problem in caught.value.problems]
@@ -59,7 +59,7 @@ def assert_reported(problems: list[str], path: str, *fragments: str) -> None:
 
 
 def test_study_config_is_valid_and_transcribes_table1(study_config):
-    assert validate_config(study_config) is study_config
+    assert check_schema(study_config) is study_config
     assert BeamParameters.from_config(study_config) == BeamParameters(**TABLE1)
     params = BeamParameters.from_config(study_config)
     assert params.rhoA == TABLE1["rho"] * TABLE1["A"]
@@ -76,7 +76,7 @@ def test_a_case_gets_the_defaults_of_numerics_and_of_its_tip_mass(study_config):
 
     study_config["cases"]["mid_mass"] = {"model": "TLAM", "maneuver": {"kind": "torque", "tau_max": 5.0, "tf": 2.0},
                                          "t_end": 3.0, "tip_mass": {"mass": 0.2}}
-    validate_config(study_config)
+    check_schema(study_config)
     assert case_from_config(study_config, "mid_mass").tip_mass == TipMass(0.2, length)
 
 
@@ -168,7 +168,7 @@ NUMBERS_AS_TEXT = [  # YAML 1.1 reads the first two as text
 @pytest.mark.parametrize("dotted, text, number", NUMBERS_AS_TEXT, ids=[d for d, _, _ in NUMBERS_AS_TEXT])
 def test_numbers_written_as_text_are_accepted_as_numbers(study_config, dotted, text, number):
     set_at(study_config, dotted, text)
-    validated = validate_config(study_config)
+    validated = check_schema(study_config)
     *parents, last = dotted.split(".")
     for key in parents:
         validated = validated[key]
@@ -220,7 +220,7 @@ def test_convergence_meshes_must_hold_the_tip_mass_of_their_case(study_config):
     assert_reported(problems_of(study_config), "validation.cases.spinup_wf2p0_mt0p5.tip_mass.position",
                     "got 7.5", "beam.length / validation.convergence.elements[0] = 2 m")
     validation["convergence"]["elements"] = [16, 32]
-    validate_config(study_config)
+    check_schema(study_config)
 
 
 INITIAL_PROBLEMS = [
@@ -328,7 +328,7 @@ def test_every_problem_in_one_message(study_config):
     set_at(study_config, "cases.fig10_foam_mt0p5.tip_mass.position", 8.01)
     set_at(study_config, "numerics.rtol", 2.0)
     with pytest.raises(ConfigError) as caught:
-        validate_config(study_config)
+        check_schema(study_config)
     message = str(caught.value)
     assert message.startswith("invalid hubbeam configuration, 3 problems:")
     for fragment in ("cases.fig05_tlam_wf2p8.maneuver.wf: got -2.8",
@@ -521,7 +521,7 @@ def test_a_checked_configuration_becomes_frozen_objects_that_give_back_its_cases
     from hubbeam.configuration.tabular import resolve_files
     from hubbeam.model.beam import beam_from_config
 
-    cfg = validate_config(resolve_files(read_config_file(repo_root / path), (repo_root / path).parent))
+    cfg = check_schema(resolve_files(read_config_file(repo_root / path), (repo_root / path).parent))
     settings = from_config(cfg)
     assert settings.beam == beam_from_config(cfg["beam"])
     assert (settings.study is None) == ("study" not in cfg)
@@ -557,7 +557,7 @@ def test_every_pattern_of_the_schema_is_said_in_words():
 
 def test_a_tip_body_is_read_with_its_inertia_and_offset(study_config):
     study_config["cases"]["fig10_foam_mt0p1"]["tip_mass"] |= {"inertia": 5e-4, "offset": 0.02}
-    validate_config(study_config)
+    check_schema(study_config)
     case = from_config(study_config).cases["fig10_foam_mt0p1"]
     assert case.tip_mass == TipMass(0.1, 8.0, 5e-4, 0.02)
     assert case.to_dict()["tip_mass"] == {"mass": 0.1, "position": 8.0, "inertia": 5e-4, "offset": 0.02}

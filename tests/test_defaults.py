@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from hubbeam.configuration import defaults
-from hubbeam.configuration.load import ConfigError, load_config, read_config_file, validate_config
+from hubbeam.configuration.load import ConfigError, check_schema, load_config, read_config_file
 from hubbeam.configuration.schema import SCHEMA
 from hubbeam.configuration.tabular import resolve_files
 from hubbeam.model.beam import beam_from_config
@@ -70,28 +70,28 @@ def test_numerics_defaults_are_the_schema_defaults_and_valid():
     # every key that was required before has a default; the optional ones keep theirs in the code
     assert set(documented) == {"modes", "quadrature_points", "rtol", "atol", "output_step", "max_steps",
                                "step_warning", "divergence_limit"}
-    cfg = validate_config(bare_study(spin=spin_up(6.0)))
+    cfg = check_schema(bare_study(spin=spin_up(6.0)))
     assert cfg["numerics"] == documented
 
 
 def test_a_numerics_value_given_is_kept_and_checked():
     cfg = bare_study(spin=spin_up(6.0))
     cfg["numerics"] = {"modes": 3}
-    validate_config(cfg)
+    check_schema(cfg)
     assert cfg["numerics"]["modes"] == 3 and cfg["numerics"]["rtol"] == defaults.numerics_defaults()["rtol"]
     cfg = bare_study(spin=spin_up(6.0))
     cfg["numerics"] = {"rtol": 2.0}
     with pytest.raises(ValueError, match=r"numerics\.rtol: got 2\.0"):
-        validate_config(cfg)
+        check_schema(cfg)
 
 
 def test_a_case_shorter_than_the_default_output_step_is_reported():
     with pytest.raises(ValueError, match=r"t_end >= numerics\.output_step = 0\.01"):
-        validate_config(bare_study(spin=spin_up(6.0) | {"t_end": 0.005}))
+        check_schema(bare_study(spin=spin_up(6.0) | {"t_end": 0.005}))
 
 
 def test_eigen_grids_cover_the_cases_and_the_critical_speed():
-    cfg = validate_config(bare_study(slow=spin_up(2.0, tip_mass={"mass": 0.5, "position": 6.0}),
+    cfg = check_schema(bare_study(slow=spin_up(2.0, tip_mass={"mass": 0.5, "position": 6.0}),
                                      fast=spin_up(9.0, tip_mass={"mass": 0.2})))
     eigen = cfg["eigen"]
     assert eigen["tip_masses"] == [0.0, 0.2, 0.5]
@@ -105,7 +105,7 @@ def test_eigen_grids_cover_the_cases_and_the_critical_speed():
 
 
 def test_the_linear_section_follows_the_eigen_grid_and_the_largest_tip_mass():
-    cfg = validate_config(bare_study(slow=spin_up(2.0, tip_mass={"mass": 0.5, "position": 6.0}),
+    cfg = check_schema(bare_study(slow=spin_up(2.0, tip_mass={"mass": 0.5, "position": 6.0}),
                                      fast=spin_up(9.0, tip_mass={"mass": 0.2})))
     linear, top = cfg["linear"], cfg["eigen"]["speeds"]["stop"]
     assert linear["speeds"] == cfg["eigen"]["speeds"]
@@ -114,7 +114,7 @@ def test_the_linear_section_follows_the_eigen_grid_and_the_largest_tip_mass():
     assert linear["frequencies"] == defaults.LINEAR_FREQUENCIES
     assert linear["shapes"] == defaults.LINEAR_SHAPES
     assert "damping" not in linear
-    assert validate_config(bare_study(one=spin_up(2.0)))["linear"]["tip_masses"] == [0.0]
+    assert check_schema(bare_study(one=spin_up(2.0)))["linear"]["tip_masses"] == [0.0]
 
 
 @pytest.mark.parametrize("linear, key", [
@@ -124,12 +124,12 @@ def test_the_linear_section_follows_the_eigen_grid_and_the_largest_tip_mass():
 ])
 def test_a_linear_grid_that_does_not_increase_is_reported(linear, key):
     with pytest.raises(ConfigError) as caught:
-        validate_config(bare_study(one=spin_up(2.0)) | {"linear": linear})
+        check_schema(bare_study(one=spin_up(2.0)) | {"linear": linear})
     assert [str(problem) for problem in caught.value.problems if str(problem).startswith(f"{key}: got")]
 
 
 def test_the_critical_speed_sets_the_grid_above_slow_cases():
-    cfg = validate_config(bare_study(slow=spin_up(1.0)))
+    cfg = check_schema(bare_study(slow=spin_up(1.0)))
     assert cfg["eigen"]["speeds"]["stop"] >= defaults.SPEED_MARGIN * first_frequency(BEAM)
 
 
@@ -191,7 +191,7 @@ def test_highest_hub_speed_of_the_prescribed_and_reference_kinds(maneuver, expec
 def test_an_eigen_value_given_is_kept():
     cfg = bare_study(spin=spin_up(6.0))
     cfg["eigen"] = {"tip_masses": [0.0, 2.0], "speeds": {"start": 1.0, "stop": 3.0, "num": 3}}
-    validate_config(cfg)
+    check_schema(cfg)
     assert cfg["eigen"]["tip_masses"] == [0.0, 2.0]
     assert cfg["eigen"]["speeds"] == {"start": 1.0, "stop": 3.0, "num": 3}
     assert cfg["eigen"]["critical_speed_search_max"] >= defaults.SPEED_MARGIN * first_frequency(BEAM)
@@ -201,7 +201,7 @@ def test_an_eigen_value_given_is_kept():
 def test_a_config_that_spells_everything_out_is_not_changed(name):
     path = REPO / name
     given = resolve_files(read_config_file(path), path.parent)
-    assert validate_config(copy.deepcopy(given)) == given
+    assert check_schema(copy.deepcopy(given)) == given
 
 
 def test_the_schema_describes_the_derived_grids():

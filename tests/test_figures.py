@@ -207,7 +207,7 @@ def test_units_are_typeset(units, tex):
 def test_figure_script_writes_pdf_and_png(sims, tmp_path):
     cases = list(PAPER_PRODUCTS["fig04"].cases)
     out = tmp_path / "fig04.pdf"
-    run_script("figure_simulation.py", input={"datasets": [str(sims[c]) for c in cases]},
+    run_script("hubbeam.pipeline.jobs.figures:simulation_figure", input={"datasets": [str(sims[c]) for c in cases]},
                output={"pdf": str(out), "png": str(out.with_suffix(".png"))},
                params={"function": PAPER_PRODUCTS["fig04"].function, "cases": cases})
     assert out.is_file() and out.with_suffix(".png").is_file()
@@ -225,8 +225,8 @@ def test_figure_script_fails_loudly_naming_a_bad_dataset(damage, sims, tmp_path)
     files[cases.index("fig04_foam")] = str(bad)
     out = tmp_path / "fig04.pdf"
     with pytest.raises(ResultFileError, match=str(bad)):
-        run_script("figure_simulation.py", input={"datasets": files}, output={"pdf": str(out)},
-                   params={"function": PAPER_PRODUCTS["fig04"].function, "cases": cases})
+        run_script("hubbeam.pipeline.jobs.figures:simulation_figure", input={"datasets": files},
+                   output={"pdf": str(out)}, params={"function": PAPER_PRODUCTS["fig04"].function, "cases": cases})
     assert not out.exists()
 
 
@@ -238,7 +238,7 @@ def test_figure_script_fails_loudly_naming_a_bad_dataset(damage, sims, tmp_path)
 def test_eigen_figure_script_passes_named_inputs(key, inputs, tmp_path_factory, tmp_path):
     eigen = write_eigen(tmp_path_factory.mktemp("eigen"), n_modes=3, n_quad=16)
     out = tmp_path / f"{key}.pdf"
-    run_script("figure_files.py",
+    run_script("hubbeam.pipeline.jobs.figures:files_figure",
                input={name: str(eigen[stem]) for name, stem in inputs.items()} | {"style": "x", "code": []},
                output={"pdf": str(out)}, params={"function": PAPER_PRODUCTS[key].function, "options": {}})
     assert out.is_file() and out.with_suffix(".png").is_file()

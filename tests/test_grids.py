@@ -11,7 +11,7 @@ import pytest
 import yaml
 
 from hubbeam.configuration.grids import expand_case_grids, name_token
-from hubbeam.configuration.load import ConfigError, load_config, validate_config
+from hubbeam.configuration.load import ConfigError, check_schema, load_config
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -35,7 +35,7 @@ def test_a_value_is_written_into_a_name_as_a_wildcard_may_hold_it(value, token):
 
 
 def test_the_axes_combine_in_every_way_and_each_case_gets_its_values():
-    cfg = validate_config(study(copy.deepcopy(GRID)))
+    cfg = check_schema(study(copy.deepcopy(GRID)))
     cases = cfg["cases"]
     assert sorted(cases) == sorted(f"{m}_w{w}" for m in ("foam", "tlam") for w in ("0p5", "1p25", "2"))
     assert cases["tlam_w1p25"]["model"] == "TLAM" and cases["tlam_w1p25"]["maneuver"] == {
@@ -51,7 +51,7 @@ def test_the_entries_of_an_axis_vary_together_and_set_several_keys():
                 axes=[{"model": {"keys": ["model"], "values": ["FOAM", "SFOAM"]},
                        "design": {"keys": ["maneuver.design.model"], "values": ["SFOAM", "FOAM"]}},
                       {"speed": {"keys": ["maneuver.reference.wf", "maneuver.design.speed"], "values": [0.5, 1.0]}}])
-    cases = validate_config(study(grid))["cases"]
+    cases = check_schema(study(grid))["cases"]
     assert sorted(cases) == ["foam_sfoam_w0p5", "foam_sfoam_w1", "sfoam_foam_w0p5", "sfoam_foam_w1"]
     case = cases["sfoam_foam_w0p5"]
     assert case["maneuver"]["design"]["model"] == "FOAM" and case["model"] == "SFOAM"
@@ -72,7 +72,7 @@ def test_the_controller_study_expands_to_its_thirty_cases():
 def test_a_configuration_with_its_cases_expanded_expands_to_itself():
     """The archive records the completed configuration (config.used.yaml: the grid and its cases);
     reading it again adds nothing and refuses nothing."""
-    cfg = validate_config(study(copy.deepcopy(GRID)))
+    cfg = check_schema(study(copy.deepcopy(GRID)))
     again = yaml.safe_load(yaml.safe_dump(cfg))
     assert expand_case_grids(again) == []
     assert again["cases"] == cfg["cases"]
@@ -80,7 +80,7 @@ def test_a_configuration_with_its_cases_expanded_expands_to_itself():
 
 def problems_of(cfg: dict) -> list[str]:
     with pytest.raises(ConfigError) as error:
-        validate_config(cfg)
+        check_schema(cfg)
     return [str(problem) for problem in error.value.problems]
 
 

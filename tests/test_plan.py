@@ -11,8 +11,9 @@
 * a step's jobs evaluated like Snakemake (wildcards in paths and string params, params functions,
   `threads`), the jobs of `all` ordered after their inputs' writers, a name the configuration does
   not define refused naming what is allowed;
-* every script of workflow/scripts is a shim running one job through the runner, and every rule's
-  code inputs are what its script runs (a figure's module is no input of a simulation);
+* the one script of workflow/scripts is a shim running the job its step names through the runner,
+  and every rule's code inputs are what its job runs (a figure's module is no input of a simulation);
+* the families of steps: one module each, every step declared once, no pipeline module over 400 lines;
 * the runner writes a job's log, with its traceback when it fails, and leaves logging as it found it;
 * the study report's figures by the section their products name.
 """
@@ -39,7 +40,7 @@ from hubbeam.model.models import FAMILIES, MODELS
 from hubbeam.model.parameters import TipMass
 from hubbeam.pipeline.jobs.eigen import eigen_table2
 from hubbeam.pipeline.plan import NotPlanned, PlanError, build_plan
-from hubbeam.pipeline.runner import Job, run_job
+from hubbeam.pipeline.runner import Job, job_function, run_job
 from hubbeam.pipeline.steps import Step, file_paths, fill
 from hubbeam.reporting.products import GENERAL_PRODUCTS, PAPER_PRODUCTS, product_cases
 from hubbeam.results.io import ResultFileError
@@ -100,10 +101,10 @@ def test_the_paper_builds_its_products_and_what_they_read(paper):
     expected |= {f"results/linear/{name}.nc" for name in ("campbell", "mode_shapes", "poles_zeros", "bode")}
     expected |= {"results/tables/critical_speeds.csv", "results/hubbeam-results.tar.gz"}
     assert targets == expected
-    assert set(paper.large_sweep_targets) == {"results/sweeps/tlam_vs_foam_3d.nc",
-                                              "results/figures/sweep_tlam_vs_foam_3d.pdf",
-                                              "results/figures/sweep_tlam_vs_foam_3d.png"}
-    assert paper.reading_targets == ("results/readings/readings.csv", "results/readings/readings.nc")
+    assert set(paper.target_rules["large_sweeps"]) == {"results/sweeps/tlam_vs_foam_3d.nc",
+                                                       "results/figures/sweep_tlam_vs_foam_3d.pdf",
+                                                       "results/figures/sweep_tlam_vs_foam_3d.png"}
+    assert paper.target_rules["readings"] == ("results/readings/readings.csv", "results/readings/readings.nc")
     assert list(paper.readings) == list(raw["readings"])
 
 
@@ -164,7 +165,7 @@ def test_a_simulation_reads_the_matrices_of_its_tip_mass_and_its_family_s_kernel
     case = job.params["case"]
     assert case.name == "fig10_foam_mt0p5" and case.tip_mass == TipMass(0.5, 8.0)
     assert job.params["numerics"].modes is None  # the matrices carry the discretisation
-    assert repr(case) in job.params["settings"]  # editing the case reruns it
+    assert repr(case) in job.params["fingerprint"]  # editing the case reruns it
 
 
 def test_a_matrices_file_has_the_modes_of_the_most_demanding_case_using_it(paper):
@@ -227,8 +228,7 @@ def test_the_validation_needs_its_section_only_when_its_jobs_run(in_tmp):
     assert plan.steps["validate_exudyn"].wildcards == ()
     with pytest.raises(NotPlanned, match="validation.convergence: missing from the configuration in use"):
         plan.steps["validate_convergence"].job()
-    assert plan.validation_modules == ("pybmodes",)
-    assert [Path(path).name for path in plan.validation_files] == [
+    assert [Path(path).name for path in plan.target_rules["validate"]()] == [
         "nonuniform_ritz_fe.csv", "validation_exudyn.md", "validation_exudyn.html"]
 
 
@@ -309,37 +309,37 @@ def test_a_step_evaluates_its_job_as_snakemake_would(tmp_path):
     assert fill("x/{sweep}/{chunk,\\d+}.nc", {"sweep": "s", "chunk": 2}) == "x/s/2.nc"
 
 
-def test_the_rules_and_the_steps_must_run_the_same_scripts(paper):
-    scripts = {rule: f"../scripts/{step.script}" for rule, step in paper.steps.items()}
-    paper.check_scripts(scripts | {"all": None})
-    wrong = scripts | {"simulate": "../scripts/eigen_k22.py", "mystery": "../scripts/x.py"}
-    del wrong["archive"]
-    with pytest.raises(ValueError) as error:
-        paper.check_scripts(wrong)
-    assert str(error.value).splitlines()[1:] == [
-        "  - rule simulate runs eigen_k22.py but its step names simulate_case.py",
-        "  - rule mystery runs x.py and has no step in the plan",
-        "  - step archive has no rule that runs its script"]
-
-
-def test_every_script_is_a_shim_running_one_job(paper, in_tmp):
+def test_every_rule_runs_the_one_shim_on_the_job_its_step_names(paper, in_tmp):
     shutil.copy(STUDY_FILE, in_tmp / "study.yaml")
     study = build_plan(yaml.safe_load(STUDY_FILE.read_text()), [in_tmp / "study.yaml"], REPO)
-    used = {step.script for plan in (paper, study) for step in plan.steps.values()}
-    assert used == {path.name for path in SCRIPTS.glob("*.py")}  # every script runs, none is left over
-    for path in sorted(SCRIPTS.glob("*.py")):
-        tree = ast.parse(path.read_text())
-        docstring, job_import, runner_import, call = tree.body
-        assert ast.get_docstring(tree).startswith("Snakemake shim: "), path.name
-        assert job_import.module.startswith("hubbeam.pipeline.jobs.") and len(job_import.names) == 1, path.name
-        assert runner_import.module == "hubbeam.pipeline.runner" and runner_import.names[0].name == "run"
-        job = job_import.names[0].name
-        assert ast.unparse(call) == f"run({job}, snakemake)", path.name
-        module = job_import.module.replace(".", "/") + ".py"
-        for plan in (paper, study):
-            for step in plan.steps.values():
-                if step.script == path.name and "code" in step.input:
-                    assert any(Path(file).as_posix().endswith(module) for file in step.input["code"]), path.name
+    assert [path.name for path in SCRIPTS.glob("*")] == ["run_job.py"]
+    tree = ast.parse((SCRIPTS / "run_job.py").read_text())
+    docstring, runner_import, call = tree.body
+    assert ast.get_docstring(tree).startswith("Snakemake shim")
+    assert runner_import.module == "hubbeam.pipeline.runner" and runner_import.names[0].name == "run"
+    assert ast.unparse(call) == "run(snakemake)"
+    for plan in (paper, study):
+        for rule, step in plan.steps.items():
+            module, _, function = step.params["job"].partition(":")
+            assert module.startswith("hubbeam.pipeline.jobs.") and callable(job_function(step.params["job"])), rule
+            if "code" in step.input:
+                source = module.replace(".", "/") + ".py"
+                assert any(Path(file).as_posix().endswith(source) for file in step.input["code"]), rule
+
+
+def test_each_family_declares_its_own_steps_in_a_small_module(paper):
+    """The plan's steps are the union of the families' (each rule declared once), and no module of
+    the pipeline package is longer than 400 lines."""
+    from hubbeam.pipeline.families import FAMILIES
+    from hubbeam.pipeline.plan import plan_of
+
+    assert len({family.__name__ for family in FAMILIES}) == len(FAMILIES) >= 9
+    assert set(plan_of.__globals__["FAMILIES"]) == set(FAMILIES)
+    package = REPO / "src" / "hubbeam" / "pipeline"
+    lengths = {path.relative_to(package).as_posix(): len(path.read_text().splitlines())
+               for path in package.rglob("*.py")}
+    assert max(lengths.values()) <= 400, {name: n for name, n in lengths.items() if n > 400}
+    assert "cfg[" not in "".join(path.read_text() for path in package.rglob("*.py"))
 
 
 def test_a_costly_job_s_code_inputs_hold_no_drawing_code(paper):
@@ -360,7 +360,8 @@ def test_a_job_function_runs_on_its_step_s_job(paper, tmp_path):
     quadrature: the params reach the function under the right names."""
     job = dataclasses.replace(paper.steps["eigen_table2"].job(), output=FrozenMap({"csv": str(tmp_path / "t.csv")}),
                               log=str(tmp_path / "t.log"))
-    run_job(eigen_table2, job)
+    run_job(job_function(job.params["job"]), job)
+    assert job_function(job.params["job"]) is eigen_table2
     raw = paper_config()
     expected = table2(beam_from_config(raw["beam"]), float(raw["eigen"]["table2_speed"]), raw["numerics"]["modes"],
                       raw["numerics"]["quadrature_points"])
@@ -398,7 +399,7 @@ def test_a_script_s_failure_reaches_its_log_through_the_shim(tmp_path):
 
     log = tmp_path / "table.log"
     with pytest.raises(ResultFileError, match="missing.nc does not exist"):
-        run_script("table_3.py", input={"datasets": [str(tmp_path / "missing.nc")]},
+        run_script("hubbeam.pipeline.jobs.tables:table3", input={"datasets": [str(tmp_path / "missing.nc")]},
                    output={ext: str(tmp_path / f"t.{ext}") for ext in ("csv", "md", "tex")},
                    params={"cases": ["tab3_foam_tau50"]}, log=str(log))
     text = log.read_text()

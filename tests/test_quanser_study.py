@@ -16,11 +16,11 @@ import control as ct
 import numpy as np
 import pytest
 
-from hubbeam.configuration.load import ConfigError, read_config_file, validate_config
+from hubbeam.configuration.load import ConfigError, check_schema, read_config_file
 from hubbeam.configuration.settings import from_config
 from hubbeam.control import robustness as rb
 from hubbeam.control import sample_time as st
-from hubbeam.control.analyses import control_problems, sample_time_grid, sampled_cases
+from hubbeam.control.analyses import control_problems, sampled_cases
 from hubbeam.control.cases import sampled_controller
 from hubbeam.control.implementation import read_implementation
 from hubbeam.pipeline.jobs.control import control_export
@@ -39,7 +39,7 @@ def raw(repo_root) -> dict:
 
 def checked(cfg: dict) -> dict:
     cfg = copy.deepcopy(cfg)
-    validate_config(cfg)
+    check_schema(cfg)
     return cfg
 
 
@@ -69,8 +69,8 @@ def test_the_study_validates_and_its_cases_are_the_labs(raw, settings):
             assert math.isclose(sampling.sensors[0].quantum * 4096, 2.0 * math.pi, rel_tol=1e-15)
     assert [settings.cases[name].maneuver.design.modes for name in ("foam1_exact", "foam3_exact")] == [1, 3]
     assert settings.cases["lumped_exact"].maneuver.design.held_frequency == 3.0
-    assert control_problems(checked(raw), settings) == []
-    times = sample_time_grid(raw["control"]["sample_time"])
+    assert control_problems(settings) == []
+    times = settings.control.sample_time.sample_times.values
     assert times.size == 30 and math.isclose(times[0], 0.002) and math.isclose(times[-1], 0.1)
 
 
@@ -87,7 +87,7 @@ def test_the_study_validates_and_its_cases_are_the_labs(raw, settings):
 def test_a_bad_control_variant_is_refused_naming_its_key(raw, change, key, fragment):
     cfg = copy.deepcopy(raw)
     change(cfg)
-    found = [str(problem) for problem in control_problems(checked(cfg), from_config(checked(cfg)))]
+    found = [str(problem) for problem in control_problems(from_config(checked(cfg)))]
     assert len(found) == 1 and found[0].startswith(key + ":") and fragment in found[0], found
 
 
@@ -95,7 +95,7 @@ def test_a_range_outside_the_schema_is_refused_naming_its_key(raw):
     cfg = copy.deepcopy(raw)
     cfg["control"]["robustness"]["ranges"]["hub_inertia"] = [0.001, 0.003]
     with pytest.raises(ConfigError) as error:
-        validate_config(cfg)
+        check_schema(cfg)
     assert any(str(problem).startswith("control.robustness.ranges") and "hub_inertia" in str(problem)
                for problem in error.value.problems), error.value.problems
 

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from hubbeam.configuration.load import load_config
+from hubbeam.configuration.sections import Reading
 from hubbeam.configuration.settings import from_config
 from hubbeam.model.beam import CONFIG_FIELDS
 from hubbeam.model.eigen import critical_speed_table, table2
@@ -61,7 +62,7 @@ def test_each_reading_changes_exactly_what_it_names(cfg, settings):
     for name, reading in cfg["readings"].items():
         kind, value = next(iter(reading["change"].items()))
         for case, base_case in settings.cases.items():
-            new_case = reading_case(name, reading, base_case, settings)
+            new_case = reading_case(Reading.from_dict(name, reading), base_case, settings)
             if kind == "measure":
                 assert new_case is None, (name, case)
                 continue
@@ -83,25 +84,25 @@ def test_each_reading_changes_exactly_what_it_names(cfg, settings):
 
 def test_beam_reading_replaces_only_its_keys(cfg, settings):
     reading = cfg["readings"]["table1_3sf"]
-    beam = reading_beam(reading, settings.beam)
+    beam = reading_beam(Reading.from_dict("table1_3sf", reading), settings.beam)
     changed = {field for field in CONFIG_FIELDS.values() if getattr(beam, field) != getattr(settings.beam, field)}
     assert changed == {CONFIG_FIELDS[key] for key in reading["change"]["beam"]}
     other = cfg["readings"]["modes_3"]
-    assert reading_beam(other, settings.beam) == settings.beam
+    assert reading_beam(Reading.from_dict("modes_3", other), settings.beam) == settings.beam
 
 
 def test_case_reading_respects_where(cfg, settings):
     reading = {"change": {"case": {"modes": 1}}, "where": {"model": "SFOAM"}, "claims": ["table3_tau50"],
                "notes": [20], "why": "test"}
-    assert reading_case("x", reading, settings.cases["tab3_foam_tau50"], settings) is None
-    new = reading_case("x", reading, settings.cases["fig08_sfoam_tau200"], settings)
+    assert reading_case(Reading.from_dict("x", reading), settings.cases["tab3_foam_tau50"], settings) is None
+    new = reading_case(Reading.from_dict("x", reading), settings.cases["fig08_sfoam_tau200"], settings)
     assert new.modes == 1 and new.model == "SFOAM"
 
 
 def test_eq43_as_printed_samples_the_printed_formula(cfg, settings):
     base = settings.cases["fig05_tlam_wf2p8"]
     wf, tf = base.maneuver.wf, base.maneuver.tf
-    new = reading_case("eq43_as_printed", cfg["readings"]["eq43_as_printed"], base, settings)
+    new = reading_case(Reading.from_dict("eq43_as_printed", cfg["readings"]["eq43_as_printed"]), base, settings)
     table = new.maneuver.to_dict()
     assert table["kind"] == "speed_table"
     t, speed = np.array(table["time"]), np.array(table["speed"])
@@ -114,7 +115,7 @@ def test_eq43_as_printed_samples_the_printed_formula(cfg, settings):
 def test_half_sine_pulse_has_the_analytic_impulse(cfg, settings):
     base = settings.cases["tab3_foam_tau200"]
     tau, tf = base.maneuver.tau_max, base.maneuver.tf
-    new = reading_case("torque_half_sine", cfg["readings"]["torque_half_sine"], base, settings)
+    new = reading_case(Reading.from_dict("torque_half_sine", cfg["readings"]["torque_half_sine"]), base, settings)
     t, torque = np.array(new.maneuver.time), np.array(new.maneuver.torque)
     # Eq. (44) with T = 2 tf: the impulse of tau sin(pi t / tf) over [0, tf] is 2 tau tf / pi;
     # the linear table's trapezoid error is below 1e-3 relative at 20 samples per second
@@ -123,12 +124,12 @@ def test_half_sine_pulse_has_the_analytic_impulse(cfg, settings):
 
 
 def test_a_bad_reading_names_the_key(cfg):
-    with pytest.raises(ReadingError, match=r"readings\.bad\.change"):
-        check_reading("bad", {"change": {"case": {}, "beam": {}}, "claims": ["table3_tau50"]})
+    with pytest.raises(ReadingError, match=r"readings\.bad\.change = 'scale'"):
+        check_reading(Reading("bad", change="scale", value=2.0, claims=("table3_tau50",)))
     with pytest.raises(ReadingError, match=r"readings\.bad\.claims"):
-        check_reading("bad", {"change": {"case": {"modes": 1}}, "claims": ["no_such_claim"]})
+        check_reading(Reading.from_dict("bad", {"change": {"case": {"modes": 1}}, "claims": ["no_such_claim"]}))
     with pytest.raises(ReadingError, match=r"readings\.bad\.change\.maneuver = 'wiggle'"):
-        check_reading("bad", {"change": {"maneuver": "wiggle"}, "claims": ["table3_tau50"]})
+        check_reading(Reading.from_dict("bad", {"change": {"maneuver": "wiggle"}, "claims": ["table3_tau50"]}))
 
 
 @pytest.fixture(scope="module")
@@ -163,10 +164,10 @@ def test_a_reading_that_leaves_a_claim_alone_gives_its_default_value(cfg, defaul
                        "notes": [22], "why": "test"},
     }
     settings = from_config(cfg)
-    assert all(case is None for case in reading_cases(settings, "sfoam_only", cfg["readings"]["sfoam_only"]).values())
+    assert all(case is None for case in reading_cases(settings, settings.readings["sfoam_only"]).values())
     default = _default_rows(default_files, ids)
-    for name, reading in cfg["readings"].items():
-        rows, runs = evaluate_reading(reading_runs(settings, name, reading), *default_files)
+    for reading in settings.readings.values():
+        rows, runs = evaluate_reading(reading_runs(settings, reading), *default_files)
         assert runs == {}
         for row in rows:
             assert row["computed"] == pytest.approx(default[row["id"]]["computed"], rel=1e-12)
@@ -176,7 +177,8 @@ def test_a_reading_that_changes_a_run_moves_its_claim(cfg, default_files):
     cfg = copy.deepcopy(cfg)
     cfg["readings"] = {"short": {"change": {"case": {"maneuver": {"tf": 20.0}}}, "where": {"kind": "prescribed"},
                                  "claims": ["peak_tip_foam_wf2p8"], "notes": [12], "why": "test"}}
-    (row,), runs = evaluate_reading(reading_runs(from_config(cfg), "short", cfg["readings"]["short"]), *default_files)
+    settings = from_config(cfg)
+    (row,), runs = evaluate_reading(reading_runs(settings, settings.readings["short"]), *default_files)
     assert set(runs) == {f"reading-short--{c}" for c in ("fig05_tlam_wf2p8", "fig05_foam_wf2p8",
                                                             "fig05_tlam_wf3p5", "fig05_foam_wf3p5")}
     assert all(maneuver("run", ds)["tf"] == 20.0 for ds in runs.values())
@@ -245,7 +247,8 @@ def test_dry_run_plans_every_reading_and_no_default_run_twice(tmp_path, repo_roo
 def test_matrix_holds_each_reading_s_values_and_nothing_else():
     rows = [{**_row("table3_tau50", 6.24e-3, 6.42e-3, reading="a"), "unit": "N m", "default": 6.4e-3},
             {**_row("table3_tau400", 2.62, 2.0, reading="b"), "unit": "N m", "default": 1.95}]
-    ds = matrix(rows, {"a": {"why": "first"}, "b": {"why": "second"}})
+    ds = matrix(rows, {name: Reading(name, "measure", "residual_after_settling", ("table3_tau50",), why=why)
+                       for name, why in (("a", "first"), ("b", "second"))})
     assert list(ds["claim"].values) == ["table3_tau50", "table3_tau400"]
     assert ds["computed"].sel(claim="table3_tau50", reading="a") == 6.42e-3
     assert np.isnan(ds["computed"].sel(claim="table3_tau50", reading="b"))

@@ -3,7 +3,7 @@
 What other test files already prove is not repeated here:
 
 * every kind of bad config value, missing key, unknown key, illegal or duplicate case name, one at
-  a time through ``validate_config`` (tests/test_config.py), and one Snakefile run with two of
+  a time through ``check_schema`` (tests/test_config.py), and one Snakefile run with two of
   them (``test_snakefile_stops_on_a_bad_config_before_any_rule``); here: every listed kind
   together through the Snakefile with ``--configfile`` (incl. ``numerics.convergence_check``);
 * ``write_netcdf`` failing by an exception or a refused rename, and ``open_result`` on damaged
@@ -281,16 +281,17 @@ def small_run(tmp_path_factory):
         patch.setattr(os, "replace", record)
         runs, drawn = [], set()
         for planned in plan.jobs():
-            job, script = planned.job, plan.steps[planned.rule].script
-            if set(job.output) == {"pdf", "png"} and script in drawn:
+            job, function = planned.job, planned.job.params["job"]
+            if set(job.output) == {"pdf", "png"} and function in drawn:
                 for path in file_paths(job.output):
                     Path(path).parent.mkdir(parents=True, exist_ok=True)
                     Path(path).write_bytes(b"stand-in figure")
                 runs.append((planned, None))
                 continue
-            drawn.add(script)
+            drawn.add(function)
             before = len(renamed)
-            run_script(script, input=dict(job.input), output=dict(job.output), params=dict(job.params), log=job.log)
+            run_script(function, input=dict(job.input), output=dict(job.output), params=dict(job.params),
+                       log=job.log)
             runs.append((planned, set(renamed[before:])))
     return root, plan, runs
 
@@ -306,11 +307,11 @@ def test_every_job_of_all_puts_each_output_in_place_by_rename(small_run):
             assert expected <= renamed, (planned.rule, sorted(map(str, expected - renamed)))
     assert all((root / target).is_file() for target in plan.targets)
     assert temporaries(root) == []
-    ran = {plan.steps[planned.rule].script for planned, renamed in runs if renamed is not None}
-    assert ran == {step.script for step in plan.steps.values()} - {
-        "validate_exudyn.py", "validate_models.py", "validate_case.py", "validate_comparison.py", "validate_modes.py",
-        "validate_convergence.py", "validate_nonuniform.py", "report_validation.py"} - {  # `snakemake validate` only
-        "control_sample_time.py", "control_robustness.py", "control_export.py"}  # a `control` section only
+    ran = {planned.job.params["job"] for planned, renamed in runs if renamed is not None}
+    validation = {"validate_exudyn", "validate_models", "validate_case", "validate_comparison", "validate_modes",
+                  "validate_convergence", "validate_nonuniform", "validation_report"}  # `snakemake validate` only
+    control = {"control_sample_time", "control_robustness", "control_export"}  # a `control` section only
+    assert ran == {step.params["job"] for rule, step in plan.steps.items() if rule not in validation | control}
 
 
 def test_the_map_gathered_by_the_jobs_is_the_map_of_the_configuration_s_sweep(small_run):
@@ -327,8 +328,8 @@ def test_the_map_gathered_by_the_jobs_is_the_map_of_the_configuration_s_sweep(sm
 # ---------------------------------------------------------------------------------------------
 # damaged inputs: every job that reads result files names the file
 
-#: scripts that take result files without reading them as results: the archive bundles their bytes
-BUNDLING = {"archive.py"}
+#: jobs that take result files without reading them as results: the archive bundles their bytes
+BUNDLING = {"hubbeam.pipeline.jobs.reports:archive"}
 
 
 def relocated(files, place) -> dict:
@@ -349,23 +350,26 @@ def test_a_truncated_input_is_named_by_every_job_reading_it(small_run, tmp_path)
     root, plan, runs = small_run
     checked = set()
     for planned, _ in runs:
-        script = plan.steps[planned.rule].script
         job = planned.job
+        script = job.params["job"]
         results = [path for path in file_paths(job.input) if path.endswith(".nc")]
         if script in checked or script in BUNDLING or not results:
             continue
         checked.add(script)
-        bad = truncate(root / results[0], tmp_path / script / "in" / Path(results[0]).name)
-        out = tmp_path / script / "out"
+        folder = tmp_path / script.replace(":", "_")
+        bad = truncate(root / results[0], folder / "in" / Path(results[0]).name)
+        out = folder / "out"
         inputs = relocated(job.input, lambda path: str(bad) if path == results[0] else str(root / path))  # noqa: B023
         outputs = relocated(job.output, lambda path: str(out / Path(path).name))  # noqa: B023
         with pytest.raises(ResultFileError, match=f"result file {bad} cannot be read, it is corrupted or truncated"):
             run_script(script, input=inputs, output=outputs, params=dict(job.params),
-                       log=str(tmp_path / script / "log"))
+                       log=str(folder / "log"))
         assert not out.exists() or not list(out.iterdir()), script
-    assert checked >= {"simulate_case.py", "table_3.py", "figure_simulation.py", "figure_files.py", "study_figure.py",
-                       "report_claims.py", "report_reproduction.py", "study_report.py", "readings_reading.py",
-                       "sweep_gather.py", "figure_sweep.py", "linear_mode_shapes.py"}
+    jobs = "hubbeam.pipeline.jobs."
+    assert checked >= {jobs + name for name in (
+        "simulation:simulate", "tables:table3", "figures:simulation_figure", "figures:files_figure",
+        "figures:study_figure", "claims:claims", "reports:reproduction_report", "reports:study_report",
+        "claims:reading", "sweeps:sweep", "figures:figure_sweep", "linear:linear_mode_shapes")}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -523,8 +527,9 @@ def test_the_attributes_of_a_dataset_alone_rebuild_and_reproduce_it(setup, tmp_p
     matrices = write_netcdf(to_dataset(assemble(params, tip, 4, numerics["quadrature_points"]), params, tip),
                             tmp_path / "matrices.nc")
     written = tmp_path / "simulations" / "case.nc"
-    run_script("simulate_case.py", input={"matrices": str(matrices)}, output={"nc": str(written)},
-               params=simulation_params(config, case, convergence_check=True), log=str(tmp_path / "case.log"))
+    run_script("hubbeam.pipeline.jobs.simulation:simulate", input={"matrices": str(matrices)},
+               output={"nc": str(written)}, params=simulation_params(config, case, convergence_check=True),
+               log=str(tmp_path / "case.log"))
     from_rule = open_result(written)
     inputs = simulation_inputs(from_rule.attrs)
     assert inputs["case"] == case.to_dict() and inputs["params"] == params

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import csv
+import dataclasses
+import functools
 import math
 import re
 from pathlib import Path
@@ -11,6 +13,7 @@ import numpy as np
 import pytest
 from synthetic_results import run_script, write_eigen, write_simulations, write_validation
 
+from hubbeam.api import load
 from hubbeam.model import printed as paper
 from hubbeam.paper.claims import (
     CLAIM_COLUMNS,
@@ -28,6 +31,12 @@ from hubbeam.reporting.document import markdown_to_html
 from hubbeam.reporting.products import PAPER_PRODUCTS
 from hubbeam.results.io import ResultFileError, open_result
 from hubbeam.validation.report import ValidationInputError, published_section, validation_markdown
+
+
+@functools.cache
+def paper_settings():
+    """The paper's checked settings (their numerics are what the reproduction report prints)."""
+    return load("config/config.yaml").settings
 
 #: residual vibration after the torque pulse: FOAM (amplitude, omega, phase at t_f) and an SFOAM
 #: that leads it by 0.45 rad with a 24 % smaller amplitude (the paper's statement, as input)
@@ -195,7 +204,7 @@ def test_report_scripts_write_claims_markdown_and_html(results_dir, tmp_path):
     root, sims, eigen = results_dir
     cases = sorted(sims)
     claims_csv = tmp_path / "report" / "claims.csv"
-    run_script("report_claims.py", input={"datasets": [str(sims[c]) for c in cases],
+    run_script("hubbeam.pipeline.jobs.claims:claims", input={"datasets": [str(sims[c]) for c in cases],
                                           "table2": str(eigen["table2"]),
                                           "critical_speeds": str(eigen["critical_speeds_csv"])},
                output={"claims": str(claims_csv)}, params={"cases": cases})
@@ -204,18 +213,18 @@ def test_report_scripts_write_claims_markdown_and_html(results_dir, tmp_path):
     for key in ("fig04", "fig08"):
         pdf = tmp_path / "figures" / f"{key}.pdf"
         group = list(PAPER_PRODUCTS[key].cases)
-        run_script("figure_simulation.py", input={"datasets": [str(sims[c]) for c in group]},
+        run_script("hubbeam.pipeline.jobs.figures:simulation_figure", input={"datasets": [str(sims[c]) for c in group]},
                    output={"pdf": str(pdf)}, params={"function": PAPER_PRODUCTS[key].function, "cases": group})
         figures.append(str(pdf.with_suffix(".png")))
     table_md = tmp_path / "tables" / "table2.md"
     write_table(table2(eigen["table2"], 1.0), table_md.with_suffix(".csv"), csv=False)
     out = {"markdown": str(tmp_path / "report" / "reproduction.md"),
            "html": str(tmp_path / "report" / "reproduction.html")}
-    run_script("report_reproduction.py",
+    run_script("hubbeam.pipeline.jobs.reports:reproduction_report",
                input={"claims": str(claims_csv), "figures": figures, "tables": [str(table_md)],
                       "datasets": [str(sims[c]) for c in cases]},
-               output=out, params={"cases": cases, "numerics": {"rtol": 1e-9, "atol": 1e-11,
-                                                                 "output_step": 0.05, "quadrature_points": 64}})
+               output=out, params={"cases": cases, "numerics": dataclasses.replace(
+                   paper_settings().numerics, rtol=1e-9, atol=1e-11, output_step=0.05, quadrature_points=64)})
     md = (tmp_path / "report" / "reproduction.md").read_text()
     assert "![Fig. 4: CFOAM against FOAM](../figures/fig04.png)" in md
     assert all(f"\n{n}. " in md for n in range(1, 13))  # every note interpreted
@@ -245,7 +254,7 @@ def test_reproduction_report_lists_each_figure_with_its_claims(claim_rows, resul
     png.parent.mkdir()
     png.write_bytes(b"png")
     datasets = {c: open_result(p) for c, p in sims.items()}
-    md = reproduction_markdown(claim_rows, {"fig05": png}, {}, datasets, {}, tmp_path / "report")
+    md = reproduction_markdown(claim_rows, {"fig05": png}, {}, datasets, paper_settings().numerics, tmp_path / "report")
     section = md.split("### Fig. 5")[1].split("###")[0]
     assert "../figures/fig05.png" in section
     assert re.search(r"`peak_tip_tlam_wf2p8` \| .* \| m \| 0\.49 \|", section)
@@ -297,13 +306,13 @@ def test_reproduction_report_carries_the_validation_section_or_says_it_was_not_r
     datasets = {c: open_result(p) for c, p in list(sims.items())[:2]}
     report_dir = validation_files["published"].parent / "report"
     section = published(validation_files, report_dir)
-    md = reproduction_markdown(claim_rows, {}, {}, datasets, {}, report_dir, validation=section)
+    md = reproduction_markdown(claim_rows, {}, {}, datasets, paper_settings().numerics, report_dir, validation=section)
     summary = md.split("## Summary")[1].split("## Tables")[0]
     assert section.summary in summary
     assert md.index("## All claims") < md.index("## Validation") < md.index("## How the gaps")
     page = markdown_to_html(md, report_dir)
     assert page.count('src="data:image/png;base64,') == 1 and "<h2>Validation</h2>" in page
-    without = reproduction_markdown(claim_rows, {}, {}, datasets, {}, tmp_path)
+    without = reproduction_markdown(claim_rows, {}, {}, datasets, paper_settings().numerics, tmp_path)
     assert "## Validation\n\nThe configuration of this run has no `validation` section" in without
 
 
@@ -329,7 +338,7 @@ def test_exudyn_report_states_the_key_findings_computed_from_the_tables(validati
     out = {"markdown": str(tmp_path / "report" / "validation_exudyn.md"),
            "html": str(tmp_path / "report" / "validation_exudyn.html")}
     (tmp_path / "report").mkdir()
-    run_script("report_validation.py", input={
+    run_script("hubbeam.pipeline.jobs.reports:validation_report", input={
         "comparison": str(validation_files["comparison"]), "figure": str(validation_files["exudyn_figure"]),
         "mode_study": str(validation_files["mode_study"]), "convergence": str(validation_files["convergence"]),
         "ritz_fe": str(validation_files["ritz_fe"]), "pybmodes": str(validation_files["pybmodes"])},

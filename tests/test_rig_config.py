@@ -16,7 +16,7 @@ import math
 import numpy as np
 import pytest
 
-from hubbeam.configuration.load import ConfigError, validate_config
+from hubbeam.configuration.load import ConfigError, check_schema
 from hubbeam.configuration.settings import from_config
 from hubbeam.control.cases import case_problems, simulate_case
 from hubbeam.model.drive import QUANSER_SRV02
@@ -57,7 +57,7 @@ SENSORS = [{"signal": "hub_angle", "quantum": ENCODER, "mode": "edges"}, {"signa
 def problems(cfg: dict) -> list[str]:
     """Every problem of ``cfg``: the configuration's checks, then those needing its matrices."""
     try:
-        validate_config(cfg)
+        check_schema(cfg)
     except ConfigError as error:
         return [str(problem) for problem in error.problems]
     return [str(problem) for problem in case_problems(from_config(cfg))]
@@ -99,7 +99,7 @@ def assert_refused(cfg: dict, key: str, *fragments: str) -> None:
 def test_bad_rig_keys_are_refused_with_the_configuration(case, key, fragments):
     cfg = study(a=sampled_case(), z=case)
     with pytest.raises(ConfigError) as error:
-        validate_config(cfg)
+        check_schema(cfg)
     found = [str(problem) for problem in error.value.problems]
     assert any(text.startswith(key + ":") and all(f in text for f in fragments) for text in found), found
 
@@ -126,7 +126,7 @@ def test_a_design_model_too_large_for_the_sampling_is_designed_on_its_truncation
     assert_refused(study(a=reduced, z=full), "cases.z.maneuver.sampling", "above half the sampling frequency 250 Hz",
                    "mostly q1_")
     cfg = study(a=reduced)
-    validate_config(cfg)
+    check_schema(cfg)
     settings = from_config(cfg)
     ds = simulate_case(settings.cases["a"], settings.beam, settings.numerics)
     assert ds.attrs["integrator_status"] == "success"
@@ -160,7 +160,7 @@ def test_a_shaper_above_the_sampling_limit_is_refused():
 @pytest.fixture(scope="module")
 def kalman_run():
     cfg = study(a=sampled_case(KALMAN, SENSORS))
-    validate_config(cfg)
+    check_schema(cfg)
     settings = from_config(cfg)
     return simulate_case(settings.cases["a"], settings.beam, settings.numerics)
 
@@ -183,7 +183,7 @@ def test_a_sampled_case_records_what_its_controller_saw_and_applied(kalman_run):
 
 def test_a_seed_is_recorded_and_reproduces_the_noise(kalman_run):
     cfg = study(a=sampled_case(KALMAN, SENSORS, seed=0), b=sampled_case(KALMAN, SENSORS, seed=1))
-    validate_config(cfg)
+    check_schema(cfg)
     settings = from_config(cfg)
     again = simulate_case(settings.cases["a"], settings.beam, settings.numerics)
     other = simulate_case(settings.cases["b"], settings.beam, settings.numerics)
@@ -198,7 +198,7 @@ def test_a_voltage_table_drives_the_hub_through_the_motor():
     case = {"model": "FOAM", "t_end": 0.5, "drive": SRV02,
             "maneuver": {"kind": "voltage_table", "time": [0.0, 0.1], "voltage": [0.0, 2.0]}}
     cfg = study(v=case)
-    validate_config(cfg)
+    check_schema(cfg)
     settings = from_config(cfg)
     ds = simulate_case(settings.cases["v"], settings.beam, settings.numerics)
     t = ds.time.values
@@ -213,7 +213,7 @@ def test_a_shaper_on_given_frequencies_has_its_closed_form_impulses():
     case = {"model": "FOAM", "t_end": 1.0, "maneuver": {"kind": "prescribed", "wf": 0.5, "tf": 0.5},
             "shaper": {"kind": "ZV", "frequencies": [20.0]}}
     cfg = study(s=case)
-    validate_config(cfg)
+    check_schema(cfg)
     settings = from_config(cfg)
     ds = simulate_case(settings.cases["s"], settings.beam, settings.numerics)
     shaper = json.loads(ds.attrs["shaper"])

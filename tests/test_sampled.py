@@ -39,9 +39,10 @@ from hubbeam.linear.statespace import linear_model
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.drive import QUANSER_SRV02
 from hubbeam.model.maneuvers import maneuver_from_dict
+from hubbeam.model.plant import with_drive
 from hubbeam.simulation.errors import SimulationError
 from hubbeam.simulation.sampled import SampledLoop, Sensor, reference_array
-from hubbeam.simulation.simulate import case_matrices, drive_matrices
+from hubbeam.simulation.simulate import case_matrices
 
 NUMERICS = {"rtol": 1e-10, "atol": 1e-12, "output_step": 0.01, "max_steps": 10**7, "step_warning": 10**7,
             "divergence_limit": 0.5, "quadrature_points": 40}
@@ -134,7 +135,7 @@ def _linear_plant(flexible_link, case, motor):
     """The simulated model's linear model about its steady spin (``linear_model``, free hub) with
     the hub angle and the root moment as outputs; with a drive, its input is the voltage: the
     torque ``torque_gain V - hub_damping theta'`` (no Coulomb friction) about the spin's voltage."""
-    sm = drive_matrices(_matrices(case, flexible_link), motor)
+    sm = with_drive(_matrices(case, flexible_link), motor)
     lin = linear_model(flexible_link, sm, case["model"], SPEED, "free", damping_matrices(DAMPED, sm),
                        outputs=["hub_angle", "root_moment"])
     A, B = lin.A, lin.B

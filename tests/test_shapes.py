@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 
+from hubbeam.configuration.settings import Study
 from hubbeam.model.beam import beam_from_config
 from hubbeam.model.eigen import campbell
 from hubbeam.model.matrices import assemble
@@ -100,15 +101,15 @@ def test_shapes_are_mass_orthogonal_and_scaled(speed):
 
 
 def test_the_beam_summary_has_a_row_per_property_whatever_the_stations():
-    rows = beam_summary(TAPERED)
+    rows = beam_summary(beam_from_config(TAPERED))
     assert [row["name"] for row in rows] == ["rhoA", "EI", "EA"]
     assert rows[0]["root"] == pytest.approx(4.9) and rows[0]["tip"] == pytest.approx(4.9 - 2.4)
     assert rows[1]["min"] == pytest.approx(9450.0 - 590.0 * 8.0) and rows[2]["max"] == pytest.approx(1.26e8)
-    uniform = beam_summary(UNIFORM)
+    uniform = beam_summary(beam_from_config(UNIFORM))
     assert [row["root"] for row in uniform] == pytest.approx([1.2, 1.4e4, 2.8e7])
     figures = {"beam": {"beam_properties": "../figures/beam_properties.png"},
                "eigen": {"mode_shapes": "../figures/mode_shapes.png"}}
-    markdown = study_markdown({"name": "s"}, TAPERED, [], figures)
+    markdown = study_markdown(Study("s"), beam_from_config(TAPERED), [], figures)
     beam_section = markdown[markdown.index("## Beam"):markdown.index("## Cases")]
     assert beam_section.count("\n|") == 2 + 3  # header, rule and one row per property
     assert "161 stations" in beam_section and "](../figures/beam_properties.png)" in beam_section

@@ -203,7 +203,7 @@ def test_workflow_script_writes_the_case_from_the_leading_matrix_blocks(setup, t
     stored = write_netcdf(to_dataset(assemble(params, tip, 3, numerics["quadrature_points"]),
                                      params, tip), tmp_path / "matrices.nc")
     output = tmp_path / "simulations" / "case.nc"
-    run_script("simulate_case.py", input={"matrices": str(stored)}, output={"nc": str(output)},
+    run_script("hubbeam.pipeline.jobs.simulation:simulate", input={"matrices": str(stored)}, output={"nc": str(output)},
                params=simulation_params(config, case),
                log=str(tmp_path / "case.log"))
     written = open_result(output)

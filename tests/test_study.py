@@ -15,6 +15,8 @@ import pytest
 import xarray as xr
 import yaml
 
+from hubbeam.configuration.settings import Study
+from hubbeam.model.parameters import BeamParameters
 from hubbeam.reporting import archive
 from hubbeam.results.reader import maneuver_end
 from hubbeam.study import MARKER
@@ -75,9 +77,7 @@ def test_a_diverged_run_and_a_failed_convergence_check_are_reported(tmp_path):
     assert row["peak_tip_deflection_m"] == 1.0 and row["peak_time_s"] == 1.0
     assert math.isnan(row["residual_amplitude_m"])  # nothing finite after t_f
     assert row["convergence"] == "NOT converged" and row["convergence_modes_diff_m"] == 2e-3
-    markdown = study_markdown({"name": "s"}, {"length": 1.0, "density": 1.0, "area": 1.0,
-                                              "youngs_modulus": 1.0, "second_moment": 1.0,
-                                              "hub_inertia": 1.0, "hub_radius": 0.0},
+    markdown = study_markdown(Study("s"), BeamParameters(L=1.0, rho=1.0, A=1.0, E=1.0, I=1.0, Jh=1.0, rA=0.0),
                               [row], {"cases": {"boom": "../figures/case_boom.png"}})
     assert "| boom | FOAM | prescribed | 3 |" in markdown and "| diverged at 1.00 s |" in markdown
     assert "NOT converged (tolerance 1e-06 m, modes 0.002 m)" in markdown

@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from hubbeam.configuration.load import ConfigError, validate_config
+from hubbeam.configuration.load import ConfigError, check_schema
 from hubbeam.configuration.settings import Grid, from_config
 from hubbeam.core import radau
 from hubbeam.core.inputs import ModelTraits
@@ -277,7 +277,7 @@ def test_inconsistent_sweep_is_rejected_naming_the_key(_study_config, change, ke
     config = copy.deepcopy(_study_config)
     change(config["sweeps"]["maps"]["spinup_peak"])
     with pytest.raises(ConfigError) as error:
-        validate_config(config)
+        check_schema(config)
     assert key in str(error.value)
 
 

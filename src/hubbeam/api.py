@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from hubbeam.check import check_configuration
 from hubbeam.configuration.load import ConfigError, merge_configs, read_config_file
 from hubbeam.configuration.settings import Case, Settings
 from hubbeam.control.cases import resolve, sampled_controller, sampling_of, simulate_case
@@ -36,7 +37,6 @@ from hubbeam.linear.statespace import linear_model
 from hubbeam.linear.voltage import voltage_model
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.eigen import natural_frequencies
-from hubbeam.pipeline.plan import checked_configuration
 from hubbeam.simulation.simulate import case_matrices
 from hubbeam.study import base_config_files
 
@@ -51,10 +51,8 @@ def load(paths: os.PathLike | str | Iterable[os.PathLike | str]) -> Configuratio
         raise ValueError("load: no config file given; allowed: one path or a list of paths")
     merged = merge_configs(*(read_config_file(path) for path in given))
     files = [Path(path) for path in base_config_files(merged)] + given
-    _, settings, problems = checked_configuration(merge_configs(*(read_config_file(path) for path in files)), files)
-    if problems:
-        raise ConfigError(problems, files)
-    return Configuration(settings, tuple(str(path) for path in files))
+    checked = check_configuration(merge_configs(*(read_config_file(path) for path in files)), files)
+    return Configuration(checked.settings, checked.files)
 
 
 @dataclass(frozen=True)

@@ -265,7 +265,7 @@ def _feedback_problems(where: str, case: Mapping, modes: int | None) -> list[Pro
     of the design model or on measured signals (:data:`hubbeam.configuration.schema.MEASURED_SIGNALS`),
     and a feedforward only with a reference whose acceleration is known (Eq. 43). What needs the
     case's matrices (a steady spin at the design speed, stabilisability) is checked before any job
-    by ``hubbeam.control.feedback.feedback_problems``."""
+    by ``hubbeam.control.cases.case_problems``."""
     maneuver = _section(case, "maneuver")
     if maneuver.get("kind") != "state_feedback" or modes is None:
         return []

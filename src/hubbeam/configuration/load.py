@@ -102,8 +102,14 @@ def load_config(paths: os.PathLike | str | Iterable[os.PathLike | str],
     return _validate(merge_configs(*contents), problems, paths, section)
 
 
-def validate_config(cfg: Any, files: Iterable[os.PathLike | str] = ()) -> dict:
-    """Check ``cfg`` against the schema and the physical constraints; return it.
+def check_schema(cfg: Any, files: Iterable[os.PathLike | str] = ()) -> dict:
+    """Check ``cfg`` against the schema and the physical constraints; return it, completed.
+
+    This is the first stage of the one check of a configuration,
+    :func:`hubbeam.check.check_configuration`, which the workflow and :func:`hubbeam.api.load`
+    call: it does not resolve what needs the cases' matrices (designs, sampled controllers,
+    shapers), the ``control`` section or the readings, so a configuration it accepts may still be
+    refused there.
 
     Numbers YAML read as text (``1e-9``) are converted in ``cfg`` itself (:func:`coerce_numbers`),
     so that the config a workflow hands its rules holds floats.

@@ -1,6 +1,6 @@
 """The configuration as frozen, typed objects, checked once.
 
-:func:`from_config` turns a validated configuration (:func:`hubbeam.configuration.load.validate_config`)
+:func:`from_config` turns a validated configuration (:func:`hubbeam.configuration.load.check_schema`)
 into :class:`Settings`: the study, the beam (:func:`hubbeam.model.beam.beam_from_config`), the
 numerics, the eigen grids, the cases, each :class:`Case` with its defaults filled in and its
 maneuver and damping as the records of their kinds (:mod:`hubbeam.model.maneuvers`,
@@ -26,6 +26,7 @@ import numpy as np
 
 from hubbeam.configuration.load import ConfigError, validate_parts
 from hubbeam.configuration.schema import SCHEMA, Problem
+from hubbeam.configuration.sections import Control, Grid, Linear, Reading, Validation
 from hubbeam.model.beam import BeamSections, beam_from_config
 from hubbeam.model.damping import ModalDamping, RayleighDamping, damping_from_dict, damping_to_dict
 from hubbeam.model.drive import DcMotor
@@ -181,19 +182,6 @@ class Numerics:
 
 
 @dataclass(frozen=True)
-class Grid:
-    """``num`` equally spaced values from ``start`` to ``stop`` (schema ``$defs.grid``)."""
-
-    start: float
-    stop: float
-    num: int
-
-    @property
-    def values(self) -> np.ndarray:
-        return np.linspace(self.start, self.stop, self.num)
-
-
-@dataclass(frozen=True)
 class Eigen:
     """The grids of the eigenvalue studies (schema ``eigen``)."""
 
@@ -282,8 +270,10 @@ class Sweep:
 
 @dataclass(frozen=True)
 class Settings:
-    """A whole configuration: ``study`` is None for the paper; ``sweeps`` by name (none without a
-    ``sweeps`` section)."""
+    """A whole configuration, one record per section: ``study`` is None for the paper; ``sweeps``
+    by name (none without a ``sweeps`` section); ``linear`` with its defaults filled in; the
+    optional ``validation`` and ``control`` sections (None when absent, :mod:`hubbeam.configuration.sections`);
+    the ``readings`` by name; the product sets asked for."""
 
     beam: UniformBeam | BeamSections
     numerics: Numerics
@@ -291,6 +281,15 @@ class Settings:
     cases: FrozenMap
     study: Study | None = None
     sweeps: FrozenMap = field(default_factory=FrozenMap)
+    linear: Linear | None = None
+    #: the independent validation (None without a ``validation`` section)
+    validation: Validation | None = None
+    #: the analyses of the sampled controllers (None without a ``control`` section)
+    control: Control | None = None
+    #: the alternative readings of the paper by name (:class:`~hubbeam.configuration.sections.Reading`)
+    readings: FrozenMap = field(default_factory=FrozenMap)
+    #: the product sets asked for (``products``)
+    products: tuple[str, ...] = ()
 
     def case(self, name: str) -> Case:
         """The case ``name``; a :class:`ConfigError` names the defined ones."""
@@ -300,7 +299,7 @@ class Settings:
 
 
 def from_config(cfg: Mapping) -> Settings:
-    """The objects of a validated configuration (:func:`hubbeam.configuration.load.validate_config`)."""
+    """The objects of a validated configuration (:func:`hubbeam.configuration.load.check_schema`)."""
     eigen = dict(cfg["eigen"])
     study = cfg.get("study")
     return Settings(
@@ -311,6 +310,11 @@ def from_config(cfg: Mapping) -> Settings:
         study=None if study is None else Study(**{**study, "comparisons": freeze(study.get("comparisons", {}))}),
         sweeps=FrozenMap({name: sweep_from_config(cfg, name)
                           for name in sorted(cfg.get("sweeps", {}).get("maps", {}))}),
+        linear=Linear.from_dict(cfg["linear"]) if "linear" in cfg else None,
+        validation=None if "validation" not in cfg else Validation.from_dict(cfg["validation"]),
+        control=None if "control" not in cfg else Control.from_dict(cfg["control"]),
+        readings=FrozenMap({name: Reading.from_dict(name, entry) for name, entry in cfg.get("readings", {}).items()}),
+        products=tuple(cfg.get("products", ())),
     )
 
 

@@ -19,7 +19,7 @@ body, the drive's rotor), so it is resolved for each run (:func:`resolve`, the `
 
 :func:`case_problems` resolves every case of a configuration on its own matrices before any job
 runs, and reports what would stop one as a problem naming its key (the workflow refuses the
-configuration with all of them, ``hubbeam.pipeline.plan.checked_configuration``). :func:`simulate_case` runs any case.
+configuration with all of them, ``hubbeam.check.check_configuration``). :func:`simulate_case` runs any case.
 """
 
 from __future__ import annotations

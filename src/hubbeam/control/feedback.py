@@ -49,8 +49,9 @@ from hubbeam.model.maneuvers import FeedbackLaw
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import DESIGN_ONLY_MODELS
 from hubbeam.model.models import model as model_traits
+from hubbeam.model.plant import with_drive
 from hubbeam.simulation.errors import SimulationError
-from hubbeam.simulation.simulate import drive_matrices, quadrature_points
+from hubbeam.simulation.simulate import quadrature_points
 
 #: relative size below which a left eigenvector's projection on the input counts as zero (PBH)
 UNCONTROLLABLE = 1e-9
@@ -123,7 +124,7 @@ def design_matrices(case: Case, beam, sm):
     if modes is None or modes == sm.M1.shape[0]:
         return sm
     matrices = assemble(beam, case.tip_mass, modes, quadrature_points(sm), case.transverse_functions)
-    return drive_matrices(matrices, case.drive)
+    return with_drive(matrices, case.drive)
 
 
 def design_plant(case: Case, beam, sm):

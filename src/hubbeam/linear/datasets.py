@@ -5,7 +5,7 @@ Each function takes the beam, the tip masses (kg, at the beam tip ``l = L``; 0 f
 speeds (rad s-1) and the discretisation, and returns an :class:`xarray.Dataset` with CF units and
 long names over the models of :data:`hubbeam.model.models.MODELS`; a workflow script adds the provenance
 attributes (``hubbeam.results.provenance.global_attributes``) and writes it with
-``hubbeam.results.io.write_netcdf``. ``damping`` is a case's ``damping`` mapping (``hubbeam.model.damping``) or
+``hubbeam.results.io.write_netcdf``. ``damping`` is a damping record or its mapping (``hubbeam.model.damping``) or
 None. Models without a mode or a root where others have one (SFOAM keeps no axial coordinates)
 are padded with NaN (``kind`` and ``stable`` -1, ``none``).
 
@@ -33,7 +33,7 @@ from hubbeam.configuration.settings import damping_settings
 from hubbeam.linear import frequency, tracking
 from hubbeam.linear.statespace import HUBS, INPUT_UNITS, OUTPUTS, check_speeds, linear_model, spin_equations
 from hubbeam.model.beam import beam_attributes
-from hubbeam.model.damping import damping_matrices
+from hubbeam.model.damping import damping_matrices, damping_to_dict
 from hubbeam.model.eigen import critical_speed
 from hubbeam.model.matrices import MODE_NORMALISATION, assemble
 from hubbeam.model.models import MODELS
@@ -67,7 +67,7 @@ def _damping(damping, sm):
 
 def _checked(beam, tip_masses, speeds, n_modes, n_quad, damping, outputs=()):
     """Every argument checked, then the speeds as an array and the systems (:func:`_systems`)."""
-    damping_settings(damping)  # checked here; the mapping goes on into the attributes
+    damping_settings(damping)  # a mapping checked here (a record as it is)
     speeds = check_speeds(speeds)
     unknown = [name for name in outputs if name not in OUTPUTS]
     if unknown:
@@ -78,7 +78,7 @@ def _checked(beam, tip_masses, speeds, n_modes, n_quad, damping, outputs=()):
 def _attributes(beam, n_modes, n_quad, damping, title) -> dict:
     return {"title": title, "n_modes": int(n_modes), "n_quad_requested": int(n_quad),
             "mode_normalisation": MODE_NORMALISATION, "tip_position_m": float(beam.L),
-            "damping": json.dumps(damping or {}, sort_keys=True)} | beam_attributes(beam)
+            "damping": json.dumps(damping_to_dict(damping_settings(damping)), sort_keys=True)} | beam_attributes(beam)
 
 
 def _coords(masses, speeds, **extra):

@@ -218,6 +218,17 @@ def beam_attributes(params: UniformBeam | BeamSections) -> dict:
                for name in ("x",) + SECTION_PROPERTIES})
 
 
+def beam_config(params: UniformBeam | BeamSections) -> dict:
+    """The beam as a configuration's ``beam`` section writes it (the inverse of
+    :func:`beam_from_config`): the keys of its uniform form, or the three scalars and inline
+    ``sections`` lists."""
+    attributes = beam_attributes(params)
+    if isinstance(params, UniformBeam):
+        return attributes
+    return ({key: attributes[key] for key in SECTIONS_BEAM_KEYS}
+            | {"sections": {name: attributes[f"sections_{name}"].tolist() for name in ("x",) + SECTION_PROPERTIES}})
+
+
 def beam_from_attributes(attrs: Mapping) -> UniformBeam | BeamSections:
     """The beam described by :func:`beam_attributes` (e.g. a dataset's attributes)."""
     if "sections_x" not in attrs:

@@ -539,7 +539,7 @@ class StateFeedback(Tracking):
     def kernel_parameters(self, law=None):
         if law is None:
             raise ValueError("maneuver.kind = 'state_feedback' without its feedback law; allowed: "
-                             "hubbeam.control.feedback.simulate_case, which resolves the gains")
+                             "hubbeam.control.cases.simulate_case, which resolves the gains")
         head = [float(law.gains.size // 2), float(law.inertia), float(law.damping)]
         assert len(head) == kernels.FEEDBACK_GAINS
         return self.code, np.concatenate([head, law.gains, law.stretch, self.reference_parameters()])

@@ -163,11 +163,6 @@ class TipMass:
     def __post_init__(self) -> None:
         _store_floats(self)
 
-    @classmethod
-    def from_case(cls, case: Mapping) -> TipMass:
-        """Build from a resolved case (``hubbeam.configuration.load.case_settings``)."""
-        return cls(**case["tip_mass"])
-
     @property
     def is_point(self) -> bool:
         """Whether this is the paper's point mass: no rotary inertia, centre at the attachment."""

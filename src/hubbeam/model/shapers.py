@@ -413,7 +413,7 @@ def insensitive_band(shaper: Shaper, omega: float, zeta: float = 0.0, tolerance:
 
 def shaped_stops(stops, shaper: Shaper) -> np.ndarray:
     """The sorted distinct times where a shaped command is not smooth: the maneuver's start
-    (``t = 0``) and its ``stops`` (``hubbeam.model.maneuvers.maneuver_stops``) shifted by every
+    (``t = 0``) and its ``stops`` (``hubbeam.model.maneuvers.Maneuver.stops``) shifted by every
     impulse time of ``shaper``."""
     times = np.concatenate([[0.0], np.asarray(stops, dtype=float)])
     return np.unique(np.add.outer(shaper.times, times))

@@ -16,6 +16,7 @@ import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
+from hubbeam.configuration.sections import Reading
 from hubbeam.reporting.formatting import number, percent
 
 EXPLAINED = "explained by a reading"
@@ -142,15 +143,15 @@ def shared_explanations(found: Iterable[Conclusion]) -> dict[str, list[str]]:
     return {name: ids for name, ids in by_reading.items() if len(ids) > 1}
 
 
-def section(default_rows: list[Mapping], reading_rows: list[Mapping], readings: Mapping[str, Mapping]) -> dict:
+def section(default_rows: list[Mapping], reading_rows: list[Mapping], readings: Mapping[str, Reading]) -> dict:
     """What the report's readings section shows: the readings (with their notes), one conclusion
     per differing claim, the readings that explain several claims, and the readings that bring
     some claims closer while moving others further away."""
     found = conclusions(default_rows, reading_rows)
     effects = side_effects({row["id"]: row for row in default_rows}, reading_rows)
     return {
-        "readings": [{"name": name, "why": entry["why"], "notes": ", ".join(map(str, entry["notes"])),
-                      "claims": len(entry["claims"])} for name, entry in readings.items()],
+        "readings": [{"name": name, "why": entry.why, "notes": ", ".join(map(str, entry.notes)),
+                      "claims": len(entry.claims)} for name, entry in readings.items()],
         "conclusions": found,
         "counts": {key: sum(c.verdict == verdict for c in found) for key, verdict in
                    (("explained", EXPLAINED), ("misprint", MISPRINT), ("unexplained", UNEXPLAINED))},

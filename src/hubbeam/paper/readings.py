@@ -28,10 +28,12 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
+from hubbeam.configuration.sections import Reading
 from hubbeam.configuration.settings import Case, Eigen, Numerics, Settings, simulation_settings
 from hubbeam.model.beam import CONFIG_FIELDS
 from hubbeam.model.eigen import critical_speed
 from hubbeam.model.eigen import table2 as eigen_table2
+from hubbeam.model.frozen import thaw
 from hubbeam.model.parameters import TipMass
 from hubbeam.paper import claims as claim_defs
 from hubbeam.paper import tables
@@ -125,31 +127,31 @@ MEASURES = {
 
 # --- readings as data ---------------------------------------------------------------------------
 
-def check_reading(name: str, reading: Mapping) -> None:
+def check_reading(reading: Reading) -> None:
     """Raise :class:`ReadingError` unless ``reading`` has one known change and known claims."""
-    where = f"readings.{name}"
-    change = reading.get("change")
-    if not isinstance(change, Mapping) or len(change) != 1 or next(iter(change)) not in CHANGE_KINDS:
-        raise ReadingError(f"{where}.change = {change!r}; allowed: a mapping with exactly one of "
+    where = f"readings.{reading.name}"
+    if reading.change not in CHANGE_KINDS:
+        raise ReadingError(f"{where}.change = {reading.change!r}; allowed: a mapping with exactly one of "
                            f"{', '.join(CHANGE_KINDS)}")
     known = {claim.id for claim in claim_defs.claims()}
-    unknown = [cid for cid in reading.get("claims", []) if cid not in known]
-    if unknown or not reading.get("claims"):
-        raise ReadingError(f"{where}.claims = {reading.get('claims')!r}; allowed: a non-empty list "
+    unknown = [cid for cid in reading.claims if cid not in known]
+    if unknown or not reading.claims:
+        raise ReadingError(f"{where}.claims = {list(reading.claims)!r}; allowed: a non-empty list "
                            "of claim ids of claims.csv")
-    kind, value = next(iter(change.items()))
+    kind, value = change_of(reading)
     named = {"maneuver": MANEUVER_READINGS, "measure": MEASURES}.get(kind)
     if named is not None and value not in named:
         raise ReadingError(f"{where}.change.{kind} = {value!r}; allowed: {', '.join(named)}")
     if kind == "measure":
-        missing = [cid for cid in reading["claims"] if cid not in MEASURES[value]]
+        missing = [cid for cid in reading.claims if cid not in MEASURES[value]]
         if missing:
             raise ReadingError(f"{where}.claims: measure {value!r} does not define "
                                f"{', '.join(missing)}; allowed: {', '.join(MEASURES[value])}")
 
 
-def change_of(reading: Mapping) -> tuple[str, object]:
-    return next(iter(reading["change"].items()))
+def change_of(reading: Reading) -> tuple[str, object]:
+    """The kind of the reading's change and what it changes to."""
+    return reading.change, reading.value
 
 
 def _merge(base: dict, override: Mapping) -> dict:
@@ -169,15 +171,15 @@ def generated_name(reading: str, case: str) -> str:
     return f"reading-{reading}--{case}"
 
 
-def reading_case(name: str, reading: Mapping, base: Case, settings: Settings) -> Case | None:
-    """The case of reading ``name`` generated from the ``base`` case of ``settings``, or None when
+def reading_case(reading: Reading, base: Case, settings: Settings) -> Case | None:
+    """The case of ``reading`` generated from the ``base`` case of ``settings``, or None when
     the reading leaves that run unchanged (the default run is then the reading's run). A generated
     case is checked as any case of a configuration (``ConfigError``)."""
     kind, value = change_of(reading)
     plain = base.to_dict()
     new = copy.deepcopy(plain)
-    if kind == "case" and _matches(base, reading.get("where", {})):
-        new = _merge(new, value)
+    if kind == "case" and _matches(base, reading.where):
+        new = _merge(new, thaw(value))
     elif kind == "maneuver":
         applies_to, generate = MANEUVER_READINGS[value]
         if base.maneuver.kind == applies_to:
@@ -186,7 +188,7 @@ def reading_case(name: str, reading: Mapping, base: Case, settings: Settings) ->
         new["tip_mass"] = _tip(value, base.tip_mass.mass, base.tip_mass.position)
     if new == plain and kind != "beam":
         return None
-    new["name"] = generated_name(name, base.name)
+    new["name"] = generated_name(reading.name, base.name)
     return simulation_settings(new, settings.numerics, settings.beam.L)[0]
 
 
@@ -198,7 +200,7 @@ def _tip(change: Mapping, mass: float, position: float) -> dict:
     return {"mass": float(mass), "position": float(change.get("position", position))}
 
 
-def reading_beam(reading: Mapping, beam):
+def reading_beam(reading: Reading, beam):
     """The beam under the reading (changed only by a ``beam`` change of Table 1 values, given by
     their configuration keys)."""
     kind, value = change_of(reading)
@@ -214,13 +216,13 @@ def claim_products(claim_ids) -> list[str]:
     return sorted(key for key in keys if key in PAPER_PRODUCTS)
 
 
-def reading_cases(settings: Settings, name: str, reading: Mapping) -> dict[str, Case | None]:
-    """``{base case: generated case or None}`` over the runs the claims of reading ``name`` read
-    (the reading is checked first, :func:`check_reading`)."""
-    check_reading(name, reading)
-    bases = sorted({case for key in claim_products(reading["claims"])
+def reading_cases(settings: Settings, reading: Reading) -> dict[str, Case | None]:
+    """``{base case: generated case or None}`` over the runs the claims of ``reading`` read (the
+    reading is checked first, :func:`check_reading`)."""
+    check_reading(reading)
+    bases = sorted({case for key in claim_products(reading.claims)
                     for case in PAPER_PRODUCTS[key].cases})
-    return {case: reading_case(name, reading, settings.case(case), settings) for case in bases}
+    return {case: reading_case(reading, settings.case(case), settings) for case in bases}
 
 
 # --- evaluation ---------------------------------------------------------------------------------
@@ -258,9 +260,9 @@ def as_base(ds, base: Case):
     return out
 
 
-def _eigen_settings(reading: Mapping, beam, numerics: Numerics, eigen: Eigen) -> dict | None:
+def _eigen_settings(reading: Reading, beam, numerics: Numerics, eigen: Eigen) -> dict | None:
     kind, value = change_of(reading)
-    modes = value.get("modes") if kind == "case" and "model" not in reading.get("where", {}) else None
+    modes = value.get("modes") if kind == "case" and "model" not in reading.where else None
     if kind not in ("beam", "tip_mass") and modes is None:
         return None
     return {"params": reading_beam(reading, beam), "tip_mass": value if kind == "tip_mass" else {},
@@ -275,7 +277,7 @@ class ReadingRuns:
     settings of the configuration (:func:`reading_runs`)."""
 
     name: str
-    reading: Mapping
+    reading: Reading
     bases: Mapping[str, Case]
     generated: Mapping[str, Case | None]
     beam: object
@@ -283,10 +285,10 @@ class ReadingRuns:
     eigen: Eigen
 
 
-def reading_runs(settings: Settings, name: str, reading: Mapping) -> ReadingRuns:
-    """The :class:`ReadingRuns` of reading ``name`` of ``settings`` (checked: :func:`reading_cases`)."""
-    generated = reading_cases(settings, name, reading)
-    return ReadingRuns(name, reading, {base: settings.case(base) for base in generated}, generated,
+def reading_runs(settings: Settings, reading: Reading) -> ReadingRuns:
+    """The :class:`ReadingRuns` of ``reading`` of ``settings`` (checked: :func:`reading_cases`)."""
+    generated = reading_cases(settings, reading)
+    return ReadingRuns(reading.name, reading, {base: settings.case(base) for base in generated}, generated,
                        settings.beam, settings.numerics, settings.eigen)
 
 
@@ -304,7 +306,7 @@ def evaluate_reading(runs_of: ReadingRuns, simulations: Mapping, table2_csv,
             by_base[base] = as_base(runs[case.name], runs_of.bases[base])
     results = ReadingResults(simulations, table2_csv, critical_speeds_csv, by_base,
                              _eigen_settings(reading, runs_of.beam, runs_of.numerics, runs_of.eigen))
-    selected = [claim for claim in claim_defs.claims() if claim.id in reading["claims"]]
+    selected = [claim for claim in claim_defs.claims() if claim.id in reading.claims]
     kind, value = change_of(reading)
     if kind == "measure":
         selected = [dataclasses.replace(claim, compute=MEASURES[value][claim.id]) for claim in selected]
@@ -332,7 +334,7 @@ def read_rows(path) -> list[dict]:
     return read_csv_rows(path, ("paper", "default", "computed", "rel_diff", "tolerance"))
 
 
-def matrix(rows: list[dict], readings: Mapping[str, Mapping]) -> xr.Dataset:
+def matrix(rows: list[dict], readings: Mapping[str, Reading]) -> xr.Dataset:
     """The claims x readings matrix (CF attributes): computed value, relative difference to the
     print and verdict flag of each claim under each reading that recomputes it (NaN / -1 where the
     reading does not)."""
@@ -359,7 +361,7 @@ def matrix(rows: list[dict], readings: Mapping[str, Mapping]) -> xr.Dataset:
         coords={"claim": ("claim", claim_ids, {"long_name": "claim id of claims.csv"}),
                 "unit": ("claim", units, {"long_name": "unit of the claim's values (paper, default, computed)"}),
                 "reading": ("reading", names, {"long_name": "alternative reading (config readings)"}),
-                "why": ("reading", [readings[n]["why"] for n in names],
+                "why": ("reading", [readings[n].why for n in names],
                         {"long_name": "the changed interpretation"})},
     )
 

@@ -52,7 +52,7 @@ def readings_markdown(readings: list[dict]) -> str:
 
 def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Path],
                           tables: Mapping[str, str | Path], datasets: Mapping[str, xr.Dataset],
-                          numerics: Mapping, report_dir, validation=None, readings=None,
+                          numerics, report_dir, validation=None, readings=None,
                           products: Mapping[str, Product] = PAPER_PRODUCTS) -> str:
     """The reproduction report (Markdown), figures linked relative to ``report_dir``.
 
@@ -80,7 +80,7 @@ def reproduction_markdown(claim_rows: list[dict], figures: Mapping[str, str | Pa
                  for row in claim_rows if row["verdict"] == "differs"]
     return render(
         "reproduction.md.j2", version=__version__, commits=", ".join(f"`{c}`" for c in commits),
-        numerics={key: numerics.get(key) for key in ("rtol", "atol", "output_step", "quadrature_points")},
+        numerics={key: getattr(numerics, key) for key in ("rtol", "atol", "output_step", "quadrature_points")},
         claims=claim_rows, validation=validation, readings=readings, differing=differing,
         counts={v: sum(r["verdict"] == v for r in claim_rows) for v in ("agrees", "differs", "qualitative")},
         tables=[Path(tables[name]).read_text().strip() for name in sorted(tables)],

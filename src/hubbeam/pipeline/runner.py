@@ -1,19 +1,22 @@
 """The one way a rule's script runs its job: logging into the rule's log file, the traceback kept.
 
-Every script of ``workflow/scripts/`` is a shim, ``run(<job function>, snakemake)``: :func:`run`
+Every rule runs the one script ``workflow/scripts/run_job.py``, a shim, ``run(snakemake)``: :func:`run`
 turns the ``snakemake`` object Snakemake hands a script into a :class:`Job` (the rule's files by
-name, its params, its log file) and :func:`run_job` runs the job function on it. While the job
+name, its params, its log file) and :func:`run_job` runs on it the job function the rule's step
+names (``params.job``, ``"module:function"`` of :mod:`hubbeam.pipeline.jobs`). While the job
 runs, every log record of the package (``logging``, level INFO and up) goes to the log file,
 written afresh, and Python's warnings with them; warnings also reach the console (standard
 error). When the job raises, its traceback is written into the log file before the exception
 goes on to Snakemake, so that the log of a failed job says where it failed.
 
-This module imports nothing of the package but the frozen mapping: every script imports it, so
-each of its imports would be a code input of every rule (:mod:`hubbeam.reporting.sourcedeps`).
+This module imports nothing of the package but the frozen mapping: the script imports it, so
+each of its imports would be a code input of every rule (:mod:`hubbeam.reporting.sourcedeps`); the
+job's module is imported by its name, and its sources are the code inputs of its rule.
 """
 
 from __future__ import annotations
 
+import importlib
 import logging
 import sys
 import time
@@ -46,11 +49,19 @@ def _files(named) -> FrozenMap:
                       for name, value in named.items()})
 
 
-def run(function: Callable[[Job], None], snakemake) -> None:
-    """Run ``function`` on the job of the ``snakemake`` object Snakemake hands a rule's script
-    (:func:`run_job`). The files and params a rule does not name are not passed on."""
-    run_job(function, Job(input=_files(snakemake.input), output=_files(snakemake.output),
-                          params=FrozenMap(snakemake.params.items()), log=str(snakemake.log[0])))
+def job_function(name: str) -> Callable[[Job], None]:
+    """The job function named ``"module:function"`` (imported now)."""
+    module, _, function = name.partition(":")
+    return getattr(importlib.import_module(module), function)
+
+
+def run(snakemake) -> None:
+    """Run the job function its rule names (``params.job``) on the job of the ``snakemake`` object
+    Snakemake hands the rule's script (:func:`run_job`). The files and params a rule does not name
+    are not passed on."""
+    params = FrozenMap(snakemake.params.items())
+    run_job(job_function(params["job"]), Job(input=_files(snakemake.input), output=_files(snakemake.output),
+                                              params=params, log=str(snakemake.log[0])))
 
 
 def run_job(function: Callable[[Job], None], job: Job) -> None:

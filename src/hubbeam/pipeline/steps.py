@@ -56,13 +56,19 @@ def fingerprint(*values) -> Callable:
 
 @dataclass(frozen=True)
 class Step:
-    """The files, params and log of one rule, and the wildcards of its jobs.
+    """The files, params and log of one rule, the wildcards of its jobs and Snakemake's flags.
 
     ``script``: the file name of its script in ``workflow/scripts/``; ``input``, ``output``,
     ``params``: by name (a path, a tuple of paths, a value, or a function of the wildcards, see
     the module docstring); ``log``: the log file; ``wildcards``: one mapping per job the
     configuration defines (one empty mapping for a rule without wildcards, none for a rule whose
     jobs need a section the configuration lacks).
+
+    The flags of the rule: ``local`` (run on the host that runs Snakemake, not on a cluster's
+    node), ``priority``, the wildcards' ``constraints`` (regular expressions), the outputs that are
+    ``temporary`` (deleted once every job reading them is done), the ``markers`` (outputs that
+    may be empty; every other output must not be), and the outputs shown in ``snakemake --report``
+    (``reported``: output name -> ``(caption file, category)``).
     """
 
     script: str
@@ -71,11 +77,38 @@ class Step:
     input: Mapping[str, Any] = field(default_factory=FrozenMap)
     params: Mapping[str, Any] = field(default_factory=FrozenMap)
     wildcards: tuple[Mapping[str, str], ...] = (FrozenMap(),)
+    local: bool = False
+    priority: int = 0
+    constraints: Mapping[str, str] = field(default_factory=FrozenMap)
+    temporary: tuple[str, ...] = ()
+    markers: tuple[str, ...] = ()
+    reported: Mapping[str, tuple[str, str]] = field(default_factory=FrozenMap)
 
     def __post_init__(self):
-        for name in ("output", "input", "params"):
+        for name in ("output", "input", "params", "constraints", "reported"):
             object.__setattr__(self, name, FrozenMap(getattr(self, name)))
         object.__setattr__(self, "wildcards", tuple(FrozenMap(values) for values in self.wildcards))
+        unknown = sorted({*self.temporary, *self.markers, *self.reported} - set(self.output))
+        if unknown:
+            raise ValueError(f"step {self.script}: flags name outputs it does not have: {', '.join(unknown)}; "
+                             f"allowed: {', '.join(self.output)}")
+
+    def flagged_output(self, ensure: Callable, temp: Callable, report: Callable) -> dict[str, Any]:
+        """The outputs with Snakemake's flags applied (the rule files pass Snakemake's ``ensure``,
+        ``temp`` and ``report``): every output ensured non-empty but the markers, the temporary
+        ones marked so, the reported ones with their caption and category."""
+        def flagged(name: str, path: str):
+            if name not in self.markers:
+                path = ensure(path, non_empty=True)
+            if name in self.temporary:
+                path = temp(path)
+            if name in self.reported:
+                caption, category = self.reported[name]
+                path = report(path, caption=caption, category=category)
+            return path
+
+        return {name: flagged(name, value) if isinstance(value, str) else [flagged(name, path) for path in value]
+                for name, value in self.output.items()}
 
     def job(self, wildcards: Mapping[str, str] | None = None, threads: int = 1) -> Job:
         """The job of ``wildcards`` as its job function receives it: paths and string params with

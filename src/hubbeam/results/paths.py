@@ -14,7 +14,6 @@ relative to the results folder (:data:`IN_RESULTS`), which the rules place with
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass
 
 #: the configuration of the paper, which a ``--configfile`` without a ``study`` section extends
@@ -216,9 +215,9 @@ IN_RESULTS = StudyPaths(results="", logs="")
 PAPER_FOLDERS = tuple(sorted(FOLDERS.values()))
 
 
-def study_paths(cfg: Mapping) -> StudyPaths:
-    """The folders of the configuration ``cfg``: its study's own (``study.name``), or the default."""
-    name = cfg.get("study", {}).get("name")
+def study_paths(name: str | None) -> StudyPaths:
+    """The folders of a configuration: those of its study ``name`` (``study.name``), or the
+    default ones (``name`` None: the paper, or a file extending it)."""
     if name is None:
         return SHARED
     return StudyPaths(results=SHARED.result(name), logs=SHARED.log(name), archive_top=f"{name}-results",

@@ -68,7 +68,7 @@ def global_attributes(title: str, case_config: Mapping | None = None,
                       extra: Mapping[str, Any] | None = None) -> dict:
     """Global attributes of a result file.
 
-    ``case_config`` (the resolved case, see ``hubbeam.configuration.load.case_settings``) is stored as a JSON
+    ``case_config`` (the resolved case, see ``hubbeam.configuration.settings.Case.to_dict``) is stored as a JSON
     string. ``extra`` adds attributes; mappings become JSON strings and booleans 0/1, as netCDF has
     neither. An ``extra`` key may not replace one of the provenance attributes.
     """

@@ -1,6 +1,6 @@
 """Python API of a simulation: validate a case, run the jitted kernel, label the result.
 
-:func:`simulate` turns a resolved case (``hubbeam.configuration.load.case_settings``), the beam parameters
+:func:`simulate` turns a resolved case (``hubbeam.configuration.settings.Case.to_dict``), the beam parameters
 (Table 1) and the ``numerics`` section of the config into the simulation dataset of
 ``docs/architecture.md``. The hub-beam starts at rest and undeformed (``theta = 0``, ``q = 0``,
 all rates zero), or at the operating point of the case's optional ``initial`` mapping
@@ -45,7 +45,6 @@ from hubbeam.core.sampled import simulate_sampled_kernel
 from hubbeam.model import linearised, validity
 from hubbeam.model.beam import beam_attributes
 from hubbeam.model.damping import damping_matrices
-from hubbeam.model.drive import DcMotor
 from hubbeam.model.limits import (
     MAX_MODES,
     MAX_QUADRATURE_POINTS,
@@ -56,6 +55,7 @@ from hubbeam.model.maneuvers import FeedbackLaw, Maneuver, PdControl, SpinUp, Tr
 from hubbeam.model.matrices import SystemMatrices, assemble
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.plant import with_drive
 from hubbeam.model.root import joint_inputs
 from hubbeam.model.shapers import Shaper, shaped_stops
 from hubbeam.results.provenance import global_attributes
@@ -115,7 +115,7 @@ def case_matrices(case: Case, params: BeamParameters, numerics: Numerics,
                   matrices: SystemMatrices | None = None) -> SystemMatrices:
     """The system matrices of ``case``: ``matrices`` (checked) or assembled from ``params`` (the case's
     tip body, modes and transverse functions), with the
-    reflected inertia of the case's drive rotor in the hub's (:func:`drive_matrices`)."""
+    reflected inertia of the case's drive rotor in the hub's (:func:`hubbeam.model.plant.with_drive`)."""
     n = case.modes
     if matrices is None:
         if numerics.quadrature_points is None:
@@ -126,15 +126,7 @@ def case_matrices(case: Case, params: BeamParameters, numerics: Numerics,
         raise SimulationError(f"cases.{case.label}.modes = {n}, but the matrices given have "
                               f"{np.shape(matrices.K1)[0]} modes; allowed: matrices assembled with the case's "
                               "number of modes")
-    return drive_matrices(kernel_matrices(matrices), case.drive)
-
-
-def drive_matrices(sm: SystemMatrices, motor: DcMotor | None) -> SystemMatrices:
-    """``sm`` with the rotor's reflected inertia (``DcMotor.reflected_inertia``) added to the hub's
-    ``Jh`` (``sm`` itself without a motor, or with a rotor already counted in the hub's inertia)."""
-    if motor is None or motor.reflected_inertia == 0.0:
-        return sm
-    return sm._replace(Jh=float(sm.Jh) + motor.reflected_inertia)
+    return with_drive(kernel_matrices(matrices), case.drive)
 
 
 class Resolved(NamedTuple):

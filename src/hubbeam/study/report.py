@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-from hubbeam.model.beam import SECTION_PROPERTIES, SECTION_UNITS, beam_from_config
+from hubbeam.model.beam import SECTION_PROPERTIES, SECTION_UNITS, beam_config
 from hubbeam.reporting.document import markdown_table, markdown_to_html, render
 from hubbeam.reporting.formatting import number
 from hubbeam.reporting.products import (
@@ -33,11 +33,12 @@ from hubbeam.study.summary import NO_SHAPER
 from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, performance, verdicts
 
 
-def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
+def study_markdown(study, beam, rows: Sequence[Mapping],
                    figures: Mapping[str, Mapping[str, str]], designs: Sequence[Mapping] = (),
                    frequencies: Sequence[Mapping] = (), controllers: str = "",
                    shaping: Mapping | None = None) -> str:
-    """The report in Markdown. ``rows`` are summary rows, ``designs`` the rows of
+    """The report in Markdown of the study ``study`` (its record: name, title, description) and its
+    beam (a beam record). ``rows`` are summary rows, ``designs`` the rows of
     :func:`hubbeam.study.trust.design_table`, ``frequencies`` those of
     :func:`hubbeam.study.frequencies.case_frequencies`; ``figures`` gives, per section of the report (the
     products' ``section``, :data:`hubbeam.reporting.products.SECTIONS`), the PNG paths relative
@@ -45,12 +46,12 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
     comparison, the figure's name otherwise. Sections the study report has no place for (the
     paper's) are left out. ``controllers``: the section on sampled controllers
     (:func:`hubbeam.study.controllers.controllers_markdown`), shown before the case figures;
-    ``shaping``: the section of a command-shaping study (:func:`hubbeam.study.shaping.shaping_section`),
+    ``shaping``: the section of a command-shaping study (:func:`hubbeam.study.shaping_report.shaping_section`),
     None without one."""
     def first(section: str) -> str | None:
         return next(iter(figures.get(section, {}).values()), None)
 
-    return render("study_report.md.j2", study=study, beam=beam, rows=rows,
+    return render("study_report.md.j2", study=study, beam=beam_config(beam), rows=rows,
                   beam_table=beam_markdown(beam), cases_table=cases_markdown(rows),
                   frequencies_table=frequencies_markdown(frequencies) if frequencies else "",
                   case_figures=figures.get(CASES_SECTION, {}),
@@ -66,10 +67,9 @@ def study_markdown(study: Mapping, beam: Mapping, rows: Sequence[Mapping],
                   shaping=shaping, shaping_figures=figures.get(SHAPING_SECTION, {}))
 
 
-def beam_summary(beam: Mapping) -> list[dict]:
-    """One row per property of the config's ``beam`` (uniform or by sections): ``name``, ``unit``,
-    its value at the ``root`` and the ``tip``, and its ``min`` and ``max`` over the stations."""
-    params = beam_from_config(beam)
+def beam_summary(params) -> list[dict]:
+    """One row per property of the beam (uniform or by sections): ``name``, ``unit``, its value at
+    the ``root`` and the ``tip``, and its ``min`` and ``max`` over the stations."""
     stations = params.stations
     rows = []
     for name in SECTION_PROPERTIES:
@@ -79,7 +79,7 @@ def beam_summary(beam: Mapping) -> list[dict]:
     return rows
 
 
-def beam_markdown(beam: Mapping) -> str:
+def beam_markdown(beam) -> str:
     """The beam in a few rows (:func:`beam_summary`): one per property, whatever its stations."""
     return markdown_table(("property", "unit", "at the root", "at the tip", "min", "max"),
                           ([row["name"], row["unit"], number(row["root"]), number(row["tip"]),

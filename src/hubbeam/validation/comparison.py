@@ -11,6 +11,7 @@ critical speed) has NaN outputs after ``diverged_at_s``; its metrics cover the s
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from collections.abc import Mapping, Sequence
 
@@ -18,6 +19,9 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from hubbeam.configuration.sections import ValidationCase
+from hubbeam.configuration.settings import Case, Numerics
+from hubbeam.model.parameters import TipMass
 from hubbeam.results import measures
 from hubbeam.simulation.simulate import simulate
 
@@ -25,28 +29,19 @@ from hubbeam.simulation.simulate import simulate
 REFERENCE = "Exudyn"
 
 
-def model_case(name: str, validation_case: Mapping, model: str, modes: int,
-               beam_length: float) -> dict:
-    """The resolved simulation case (``hubbeam.configuration.load.case_settings`` form) of ``model``."""
-    tip = validation_case.get("tip_mass") or {"mass": 0.0, "position": beam_length}
-    return {
-        "name": f"validation_{name}_{model}",
-        "model": model,
-        "maneuver": {key: value if key == "kind" else float(value)
-                     for key, value in validation_case["maneuver"].items()},
-        "t_end": float(validation_case["t_end"]),
-        "modes": int(modes),
-        "tip_mass": {"mass": float(tip["mass"]), "position": float(tip["position"])},
-    }
+def model_case(validation_case: ValidationCase, model: str, modes: int, beam_length: float) -> Case:
+    """The simulation case of ``model`` with ``modes`` modes on the validation case (no tip mass: a
+    mass of 0 at the tip)."""
+    return Case(name=f"validation_{validation_case.name}_{model}", model=model, maneuver=validation_case.maneuver,
+                t_end=float(validation_case.t_end), modes=int(modes),
+                tip_mass=validation_case.tip_mass or TipMass(mass=0.0, position=float(beam_length)))
 
 
-def simulate_models(name: str, validation_case: Mapping, models: Sequence[str], params,
-                    numerics: Mapping) -> xr.Dataset:
+def simulate_models(validation_case: ValidationCase, models: Sequence[str], params, numerics: Numerics) -> xr.Dataset:
     """Tip outputs of every model for one validation case, stacked along ``model``."""
     runs = []
     for model in models:
-        case = model_case(name, validation_case, model, numerics["modes"], params.L)
-        ds = simulate(case, params, numerics)
+        ds = simulate(model_case(validation_case, model, numerics.modes, params.L), params, numerics)
         runs.append(xr.Dataset(
             {
                 "tip_transverse": ds["tip_transverse"],
@@ -63,8 +58,8 @@ def simulate_models(name: str, validation_case: Mapping, models: Sequence[str], 
         ).expand_dims(model=[model]))
     combined = xr.concat(runs, dim="model")
     combined["model"].attrs.update(long_name="hubbeam model", units="1")
-    combined.attrs = {"case": name, "n_modes": int(numerics["modes"]),
-                      "case_config": json.dumps(dict(validation_case), sort_keys=True)}
+    combined.attrs = {"case": validation_case.name, "n_modes": int(numerics.modes),
+                      "case_config": json.dumps(validation_case.to_dict(), sort_keys=True)}
     return combined
 
 
@@ -173,9 +168,8 @@ def convergence_table(runs: Mapping[str, xr.Dataset], production: Mapping) -> pd
     return pd.DataFrame(rows)
 
 
-def mode_study(name: str, validation_case: Mapping, models: Sequence[str],
-               modes: Sequence[int], params, numerics: Mapping,
-               reference: xr.Dataset) -> pd.DataFrame:
+def mode_study(validation_case: ValidationCase, models: Sequence[str], modes: Sequence[int], params,
+               numerics: Numerics, reference: xr.Dataset) -> pd.DataFrame:
     """Largest tip-deflection difference to the reference against the number of assumed modes.
 
     A difference that stops changing with the modes is a difference of the models' equations,
@@ -184,13 +178,13 @@ def mode_study(name: str, validation_case: Mapping, models: Sequence[str],
     rows = []
     for model in models:
         for n in modes:
-            ds = simulate(model_case(name, validation_case, model, n, params.L), params,
-                          {**numerics, "modes": int(n)})
+            ds = simulate(model_case(validation_case, model, n, params.L), params,
+                          dataclasses.replace(numerics, modes=int(n)))
             if ds.attrs["diverged"]:
                 continue
             difference = np.abs(ds["tip_transverse"].values
                                 - reference["tip_transverse"].values)
-            rows.append({"case": name, "model": model, "n_modes": int(n),
+            rows.append({"case": validation_case.name, "model": model, "n_modes": int(n),
                          "max_abs_difference_m": float(np.max(difference)),
                          "max_abs_difference_rel_peak": float(
                              np.max(difference) / np.max(np.abs(reference["tip_transverse"])))})

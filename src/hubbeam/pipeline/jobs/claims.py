@@ -51,6 +51,7 @@ def readings_matrix(job: Job) -> None:
     with staged(job.output["csv"]) as (csv,):
         write_rows(rows, csv)
     ds = matrix(rows, readings)
-    ds.attrs = global_attributes("Claims of the paper under alternative readings", extra={"readings": readings})
+    ds.attrs = global_attributes("Claims of the paper under alternative readings",
+                                 extra={"readings": {name: reading.to_dict() for name, reading in readings.items()}})
     write_netcdf(ds, job.output["nc"])
     LOG.info("%d claim values under %d readings", len(rows), len(readings))

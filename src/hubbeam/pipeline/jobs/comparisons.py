@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import logging
 
-import numpy as np
-
 from hubbeam.pipeline.runner import Job
 from hubbeam.plotting import draw
 from hubbeam.results.io import open_result, staged, write_netcdf
@@ -25,14 +23,14 @@ def validate_published(job: Job) -> None:
     curves and their figure. A value not reproduced is a result, reported with its verdict, and
     announced as a warning; it does not stop the run."""
     p, out = job.params, job.output
-    modes = p["published"]["modes"]
+    modes = list(p["published"].modes)
     table = rotating_eigen.published_comparison(modes, p["n_quad"])
     with staged(out["table"]) as (csv,):
         table.to_csv(csv, index=False)
     tip_mass = rotating_eigen.tip_mass_comparison(modes[-2:], p["n_quad"])
     with staged(out["tip_mass"]) as (csv,):
         tip_mass.to_csv(csv, index=False)
-    curves = rotating_eigen.frequency_curves(np.linspace(**p["published"]["gammas"]), 70.0, 0.0, max(modes),
+    curves = rotating_eigen.frequency_curves(p["published"].gammas.values, 70.0, 0.0, max(modes),
                                              p["n_quad"])
     curves.attrs = global_attributes(curves.attrs.pop("title"), extra={
         **curves.attrs, "published_sources": "; ".join(published.CITATIONS.values())})

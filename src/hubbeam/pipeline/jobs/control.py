@@ -19,7 +19,7 @@ def control_sample_time(job: Job) -> None:
     """The sample-time sweep of ``params.spec`` (``control.sample_time``) on ``params.settings`` -> ``output.nc``."""
     ds = sample_time_analysis(job.params["settings"], job.params["spec"])
     write_netcdf(ds, job.output["nc"])
-    LOG.info("sample-time sweep of %s over %d sample times -> %s", ", ".join(job.params["spec"]["cases"]),
+    LOG.info("sample-time sweep of %s over %d sample times -> %s", ", ".join(job.params["spec"].cases),
              ds.sizes["sample_time"], job.output["nc"])
 
 
@@ -27,7 +27,7 @@ def control_robustness(job: Job) -> None:
     """The robustness maps of ``params.spec`` (``control.robustness``) on ``params.settings`` -> ``output.nc``."""
     ds = robustness_analysis(job.params["settings"], job.params["spec"])
     write_netcdf(ds, job.output["nc"])
-    LOG.info("robustness maps of %s -> %s", ", ".join(job.params["spec"]["cases"]), job.output["nc"])
+    LOG.info("robustness maps of %s -> %s", ", ".join(job.params["spec"].cases), job.output["nc"])
 
 
 def control_export(job: Job) -> None:

@@ -6,10 +6,8 @@ from __future__ import annotations
 
 import logging
 
-import numpy as np
 import xarray as xr
 
-from hubbeam.model.beam import beam_from_config
 from hubbeam.model.eigen import campbell, critical_speed_sweep, critical_speed_table, k22_sweep, table2
 from hubbeam.model.shapes import beam_dataset
 from hubbeam.pipeline.runner import Job
@@ -29,21 +27,21 @@ def _write(ds: xr.Dataset, path: str) -> None:
 def eigen_k22(job: Job) -> None:
     """The eigenvalues of K22 over tip mass x position x speed (Fig. 9) -> ``output.nc``."""
     p = job.params
-    _write(k22_sweep(beam_from_config(p["beam"]), p["tip_masses"], np.linspace(**p["positions"]),
-                     np.linspace(**p["speeds"]), p["n_modes"], p["n_quad"]), job.output["nc"])
+    _write(k22_sweep(p["beam"], p["tip_masses"], p["positions"].values,
+                     p["speeds"].values, p["n_modes"], p["n_quad"]), job.output["nc"])
 
 
 def eigen_critical_speeds(job: Job) -> None:
     """The critical speeds over tip mass x position -> ``output.nc``."""
     p = job.params
-    _write(critical_speed_sweep(beam_from_config(p["beam"]), p["tip_masses"], np.linspace(**p["positions"]),
+    _write(critical_speed_sweep(p["beam"], p["tip_masses"], p["positions"].values,
                                 p["n_modes"], p["search_max"], p["n_quad"]), job.output["nc"])
 
 
 def eigen_critical_speed_table(job: Job) -> None:
     """The critical speed of each tip mass at the beam tip, the table the claims read -> ``output.csv``."""
     p = job.params
-    table = critical_speed_table(beam_from_config(p["beam"]), p["tip_masses"], p["n_modes"], p["search_max"],
+    table = critical_speed_table(p["beam"], p["tip_masses"], p["n_modes"], p["search_max"],
                                  p["n_quad"])
     with staged(job.output["csv"]) as (csv,):
         table.to_csv(csv, index=False)
@@ -53,7 +51,7 @@ def eigen_critical_speed_table(job: Job) -> None:
 def eigen_campbell(job: Job) -> None:
     """The Campbell diagram, TLAM and FOAM frequencies against hub speed -> ``output.nc``."""
     p = job.params
-    _write(campbell(beam_from_config(p["beam"]), p["tip_masses"], np.linspace(**p["speeds"]), p["n_modes"],
+    _write(campbell(p["beam"], p["tip_masses"], p["speeds"].values, p["n_modes"],
                     p["n_quad"]), job.output["nc"])
 
 
@@ -61,7 +59,7 @@ def eigen_beam(job: Job) -> None:
     """The beam as data: its properties along the span, the cases' tip masses and its first mode
     shapes (:func:`hubbeam.model.shapes.beam_dataset`) -> ``output.nc``."""
     p = job.params
-    _write(beam_dataset(beam_from_config(p["beam"]), dict(p["tips"]), p["speeds"], p["tip_masses"],
+    _write(beam_dataset(p["beam"], dict(p["tips"]), p["speeds"], p["tip_masses"],
                         p["n_shapes"], p["n_modes"], p["n_quad"]), job.output["nc"])
 
 
@@ -69,7 +67,7 @@ def eigen_table2(job: Job) -> None:
     """Table 2: natural and TLAM/FOAM frequencies (Hz) at ``params.speed`` beside the printed ones
     -> ``output.csv``."""
     p = job.params
-    table = table2(beam_from_config(p["beam"]), p["speed"], p["n_modes"], p["n_quad"])
+    table = table2(p["beam"], p["speed"], p["n_modes"], p["n_quad"])
     with staged(job.output["csv"]) as (csv,):
         table.to_csv(csv, index=False)
     LOG.info("Table 2:\n%s", table.to_string(index=False))

@@ -6,12 +6,8 @@ from __future__ import annotations
 import logging
 from typing import NamedTuple
 
-import numpy as np
-
-from hubbeam.configuration.settings import damping_settings
 from hubbeam.linear import datasets
 from hubbeam.linear.export import to_dataset, write_dataset, write_mat
-from hubbeam.model.beam import beam_from_config
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.matrices import assemble
 from hubbeam.model.parameters import TipMass
@@ -37,9 +33,7 @@ def linear_models(job: Job) -> None:
     """The linear models of every export of ``params.exports`` (:class:`LinearExport`), each at its
     tip mass, over the speed grid, with the configured damping."""
     p = job.params
-    beam = beam_from_config(p["beam"])
-    damping = damping_settings(p["damping"])
-    speeds = np.linspace(**p["speeds"])
+    beam, damping, speeds = p["beam"], p["damping"], p["speeds"].values
     for k, mass in enumerate(p["tip_masses"]):
         tip = TipMass(mass=float(mass), position=float(beam.L)) if mass > 0 else None
         sm = assemble(beam, tip, p["n_modes"], p["n_quad"])
@@ -57,13 +51,12 @@ def linear_dataset(job: Job) -> None:
     (``campbell``), the poles and zeros over speed (``poles_zeros``) or the Bode diagrams (``bode``,
     at ``params.bode_speeds`` over ``params.frequencies``) -> ``output.nc``."""
     p = job.params
-    beam = beam_from_config(p["beam"])
+    beam = p["beam"]
     common = dict(n_modes=p["n_modes"], n_quad=p["n_quad"], damping=p["damping"])
     if p["product"] == "bode":
-        omega = np.geomspace(p["frequencies"]["start"], p["frequencies"]["stop"], p["frequencies"]["num"])
-        ds = datasets.bode(beam, p["tip_masses"], p["bode_speeds"], omega, **common)
+        ds = datasets.bode(beam, p["tip_masses"], p["bode_speeds"], p["frequencies"].values, **common)
     else:
-        ds = getattr(datasets, p["product"])(beam, p["tip_masses"], np.linspace(**p["speeds"]), **common)
+        ds = getattr(datasets, p["product"])(beam, p["tip_masses"], p["speeds"].values, **common)
     ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
     write_netcdf(ds, job.output["nc"])
     LOG.info("%s: %s -> %s", p["product"], dict(ds.sizes), job.output["nc"])
@@ -72,8 +65,7 @@ def linear_dataset(job: Job) -> None:
 def linear_mode_shapes(job: Job) -> None:
     """The first ``params.shapes`` vibration mode shapes along the span at the first and the last
     speed of the tracked Campbell diagram (``input.campbell``) -> ``output.nc``."""
-    ds = datasets.mode_shapes(open_result(job.input["campbell"]), beam_from_config(job.params["beam"]),
-                              job.params["shapes"])
+    ds = datasets.mode_shapes(open_result(job.input["campbell"]), job.params["beam"], job.params["shapes"])
     ds.attrs = global_attributes(ds.attrs.pop("title"), extra=ds.attrs)
     write_netcdf(ds, job.output["nc"])
     LOG.info("mode shapes: %s -> %s", dict(ds.sizes), job.output["nc"])

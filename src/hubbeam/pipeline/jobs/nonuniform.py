@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import logging
 
-from hubbeam.model.beam import beam_from_config
 from hubbeam.pipeline.runner import Job
 from hubbeam.results.io import staged
 from hubbeam.validation.nonuniform import nonuniform_tables
@@ -18,7 +17,7 @@ def validate_nonuniform(job: Job) -> None:
     """The frequencies of a non-uniform beam from the Ritz model against our finite elements
     (``output.ritz_fe``) and, when the rule has that output, against pyBModes (``output.pybmodes``)."""
     outputs = job.output
-    tables = nonuniform_tables(beam_from_config(job.params["beam"]), pybmodes="pybmodes" in outputs)
+    tables = nonuniform_tables(job.params["beam"], pybmodes="pybmodes" in outputs)
     for name, table in tables.items():
         with staged(outputs[name]) as (path,):
             table.to_csv(path, index=False)

@@ -6,12 +6,10 @@ from __future__ import annotations
 
 import json
 import logging
-from collections.abc import Mapping
 
 import xarray as xr
 
-from hubbeam.model.beam import beam_from_config
-from hubbeam.model.parameters import TipMass
+from hubbeam.configuration.sections import ValidationCase
 from hubbeam.pipeline.runner import Job
 from hubbeam.results.io import write_netcdf
 from hubbeam.results.provenance import global_attributes
@@ -20,18 +18,16 @@ from hubbeam.validation.exudyn_model import ExudynNumerics, spin_up
 LOG = logging.getLogger(__name__)
 
 
-def reference_run(beam: Mapping, case: Mapping, numerics: ExudynNumerics) -> xr.Dataset:
-    """The Exudyn spin-up of the validation ``case``."""
-    tip = TipMass(**case["tip_mass"]) if "tip_mass" in case else None
-    maneuver = case["maneuver"]
-    return spin_up(beam_from_config(beam), tip, maneuver["wf"], maneuver["tf"], case["t_end"], numerics)
+def reference_run(beam, case: ValidationCase, numerics: ExudynNumerics) -> xr.Dataset:
+    """The Exudyn spin-up of the validation ``case`` of ``beam``."""
+    return spin_up(beam, case.tip_mass, case.maneuver.wf, case.maneuver.tf, case.t_end, numerics)
 
 
 def validate_exudyn(job: Job) -> None:
     """One prescribed spin-up of the Exudyn ANCF reference, validation case ``params.name``."""
     p = job.params
-    ds = reference_run(p["beam"], p["case"], ExudynNumerics(**p["exudyn"], output_step=p["output_step"]))
-    ds.attrs = global_attributes(f"Exudyn ANCF reference, validation case {p['name']}", case_config=dict(p["case"]),
-                                 extra=ds.attrs)
+    ds = reference_run(p["beam"], p["case"], ExudynNumerics(**p["exudyn"].to_dict(), output_step=p["output_step"]))
+    ds.attrs = global_attributes(f"Exudyn ANCF reference, validation case {p['name']}",
+                                 case_config=p["case"].to_dict(), extra=ds.attrs)
     write_netcdf(ds, job.output["nc"])
     LOG.info("%s", json.dumps({key: ds.attrs[key] for key in ds.attrs if key.startswith("exudyn_")}))

@@ -77,7 +77,7 @@ def study_report(job: Job) -> None:
                               frequencies=frequencies, shaping=shaping,
                               controllers=_controllers(job, datasets, figures, report_dir))
     write_text(out["markdown"], markdown)
-    write_text(out["html"], study_html(markdown, p["study"].get("title", p["study"]["name"]), report_dir))
+    write_text(out["html"], study_html(markdown, p["study"].title or p["study"].name, report_dir))
     with staged(out["summary"]) as (summary,), open(summary, "w", newline="") as handle:
         writer = csv.DictWriter(handle, fieldnames=COLUMNS)
         writer.writeheader()

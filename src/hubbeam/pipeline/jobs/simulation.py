@@ -7,7 +7,6 @@ import logging
 import os
 
 from hubbeam.control.cases import simulate_case
-from hubbeam.model.beam import beam_from_config
 from hubbeam.model.matrices import assemble, from_dataset, to_dataset
 from hubbeam.model.parameters import TipMass
 from hubbeam.pipeline.runner import Job
@@ -35,7 +34,7 @@ def matrices(job: Job) -> None:
     """The system matrices (Eqs. 13-20, Appendix) of one tip-mass configuration,
     ``params.configuration`` (its tip mass or body, transverse functions and mode count), -> ``output.nc``."""
     p = job.params
-    beam = beam_from_config(p["beam"])
+    beam = p["beam"]
     configuration = dict(p["configuration"])
     modes, functions = configuration.pop("modes"), configuration.pop("functions")
     tip = TipMass(**configuration)

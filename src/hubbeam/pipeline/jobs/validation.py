@@ -12,7 +12,6 @@ import logging
 import pandas as pd
 import xarray as xr
 
-from hubbeam.model.beam import beam_from_config
 from hubbeam.pipeline.jobs.reference import reference_run
 from hubbeam.pipeline.runner import Job
 from hubbeam.results.io import open_result, staged, write_netcdf
@@ -34,10 +33,10 @@ CONVERGENCE_VARIABLES = (("elements", "1", "number of ANCF cable elements"),
 def validate_models(job: Job) -> None:
     """The tip outputs of hubbeam's models ``params.models`` for validation case ``params.name``."""
     p = job.params
-    ds = simulate_models(p["name"], p["case"], p["models"], beam_from_config(p["beam"]), p["numerics"])
+    ds = simulate_models(p["case"], p["models"], p["beam"], p["numerics"])
     ds.attrs.pop("case_config")
     ds.attrs = global_attributes(f"hubbeam models {', '.join(p['models'])}, validation case {p['name']}",
-                                 case_config=dict(p["case"]), extra=ds.attrs)
+                                 case_config=p["case"].to_dict(), extra=ds.attrs)
     write_netcdf(ds, job.output["nc"])
     LOG.info("%s", ds[["diverged", "diverged_at_s", "n_steps"]].to_dataframe().to_string())
 
@@ -57,9 +56,8 @@ def validate_modes(job: Job) -> None:
     """The models' tip differences from the reference (``input.references``, one per validation
     case of ``params.cases``, in its order) against the number of assumed modes ``params.modes``."""
     p = job.params
-    beam = beam_from_config(p["beam"])
-    table = pd.concat([mode_study(name, case, p["models"], p["modes"], beam, p["numerics"], open_result(path))
-                       for (name, case), path in zip(p["cases"].items(), job.input["references"])],
+    table = pd.concat([mode_study(case, p["models"], p["modes"], p["beam"], p["numerics"], open_result(path))
+                       for case, path in zip(p["cases"].values(), job.input["references"])],
                       ignore_index=True)
     with staged(job.output["csv"]) as (path,):
         table.to_csv(path, index=False)
@@ -71,15 +69,16 @@ def validate_convergence(job: Job) -> None:
     ``params.exudyn`` and each setting of ``params.convergence`` varied alone -> ``output.table``
     and the runs ``output.runs``."""
     p = job.params
-    settings = {tuple(sorted(p["exudyn"].items()))}
+    production = p["exudyn"].to_dict()
+    settings = {tuple(sorted(production.items()))}
     for key, name in CONVERGENCE_SETTINGS.items():
-        settings |= {tuple(sorted({**p["exudyn"], name: value}.items())) for value in p["convergence"][key]}
+        settings |= {tuple(sorted({**production, name: value}.items())) for value in getattr(p["convergence"], key)}
     runs = {}
     for setting in sorted(settings):
         numerics = ExudynNumerics(**dict(setting), output_step=p["output_step"])
         label = f"n{numerics.elements}_h{numerics.time_step:g}_tol{numerics.newton_tolerance:g}"
         runs[label] = reference_run(p["beam"], p["case"], numerics)
-    table = convergence_table(runs, p["exudyn"])
+    table = convergence_table(runs, production)
     with staged(job.output["table"]) as (path,):
         table.to_csv(path, index=False)
     labels = list(runs)
@@ -91,8 +90,7 @@ def validate_convergence(job: Job) -> None:
             for name, units, long_name in CONVERGENCE_VARIABLES}},
         coords={"run": ("run", labels, {"long_name": "run label", "units": "1"})},
     )
-    ds.attrs = global_attributes("convergence of the Exudyn ANCF reference", case_config=dict(p["case"]),
-                                 extra={"production_settings": dict(p["exudyn"]),
-                                        "convergence_case": p["convergence"]["case"]})
+    ds.attrs = global_attributes("convergence of the Exudyn ANCF reference", case_config=p["case"].to_dict(),
+                                 extra={"production_settings": production, "convergence_case": p["convergence"].case})
     write_netcdf(ds, job.output["runs"])
     LOG.info("%s", table.to_string(index=False))

@@ -224,5 +224,5 @@ def test_the_first_study_plans_every_product_as_written(tmp_path):
                str(tmp_path), "--dry-run", "--cores", "1", "--configfile", str(FIRST_STUDY)]
     run = subprocess.run(snakemake_command, cwd=tmp_path, capture_output=True, text=True, timeout=300, check=False)
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
-    for rule in ("eigen_campbell", "eigen_beam", "simulate", "study_report", "archive"):
+    for rule in ("plant_campbell", "eigen_beam", "simulate", "study_report", "archive"):
         assert re.search(rf"^{rule}\s+1$", run.stdout, re.M), rule

@@ -40,12 +40,13 @@ from hubbeam.linear.jacobian import (
     nonlinear_accelerations,
     steady_state,
 )
-from hubbeam.model.damping import damping_matrices
+from hubbeam.model.damping import damping_from_dict, damping_matrices
 from hubbeam.model.eigen import critical_speed
 from hubbeam.model.linearised import axial_stretch, frequencies
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import MODELS
 from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.plant import Plant
 from hubbeam.results.io import open_result
 from hubbeam.simulation.simulate import simulate
 
@@ -490,8 +491,8 @@ def test_netcdf_and_mat_files_hold_the_models(beam, matrices, tmp_path):
     """Both files give back, at every speed, the model :func:`linear_model` returns (the netCDF
     float encoding is lossless; the .mat file stores doubles)."""
     speeds = [0.0, 1.0, 2.5]  # TLAM's critical speed with this tip mass is 1.94 rad s-1
-    ds = to_dataset(beam, matrices(TIP), "TLAM", speeds, "free", tip=TIP,
-                    damping=damping_matrices(MODAL, matrices(TIP)))
+    ds = to_dataset(Plant(beam=beam, modes=5, quadrature_points=64, tip=TIP, damping=damping_from_dict(MODAL)),
+                    "TLAM", speeds, "free")
     stored = open_result(write_dataset(ds, tmp_path / "linear.nc"))
     mat = loadmat(write_mat(ds, tmp_path / "linear.mat"))
     assert stored.attrs["Conventions"] == "CF-1.11" and stored.attrs["model"] == "TLAM"
@@ -518,7 +519,7 @@ def test_netcdf_and_mat_files_hold_the_models(beam, matrices, tmp_path):
 ])
 def test_bad_speed_grid_is_named(beam, matrices, speeds, message):
     with pytest.raises(ValueError, match=re.escape(message)):
-        to_dataset(beam, matrices(), "FOAM", speeds)
+        to_dataset(Plant(beam=beam, modes=5, quadrature_points=64, tip=TipMass(0.0, beam.L)), "FOAM", speeds)
 
 
 def test_benchmark_rows(_study_config, beam):

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from hubbeam.linear import datasets, frequency, linear_model
+from hubbeam.linear.axes import tip_mass_axis
 from hubbeam.model import eigen
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.matrices import assemble
@@ -166,9 +167,9 @@ def test_bad_outputs_and_frequencies_are_refused(systems):
     with pytest.raises(ValueError, match="omega"):
         frequency.frequency_response(lm, ["hub_angle"], [-1.0, 2.0])
     with pytest.raises(ValueError, match="outputs"):
-        datasets.bode(PARAMS, [0.0], [0.0], [1.0], 2, outputs=["tip_speed"])
+        datasets.bode(tip_mass_axis(PARAMS, [0.0], 2), [0.0], [1.0], outputs=["tip_speed"])
     with pytest.raises(ValueError, match="omega"):
-        datasets.bode(PARAMS, [0.0], [0.0], [], 2)
+        datasets.bode(tip_mass_axis(PARAMS, [0.0], 2), [0.0], [])
 
 
 def test_pole_zero_and_bode_datasets_write_and_draw(tmp_path):
@@ -179,7 +180,7 @@ def test_pole_zero_and_bode_datasets_write_and_draw(tmp_path):
     from hubbeam.results.io import open_result, write_netcdf
 
     speeds = np.linspace(0.0, 4.0, 9)
-    pz = open_result(write_netcdf(datasets.poles_zeros(PARAMS, [0.0, 0.5], speeds, 3),
+    pz = open_result(write_netcdf(datasets.poles_zeros(tip_mass_axis(PARAMS, [0.0, 0.5], 3), speeds),
                                   tmp_path / "pz.nc"))
     # alternation up to TLAM's critical speed only, everywhere for the others; beyond it TLAM's
     # collocated zeros (the held hub's poles) have their divergent one in the right half-plane
@@ -193,7 +194,7 @@ def test_pole_zero_and_bode_datasets_write_and_draw(tmp_path):
     assert (pz.rhp_zero_count.sel(output="hub_angle", model=others) == 0).all()
     assert (pz.rhp_zero_count.sel(output="tip_arc", model="FOAM") >= 2).all()
     omega = np.logspace(-1, 3, 50)
-    bd = open_result(write_netcdf(datasets.bode(PARAMS, [0.0], [0.0, 3.5], omega, 3, damping=MODAL),
+    bd = open_result(write_netcdf(datasets.bode(tip_mass_axis(PARAMS, [0.0], 3, damping=MODAL), [0.0, 3.5], omega),
                                   tmp_path / "bode.nc"))
     assert bd.hub_angle_magnitude.attrs["units"] == "rad N-1 m-1"
     np.testing.assert_array_equal(bd.stable.sel(tip_mass=0.0, speed=3.5).values, [0, 1, 1, 1])

@@ -111,14 +111,21 @@ def test_a_free_rotation_is_a_rigid_mode():
 
 
 def test_labels_from_the_dominant_coordinate_group():
+    """A rigid mode is the hub's; every other mode is flexible, axial or bending by the larger share
+    of its content, the hub's (and a root's) angle counted with the bending functions."""
     names = ("theta", "q1_1", "q1_2", "q2_1", "q2_2")
-    shapes = np.array([[1.0, 0.1, 0, 0.2, 0], [0.1, 0, 0.2, 0.3, 1.0], [0.0, 0.9, 0.1, 0.5, 0.5]])
-    labels, fractions = tracking.dominant_content(shapes, names, np.ones(5))
-    assert list(labels) == ["hub", "bending 2", "axial 1"]
+    shapes = np.array([[1.0, 0.1, 0, 0.2, 0], [0.1, 0, 0.2, 0.3, 1.0], [0.0, 0.9, 0.1, 0.5, 0.5],
+                       [1.0, 0.6, 0, 0.2, 0]])
+    rigid = np.array([True, False, False, False])
+    labels, fractions = tracking.dominant_content(shapes, names, np.ones(5), rigid)
+    assert list(labels) == ["hub", "bending 2", "axial 1", "bending 1"]  # the last: mostly the hub's angle
     np.testing.assert_allclose(sum(fractions.values()), 1.0)
-    # weights decide: the hub angle weighted by sqrt(J) = 20 dominates the second shape
-    weights = np.array([20.0, 1, 1, 1, 1])
-    assert tracking.dominant_content(shapes, names, weights)[0][1] == "hub"
+    # weights decide between the groups: the axial coordinates weighted by 20 take the second shape
+    weights = np.array([1.0, 20, 20, 1, 1])
+    assert tracking.dominant_content(shapes, names, weights, rigid)[0][1] == "axial 2"
+    spring = ("theta", "q2_1", "phi")  # a compliant root: the root's and the hub's angles
+    assert list(tracking.dominant_content(np.array([[1.0, 0.1, 0.5]]), spring, np.ones(3), [False])[0]) == [
+        "bending 1"]
 
 
 def test_mac_is_one_for_a_complex_multiple_and_zero_for_orthogonal_shapes():
@@ -142,6 +149,7 @@ def test_a_matrix_that_is_not_a_stack_of_mechanical_systems_is_refused():
 # the paper's beam: tracked, damped Campbell diagrams and mode shapes
 
 from hubbeam.linear import datasets  # noqa: E402
+from hubbeam.linear.axes import tip_mass_axis  # noqa: E402
 from hubbeam.model import eigen  # noqa: E402
 from hubbeam.model.matrices import assemble  # noqa: E402
 from hubbeam.model.modes import transverse_modes  # noqa: E402
@@ -155,8 +163,7 @@ MODAL = {"kind": "modal", "axial": 0.01, "transverse": 0.03}
 
 @pytest.fixture(scope="module")
 def campbell_ds():
-    return datasets.campbell(PARAMS, [0.0, 0.5], np.linspace(0.0, 4.0, 81), N_MODES,
-                             damping=MODAL)
+    return datasets.campbell(tip_mass_axis(PARAMS, [0.0, 0.5], N_MODES, damping=MODAL), np.linspace(0.0, 4.0, 81))
 
 
 @pytest.mark.parametrize("mass", [0.0, 0.5])
@@ -197,7 +204,7 @@ def test_held_hub_modes_are_the_gyroscopic_eigenvalues_of_eqs_29_to_31():
     """Undamped, hub held, below TLAM's critical speed: the tracked frequencies of TLAM and FOAM
     are, as sets, those of hubbeam.model.eigen's gyroscopic eigenproblem (axial and bending)."""
     speeds = np.linspace(0.0, 2.8, 15)
-    ds = datasets.campbell(PARAMS, [0.0], speeds, N_MODES).sel(tip_mass=0.0, hub="held")
+    ds = datasets.campbell(tip_mass_axis(PARAMS, [0.0], N_MODES), speeds).sel(tip_mass=0.0, hub="held")
     sm = assemble(PARAMS, None, N_MODES)
     for model in ("TLAM", "FOAM"):
         tracked = ds.frequency.sel(model=model).where(ds.kind.sel(model=model) == 0).values
@@ -219,7 +226,7 @@ def test_tracked_labels_at_rest_follow_the_coordinates_without_tip_mass(campbell
 
 def test_mode_shapes_at_rest_are_the_beam_functions(campbell_ds):
     """Held hub at rest, no tip mass: mode k's transverse shape is f2_k / max |f2_k|."""
-    shapes = datasets.mode_shapes(campbell_ds, PARAMS, count=3, stations=41)
+    shapes = datasets.mode_shapes(campbell_ds, tip_mass_axis(PARAMS, [0.0], N_MODES), count=3, stations=41)
     x = shapes.x.values
     f2 = transverse_modes(x, N_MODES, PARAMS)[:, :3]
     expected = f2 / f2[np.argmax(np.abs(f2), axis=0), np.arange(3)]
@@ -241,9 +248,9 @@ def test_campbell_and_shapes_write_as_cf_files_and_draw(tmp_path, campbell_ds):
     back = open_result(write_netcdf(campbell_ds, tmp_path / "campbell.nc"))
     np.testing.assert_array_equal(back.label.values, campbell_ds.label.values)
     np.testing.assert_array_equal(back.kind.values, campbell_ds.kind.values)
-    shapes = datasets.mode_shapes(back, PARAMS)
+    shapes = datasets.mode_shapes(back, tip_mass_axis(PARAMS, [0.0], N_MODES))
     with pytest.raises(ValueError, match="count = 9"):
-        datasets.mode_shapes(back, PARAMS, count=9)  # SFOAM has 4 bending modes only
+        datasets.mode_shapes(back, tip_mass_axis(PARAMS, [0.0], N_MODES), count=9)  # SFOAM has 4 bending modes only
     with styled():
         fig = campbell_tracked.plot(back, tip_mass=0.5)
         assert isinstance(fig, Figure) and len(fig.axes) == 4
@@ -262,14 +269,14 @@ def test_campbell_and_shapes_write_as_cf_files_and_draw(tmp_path, campbell_ds):
                                            ([1.0, 1.0], "speeds"), ([0.0, np.inf], "speed")])
 def test_bad_speed_grids_are_refused(speeds, match):
     with pytest.raises(ValueError, match=match):
-        datasets.campbell(PARAMS, [0.0], speeds, 2)
+        datasets.campbell(tip_mass_axis(PARAMS, [0.0], 2), speeds)
 
 
 def test_bad_damping_and_tip_masses_are_refused():
     with pytest.raises(ValueError, match="damping.kind"):
-        datasets.campbell(PARAMS, [0.0], [0.0], 2, damping={"kind": "viscous"})
+        datasets.campbell(tip_mass_axis(PARAMS, [0.0], 2, damping={"kind": "viscous"}), [0.0])
     with pytest.raises(ValueError, match="tip_masses"):
-        datasets.campbell(PARAMS, [-1.0], [0.0], 2)
+        datasets.campbell(tip_mass_axis(PARAMS, [-1.0], 2), [0.0])
 
 
 def test_labels_are_numbered_within_their_group_by_frequency():

@@ -266,23 +266,24 @@ def test_the_loaded_functions_are_a_case_key_with_its_own_matrices(tmp_path):
     assert "allowed: 'clamped_free', or the tip mass at the beam's end" in str(error.value)
 
 
-def test_the_study_report_lists_each_case_s_own_frequencies():
-    """The report's table of natural frequencies reads each case's matrices file (here of more modes
-    than the case takes: its leading blocks) and gives the closed form's frequencies for the body on
-    the loaded modes, while a file of the point mass gives the point mass's."""
+def test_the_study_report_lists_each_plant_s_own_frequencies():
+    """The report's table of plants: the body on the loaded modes gives the closed form's
+    frequencies, the point mass the point mass's, and the body on the clamped-free functions, whose
+    second mode is too stiff with 6 of them, is marked not converged."""
     from hubbeam.api import load
-    from hubbeam.study.frequencies import case_frequencies, frequencies_markdown
+    from hubbeam.linear.plant_dataset import plant_dataset
+    from hubbeam.study.plants import plant_row, plants_markdown
 
     study = load(ROOT / "studies" / "deluca_link.yaml")
-    rows = []
-    for name in ("payload", "point_payload"):
-        case = study.case(name)
-        stored = to_dataset(assemble(study.beam, case.tip_mass, case.modes + 3, functions=case.transverse_functions),
-                            study.beam, case.tip_mass, functions=case.transverse_functions)
-        rows.append(case_frequencies(name, case, stored))
+    plants = study.settings.plant_cases
+    rows = [plant_row(plant_dataset(*plants[name], 40.0)) for name in ("payload", "point_payload",
+                                                                      "payload_clamped_free")]
     exact = body_frequencies(study.beam, study.case("payload").tip_mass, 3) / (2 * math.pi)
-    np.testing.assert_allclose(rows[0]["frequencies_hz"], exact, rtol=1e-9)
+    np.testing.assert_allclose(rows[0]["held_hz"], exact, rtol=1e-9)
     point = body_frequencies(study.beam, study.case("point_payload").tip_mass, 2) / (2 * math.pi)
-    np.testing.assert_allclose(rows[1]["frequencies_hz"][:2], point, rtol=1e-3)  # 6 clamped-free modes
-    table = frequencies_markdown(rows)
-    assert "| payload | 6 | 0.1 | 0.0005 | tip-body | clamped | 2.17833 | 15.9145 |" in table
+    np.testing.assert_allclose(rows[1]["held_hz"][:2], point, rtol=1e-3)  # 6 clamped-free modes
+    assert rows[0]["converged"] == [True] * 3 and rows[2]["converged"][:2] == [True, False]
+    table = plants_markdown(rows)
+    assert ("| payload | payload | 6 tip-body modes, 0.1 kg at 0.5 m (J 0.0005 kg m2, offset 0 m) | 2.17833 | "
+            "15.9145 |") in table
+    assert "16.7405 (not converged: 1.7 %)" in table

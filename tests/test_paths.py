@@ -137,13 +137,15 @@ def test_the_linear_figures_of_a_tip_mass_need_one():
 
 
 def test_a_study_gets_the_general_products_and_none_of_the_paper():
+    """A study's eigen-analysis and linear models are its plants' (no grid of tip masses)."""
     cfg = study()
-    assert list(products_for(cfg)) == ["case", "compare", "campbell", "critical_speeds", "beam_properties",
-                                       "mode_shapes", *LINEAR_TIP]
+    plants = ["plant_campbell", "plant_mode_shapes", "plant_poles_zeros", "plant_bode"]
+    assert list(products_for(cfg)) == ["case", "compare", "beam_properties", *plants]
     del cfg["study"]["comparisons"]
-    assert list(products_for(cfg)) == ["case", "campbell", "critical_speeds", "beam_properties", "mode_shapes",
-                                       *LINEAR_TIP]
-    assert not set(products_for(cfg)) & (set(PAPER_PRODUCTS) - {"campbell"})
+    assert list(products_for(cfg)) == ["case", "beam_properties", *plants]
+    assert not set(products_for(cfg)) & set(PAPER_PRODUCTS)
+    del cfg["study"]
+    assert "campbell" in products_for(cfg) and "plant_campbell" not in products_for(cfg)
 
 
 def test_a_study_may_ask_for_the_paper_products_too():
@@ -151,7 +153,8 @@ def test_a_study_may_ask_for_the_paper_products_too():
     designs = set(of_kind(GENERAL_PRODUCTS, DESIGNS_FIGURE))  # the study designs no feedback
     control = {"sample_time_sweep", "robustness"}  # nor has a `control` section
     shaping = set(of_kind(GENERAL_PRODUCTS, SHAPING_FIGURE))  # and shapes no command
-    assert set(products) == set(PAPER_PRODUCTS) | set(GENERAL_PRODUCTS) - designs - control - shaping
+    grid = {key for key, product in GENERAL_PRODUCTS.items() if "study" in product.unless}  # its plants instead
+    assert set(products) == set(PAPER_PRODUCTS) | set(GENERAL_PRODUCTS) - designs - control - shaping - grid
 
 
 def test_the_figure_of_the_feedback_designs_needs_a_designed_case():

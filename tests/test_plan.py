@@ -131,7 +131,9 @@ def test_a_study_builds_only_in_its_own_folder(in_tmp):
     figures = {f"case_{case}" for case in plan.settings.cases}
     assert len(figures) == 30  # the study's grid
     figures |= {f"compare_{comparison}" for comparison in study["study"]["comparisons"]}
-    figures |= {"campbell", "critical_speeds", "beam_properties", "mode_shapes", "controller_trust"}
+    figures |= {"beam_properties", "controller_trust"}
+    figures |= {f"plant_{product}_{plant}" for plant in plan.settings.plants
+                for product in ("campbell", "mode_shapes", "poles_zeros", "bode")}
     for figure in figures:
         assert f"results/{name}/figures/{figure}.png" in plan.targets, figure
     report = {f"results/{name}/report/{leaf}" for leaf in ("report.md", "report.html", "summary.csv")}
@@ -416,8 +418,9 @@ def test_the_study_report_shows_each_figure_in_the_section_its_product_names(in_
     assert figures["cases"] == {case: f"results/{name}/figures/case_{case}.png" for case in plan.cases}
     assert set(figures["comparisons"]) == set(study["study"]["comparisons"])
     assert set(figures["beam"]) == {"beam_properties"} and set(figures["designs"]) == {"controller_trust"}
-    assert set(figures["eigen"]) == {"campbell", "critical_speeds", "mode_shapes"}
-    assert set(figures["linear"]) == {key for key, product in GENERAL_PRODUCTS.items() if key.startswith("linear_")}
+    assert "eigen" not in figures and "linear" not in figures  # the plants' products instead
+    (plant,) = plan.settings.plants
+    assert set(figures["plants"]) == {f"{plant}/{key}" for key in GENERAL_PRODUCTS if key.startswith("plant_")}
     assert "paper" not in figures
 
 

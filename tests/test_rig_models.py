@@ -27,6 +27,7 @@ from scipy.io import loadmat
 
 from hubbeam.control.sampling import weight_matrix
 from hubbeam.linear import datasets, tracking
+from hubbeam.linear.axes import tip_mass_axis
 from hubbeam.linear.discrete import discretise, hold_matrices
 from hubbeam.linear.export import to_dataset, write_dataset, write_mat
 from hubbeam.linear.lumped import QUANSER_ROTARY_FLEXIBLE_LINK as RIG
@@ -34,11 +35,12 @@ from hubbeam.linear.lumped import FlexibleLinkRig, lumped_model
 from hubbeam.linear.reduction import frequency_responses, modal_truncation, reduce_for_sampling, response_error
 from hubbeam.linear.statespace import linear_model, output_rows, second_order
 from hubbeam.linear.voltage import linearised_damping, voltage_model, voltage_weight
-from hubbeam.model.damping import damping_matrices
+from hubbeam.model.damping import damping_from_dict, damping_matrices
 from hubbeam.model.drive import QUANSER_SRV02, DcMotor
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import model as model_traits
-from hubbeam.model.parameters import BeamParameters
+from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.plant import Plant
 from hubbeam.results.io import open_result
 
 EPS = np.finfo(float).eps
@@ -293,8 +295,10 @@ def test_the_delayed_hold_matches_the_integrated_staircase(delay):
 
 def test_discrete_voltage_models_through_the_export_files(link, tmp_path):
     sm, C = foam(link, 2)
-    ds = to_dataset(link, sm, "FOAM", [0.0, 1.0], "free", None, C, outputs=["hub_angle", "deflection_angle"],
-                    motor=QUANSER_SRV02, sample_time=0.002, delay=0.5)
+    plant = Plant(beam=link, modes=2, quadrature_points=64, tip=TipMass(0.0, link.L), drive=QUANSER_SRV02,
+                  damping=damping_from_dict(AXIAL_DAMPING))
+    ds = to_dataset(plant, "FOAM", [0.0, 1.0], "free", outputs=["hub_angle", "deflection_angle"], sample_time=0.002,
+                    delay=0.5)
     dm = discretise(voltage_model(link, sm, "FOAM", QUANSER_SRV02, 1.0, C, ["hub_angle", "deflection_angle"]),
                     0.002, 0.5)
     assert ds.attrs["sample_time_s"] == 0.002 and ds.attrs["input_delay_samples"] == 0.5
@@ -368,9 +372,9 @@ def test_every_free_hub_bending_mode_is_named_apart_on_a_light_hub(_study_config
     speeds = np.linspace(0.0, 2.0, 5)
     sm = assemble(beam, None, 4)
     modes, names = datasets.tracked_modes(beam, sm, "FOAM", "free", speeds)
-    content = tracking.dominant_content(modes.shape, names, modes.weights)[0]
+    content = tracking.dominant_content(modes.shape, names, modes.weights, modes.rigid)[0]
     assert list(content[0]).count("bending 1") == 4
-    ds = datasets.campbell(beam, [0.0], speeds, 4)
+    ds = datasets.campbell(tip_mass_axis(beam, [0.0], 4), speeds)
     free = ds.sel(hub="free", tip_mass=0.0)
     for model in ds.model.values:
         for k in range(speeds.size):
@@ -382,4 +386,4 @@ def test_every_free_hub_bending_mode_is_named_apart_on_a_light_hub(_study_config
     held = ds.sel(hub="held", tip_mass=0.0, model="FOAM")
     modes, names = datasets.tracked_modes(beam, sm, "FOAM", "prescribed", speeds)
     np.testing.assert_array_equal(held.label.values[:, :modes.shape.shape[1]],
-                                  tracking.dominant_content(modes.shape, names, modes.weights)[0])
+                                  tracking.dominant_content(modes.shape, names, modes.weights, modes.rigid)[0])

@@ -128,16 +128,18 @@ def test_a_tiny_study_builds_every_general_product_in_its_own_folder(tmp_path):
     folder = run_study(tmp_path, TINY_STUDY)
     cases = sorted(TINY_STUDY["cases"])
     expected = [f"simulations/{case}.nc" for case in cases] + ["matrices/mt0.nc", "matrices/mt0p1_l2.nc"]
-    expected += ["eigen/campbell.nc", "eigen/critical_speeds.nc", "eigen/beam.nc"]
-    figures = [f"case_{case}" for case in cases] + ["compare_models", "campbell", "critical_speeds",
-                                                    "beam_properties", "mode_shapes"]
-    # the linear models (linear.smk): no tip mass and the tiny study's 0.1 kg, the largest of its eigen grid
-    linear = ["linear_campbell", "linear_mode_shapes", "linear_poles_zeros", "linear_bode"]
-    figures += linear + [f"{name}_tip" for name in linear]
+    expected += ["eigen/beam.nc"]
+    figures = [f"case_{case}" for case in cases] + ["compare_models", "beam_properties"]
+    # the plants (hubbeam.pipeline.families.plants): one per tip mass, named after its first case
+    plants = {"spin_foam": ("spin_foam",), "spin_tlam": ("spin_tlam",)}
+    assert {case for group in plants.values() for case in group} == set(cases)
+    products = ("campbell", "mode_shapes", "poles_zeros", "bode")
+    figures += [f"plant_{product}_{plant}" for plant in plants for product in products]
     expected += [f"figures/{name}.{ext}" for name in figures for ext in ("pdf", "png")]
-    expected += [f"linear/{name}.nc" for name in ("campbell", "mode_shapes", "poles_zeros", "bode")]
-    expected += [f"linear/models/{model}_{hub}_tip{k}.{ext}" for model in ("TLAM", "FOAM", "SFOAM", "CFOAM")
-                 for hub in ("free", "prescribed") for k in (0, 1) for ext in ("nc", "mat")]
+    expected += [f"plants/{plant}/{name}.nc" for plant in plants for name in (*products, "plant")]
+    expected += [f"plants/{plant}/models/{model}_{hub}.{ext}" for plant in plants
+                 for model in ("TLAM", "FOAM", "SFOAM", "CFOAM") for hub in ("free", "prescribed")
+                 for ext in ("nc", "mat")]
     expected += ["report/report.md", "report/report.html", "report/summary.csv", "tiny-results.tar.gz", MARKER]
     written = sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())
     assert written == sorted(expected)
@@ -178,7 +180,7 @@ def test_a_study_of_files_only_runs_a_tabulated_beam_and_maneuver_with_damping(t
                                "t_end": 2.0, "tip_mass": {"mass": 0.05, "position": 1.5},
                                "damping": {"kind": "modal", "axial": 0.01, "transverse": 0.05}}}
     folder = run_study(tmp_path, study)
-    for product in ("report/report.html", "figures/case_ramp.png", "figures/campbell.png",
+    for product in ("report/report.html", "figures/case_ramp.png", "figures/plant_campbell_ramp.png",
                     "files-results.tar.gz"):
         assert (folder / product).is_file(), product
     with xr.open_dataset(folder / "simulations" / "ramp.nc", decode_times=False) as ds:

@@ -367,8 +367,9 @@ def test_exported_linear_models_record_the_body(paper_beam, tmp_path):
     from scipy.io import loadmat
 
     from hubbeam.linear.export import to_dataset, write_mat
+    from hubbeam.model.plant import Plant
 
-    ds = to_dataset(paper_beam, assemble(paper_beam, BODY, 3), "FOAM", [0.0, 1.0], tip=BODY)
+    ds = to_dataset(Plant(beam=paper_beam, modes=3, quadrature_points=64, tip=BODY), "FOAM", [0.0, 1.0])
     mat = loadmat(write_mat(ds, tmp_path / "body.mat"))
     for attrs in (ds.attrs, {key: float(np.squeeze(mat[key])) for key in ("tip_inertia_kg_m2", "tip_offset_m")}):
         assert attrs["tip_inertia_kg_m2"] == BODY.inertia and attrs["tip_offset_m"] == BODY.offset

@@ -25,19 +25,14 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
 from hubbeam.check import check_configuration
 from hubbeam.configuration.load import ConfigError, merge_configs, read_config_file
 from hubbeam.configuration.settings import Case, Settings
 from hubbeam.control.cases import resolve, sampled_controller, sampling_of, simulate_case
 from hubbeam.control.feedback import design_plant
 from hubbeam.control.implementation import write_implementation
-from hubbeam.linear.statespace import linear_model
-from hubbeam.linear.voltage import voltage_model
-from hubbeam.model.damping import damping_matrices
-from hubbeam.model.eigen import natural_frequencies
-from hubbeam.simulation.simulate import case_matrices
+from hubbeam.linear.plant_models import plant_frequencies, plant_linear
+from hubbeam.model.plant import Plant, plant_matrices
 from hubbeam.study import base_config_files
 
 
@@ -79,17 +74,22 @@ class Configuration:
         """The :class:`~hubbeam.configuration.settings.Case` ``name``; a ``ConfigError`` naming the cases."""
         return self.settings.case(name)
 
+    def plant_of(self, name: str) -> Plant:
+        """The plant case ``name`` runs (``hubbeam.model.plant.Plant``: its beam, modes and functions,
+        tip body, root spring, drive and damping), named as the workflow's products name it."""
+        return self.settings.plant_of(name)
+
     def matrices(self, name: str):
-        """The system matrices of case ``name`` (its modes and tip body, ``numerics.quadrature_points``
-        Gauss nodes, a drive's rotor in the hub inertia)."""
-        return case_matrices(self.case(name), self.beam, self.settings.numerics)
+        """The system matrices of case ``name``'s plant (its modes and tip body,
+        ``numerics.quadrature_points`` Gauss nodes, a drive's rotor in the hub inertia)."""
+        return plant_matrices(self.plant_of(name))
 
     def natural_frequencies(self, name: str):
-        """The natural frequencies (Hz, ascending) of case ``name``'s beam with the hub held, at rest:
+        """The natural frequencies (Hz, ascending) of case ``name``'s plant with the hub held, at rest:
         its tip body, modes, transverse functions and root spring
-        (``hubbeam.model.eigen.natural_frequencies``), as a frequency equation gives them."""
-        case = self.case(name)
-        return natural_frequencies(self.matrices(name), case.root_spring) / (2.0 * np.pi)
+        (``hubbeam.linear.plant_models.plant_frequencies``), as a frequency equation gives them; what the
+        workflow's products of the plant give."""
+        return plant_frequencies(self.plant_of(name))
 
     def simulate(self, name: str, modes: int | None = None):
         """The run of case ``name`` as the workflow writes it (``simulations/<name>.nc``), with
@@ -104,14 +104,11 @@ class Configuration:
         """The linear model of case ``name``'s model, modes, tip body, damping and root about the steady spin
         at ``speed`` (rad s-1; default the maneuver's final speed): the voltage as input for a free
         hub with a drive (``hubbeam.linear.voltage``), the hub torque (free) or acceleration
-        (``hub="prescribed"``) otherwise; ``outputs`` as ``hubbeam.linear.statespace.linear_model``."""
+        (``hub="prescribed"``) otherwise; ``outputs`` as ``hubbeam.linear.statespace.linear_model``
+        (``hubbeam.linear.plant_models.plant_linear`` on its plant, as the workflow's exports)."""
         case = self.case(name)
-        sm = self.matrices(name)
         speed = case.maneuver.final_speed if speed is None else speed
-        damping = damping_matrices(case.damping, sm)
-        if case.drive is not None and hub == "free":
-            return voltage_model(self.beam, sm, case.model, case.drive, speed, damping, outputs, case.root_spring)
-        return linear_model(self.beam, sm, case.model, speed, hub, damping, outputs, case.root_spring)
+        return plant_linear(self.plant_of(name), case.model, speed, hub, outputs)
 
     def plant(self, name: str, speed: float | None = None, hub: str = "free", outputs=None):
         """:meth:`linear` as a python-control ``StateSpace`` with named states, inputs and outputs."""

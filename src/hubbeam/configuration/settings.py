@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import functools
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 
@@ -35,6 +36,7 @@ from hubbeam.model.limits import MEMORY_BUDGET_MB, SMALL_DEFLECTION_LIMIT
 from hubbeam.model.maneuvers import Maneuver, maneuver_from_dict
 from hubbeam.model.modes import CLAMPED_FREE
 from hubbeam.model.parameters import TipMass, UniformBeam
+from hubbeam.model.plant import Plant
 from hubbeam.model.root import RootSpring
 from hubbeam.model.shapers import ShaperSpec
 
@@ -296,6 +298,40 @@ class Settings:
         if name not in self.cases:
             raise ConfigError([Problem(f"cases.{name}", f"unknown case; defined: {', '.join(self.cases)}")])
         return self.cases[name]
+
+    @functools.cached_property
+    def plant_cases(self) -> FrozenMap:
+        """The plants of the cases (:func:`case_plant`) by name, each with the names of the cases
+        that run it: ``{name: (plant, cases)}``. A plant is named after the first case (by name)
+        that runs it; cases that run the same arm (equal plants) share one."""
+        found: list[tuple[Plant, list[str]]] = []
+        for name, case in self.cases.items():
+            plant = case_plant(case, self.beam, self.numerics)
+            entry = next((entry for entry in found if entry[0] == plant), None)
+            if entry is None:
+                found.append((dataclasses.replace(plant, name=name), [name]))
+            else:
+                entry[1].append(name)
+        return FrozenMap({plant.name: (plant, tuple(cases)) for plant, cases in found})
+
+    @property
+    def plants(self) -> FrozenMap:
+        """The plants of the cases by name (:attr:`plant_cases`)."""
+        return FrozenMap({name: plant for name, (plant, _) in self.plant_cases.items()})
+
+    def plant_of(self, case: str) -> Plant:
+        """The plant case ``case`` runs, with its name."""
+        self.case(case)
+        return next(plant for plant, cases in self.plant_cases.values() if case in cases)
+
+
+def case_plant(case: Case, beam, numerics: Numerics) -> Plant:
+    """The plant ``case`` runs (:class:`hubbeam.model.plant.Plant`): ``beam`` with the case's modes,
+    transverse functions, tip body, root spring, drive and damping, and the Gauss nodes of
+    ``numerics``; unnamed."""
+    return Plant(beam=beam, modes=case.modes, quadrature_points=numerics.quadrature_points, tip=case.tip_mass,
+                 functions=case.transverse_functions, root_spring=case.root_spring, drive=case.drive,
+                 damping=case.damping)
 
 
 def from_config(cfg: Mapping) -> Settings:

@@ -109,7 +109,7 @@ def linear_shaping_mode(beam, sm, model: str, speed: float, loop: str = "held", 
                          "loop); allowed: a model and speed whose modes all decay or persist")
     vibrating = np.flatnonzero(~modes.rigid[0] & ~modes.divergent[0])
     vibrating = vibrating[np.argsort(modes.frequency[0, vibrating], kind="stable")]
-    labels = numbered_by_frequency(dominant_content(modes.shape, lin.states[:N], weights)[0])[0]
+    labels = numbered_by_frequency(dominant_content(modes.shape, lin.states[:N], weights, modes.rigid)[0])[0]
     names = [str(labels[k]) for k in vibrating]
     if (numbered and mode > vibrating.size) or (not numbered and mode not in names):
         listed = ", ".join(f"{name} {modes.frequency[0, k]:.6g} rad s-1" for name, k in zip(names, vibrating))

@@ -1,7 +1,8 @@
 """Linear models over a grid of hub speeds as a CF netCDF dataset and as a MATLAB ``.mat`` file.
 
-The dataset (:func:`to_dataset`) stacks the ``A, B, C, D`` of :func:`hubbeam.linear.linear_model`
-over the dimension ``speed``; the names of the states, inputs and outputs are string coordinates
+The dataset (:func:`to_dataset`) stacks the ``A, B, C, D`` of a plant's linear models
+(:func:`hubbeam.linear.plant_models.plant_linear`: its tip body, root spring, drive and damping, the
+input the rig drives) over the dimension ``speed``; the names of the states, inputs and outputs are string coordinates
 (``state`` for the rows of ``A`` and ``B`` and the columns of ``C``, ``state_j`` for the columns of
 ``A``, ``input``, ``output``), with their units. ``growth_rate`` (the largest real part of the
 poles) says where a plant is unstable (TLAM above its critical speed): it is not an error. The
@@ -9,9 +10,10 @@ poles) says where a plant is unstable (TLAM above its critical speed): it is not
 MATLAB), the speed vector and the names as cell arrays. Both are written atomically
 (``hubbeam.results.io``); ``docs/linear-models.md`` shows how to load each.
 
-Optional, both absent by default: ``motor`` (a ``hubbeam.model.drive.DcMotor``) gives the models
-with the drive's voltage as input (``hubbeam.linear.voltage``, free hub), with the operating-point
-voltage of each speed; ``sample_time`` (s) gives the zero-order-hold models with the input
+A plant with a drive (``hubbeam.model.drive.DcMotor``) gives the free hub's models with the drive's
+voltage as input (``hubbeam.linear.voltage``), with the operating-point voltage of each speed; a
+plant with a compliant root gives the hub angle ``phi`` as a state and its spring in the attributes.
+Optional, absent by default: ``sample_time`` (s) gives the zero-order-hold models with the input
 delayed by ``delay`` samples (``hubbeam.linear.discrete``, attributes ``sample_time_s`` and
 ``input_delay_samples``; the delayed inputs are states in the input's unit; ``growth_rate`` is
 then ``ln(max |z|) / Ts``, the continuous rate the largest discrete pole stands for).
@@ -26,16 +28,12 @@ import numpy as np
 import xarray as xr
 
 from hubbeam.linear.discrete import check_sampling, discretise
-from hubbeam.linear.statespace import (
-    INPUT_UNITS,
-    OUTPUTS,
-    check_request,
-    check_speeds,
-    linear_model,
-)
-from hubbeam.linear.voltage import check_motor, voltage_model
+from hubbeam.linear.plant_models import plant_damping, plant_linear
+from hubbeam.linear.statespace import INPUT_UNITS, OUTPUTS, ROOT_OUTPUTS, check_request, check_speeds
+from hubbeam.linear.voltage import check_motor
 from hubbeam.model.beam import beam_attributes
-from hubbeam.model.parameters import TipMass
+from hubbeam.model.plant import Plant, plant_matrices
+from hubbeam.model.root import HUB_COORDINATE
 from hubbeam.results.io import staged, write_netcdf
 from hubbeam.results.provenance import global_attributes
 
@@ -46,7 +44,7 @@ def state_units(name: str, inputs=()) -> str:
     for input_name in inputs:
         if name.startswith(f"{input_name}_lag"):
             return INPUT_UNITS[input_name]
-    coordinate = "rad" if name.startswith("theta") else "kg1/2 m"
+    coordinate = "rad" if name.startswith(("theta", HUB_COORDINATE)) else "kg1/2 m"
     return coordinate + (" s-1" if name.endswith("_dot") else "")
 
 
@@ -59,27 +57,26 @@ def _growth_rate(lm) -> float:
         return float(np.log(np.max(np.abs(poles))) / lm.Ts)
 
 
-def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, damping=None,
-               outputs=None, *, motor=None, sample_time=None, delay=0.0) -> xr.Dataset:
-    """The linear models of ``model`` at every speed of ``speeds`` (rad s-1) as a dataset.
+def to_dataset(plant: Plant, model: str, speeds, hub: str = "free", outputs=None, *, sample_time=None,
+               delay=0.0) -> xr.Dataset:
+    """The linear models of ``model`` for ``plant`` at every speed of ``speeds`` (rad s-1) as a dataset.
 
-    Arguments as :func:`hubbeam.linear.linear_model`; ``tip`` (``TipMass`` or None) is the tip
-    mass or body ``sm`` was assembled with, recorded in the attributes; ``motor``, ``sample_time``
-    and ``delay`` as in the module docstring. Every argument is checked before the first model is
-    computed.
+    ``hub``: ``"free"`` (the drive's voltage with a drive, else the hub torque) or ``"prescribed"``
+    (the hub's acceleration); ``outputs`` as :func:`hubbeam.linear.linear_model`; ``sample_time``
+    and ``delay`` as in the module docstring. The plant's tip body, root spring and drive are in the
+    attributes. Every argument is checked before the first model is computed.
     """
-    check_request(model, hub, outputs)
+    check_request(model, hub, outputs, plant.root_spring is not None)
     grid = check_speeds(speeds)
+    motor = plant.drive if hub == "free" else None
     if motor is not None:
         check_motor(motor)
-        if hub != "free":
-            raise ValueError(f"hub = {hub!r} with a motor; allowed: 'free' (the drive turns a free hub)")
     if sample_time is not None:
         check_sampling(sample_time, delay)
+    sm = plant_matrices(plant)
 
     def one(speed):
-        lm = (linear_model(beam, sm, model, speed, hub, damping, outputs) if motor is None
-              else voltage_model(beam, sm, model, motor, speed, damping, outputs))
+        lm = plant_linear(plant, model, speed, hub, outputs, sm=sm)
         return lm if sample_time is None else discretise(lm, sample_time, delay)
 
     models = [one(float(speed)) for speed in grid]
@@ -96,7 +93,7 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
                         {"long_name": "units of each state"}),
         "input_units": ("input", [INPUT_UNITS[name] for name in first.inputs],
                         {"long_name": "units of each input"}),
-        "output_units": ("output", [OUTPUTS[name][0] for name in first.outputs],
+        "output_units": ("output", [({**OUTPUTS, **ROOT_OUTPUTS})[name][0] for name in first.outputs],
                          {"long_name": "units of each output"}),
     }
     data_vars = {
@@ -111,7 +108,7 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
                                           "poles (> 0: an unstable plant, e.g. TLAM above its "
                                           "critical speed; about 0 for a free hub's rigid mode)"}),
     }
-    tip = TipMass(0.0, float(beam.L)) if tip is None else tip
+    tip, damping = plant.tip, plant_damping(plant, sm)
     attrs = {
         "title": f"linear models of {first.model}, {hub} hub, about a steady spin",
         "model": first.model,
@@ -126,7 +123,10 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
                         "D: the output's units per the column state's or input's (state_units, "
                         "input_units, output_units)",
     }
+    if plant.root_spring is not None:
+        attrs |= {f"root_spring_{key}": value for key, value in plant.root_spring.to_dict().items()}
     if motor is not None:
+        attrs |= {f"drive_{key}": value for key, value in motor.to_dict().items()}
         data_vars["operating_voltage"] = ("speed", np.array([getattr(lm, "continuous", lm).operating_voltage
                                                              for lm in models]),
                                           {"units": "V", "long_name": "voltage that holds the steady spin "
@@ -137,7 +137,7 @@ def to_dataset(beam, sm, model: str, speeds, hub: str = "free", tip=None, dampin
                   "matrix_units": "A, B: the row state's units per the column state's or input's (one "
                                   "sample); C, D: the output's units per the column state's or input's "
                                   "(state_units, input_units, output_units)"}
-    return xr.Dataset(data_vars, coords=coords, attrs=attrs | beam_attributes(beam))
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs | beam_attributes(plant.beam))
 
 
 def cell(names) -> np.ndarray:
@@ -159,17 +159,17 @@ def write_mat(ds: xr.Dataset, path: os.PathLike | str) -> Path:
     D`` with the speed as their last index, ``speed``, the names ``states, inputs, outputs`` as
     cell arrays, and ``model``, ``hub``, ``tip_mass_kg``, ``tip_position_m``, ``tip_inertia_kg_m2``,
     ``tip_offset_m``, ``n_modes`` (and, where present, ``sample_time_s``, ``input_delay_samples``,
-    ``operating_voltage``)."""
+    ``operating_voltage``, the root spring's ``root_spring_*`` and the drive's ``drive_*``)."""
     from scipy.io import savemat
 
     contents = {name: np.moveaxis(ds[name].values, 0, -1) for name in "ABCD"}
     contents |= {"speed": ds.speed.values, "growth_rate": ds.growth_rate.values,
                  "states": cell(ds.state.values), "inputs": cell(ds.input.values),
                  "outputs": cell(ds.output.values)}
-    contents |= {key: ds.attrs[key] for key in ("model", "hub", "tip_mass_kg", "tip_position_m",
-                                                 "tip_inertia_kg_m2", "tip_offset_m", "n_modes", "sample_time_s",
-                                                 "input_delay_samples")
-                 if key in ds.attrs}
+    contents |= {key: value for key, value in ds.attrs.items()
+                 if key in ("model", "hub", "tip_mass_kg", "tip_position_m", "tip_inertia_kg_m2", "tip_offset_m",
+                            "n_modes", "sample_time_s", "input_delay_samples")
+                 or key.startswith(("root_spring_", "drive_"))}
     if "operating_voltage" in ds:
         contents["operating_voltage"] = ds.operating_voltage.values
     path = Path(path)

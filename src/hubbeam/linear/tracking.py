@@ -37,9 +37,10 @@ veer over a speed range narrower than the grid step, where sorting by frequency 
 inside a veering range resolved by the grid, the shapes rotate into each other continuously and
 the tracked curves follow the continuous branches.
 
-Labels (:func:`dominant_content`): the fraction of ``|w_i u_i|^2`` in each coordinate decides a
-mode's label, from the group with the largest sum (``hub``, ``axial``, ``bending``) and the
-coordinate with the largest fraction inside it: ``hub``, ``axial k``, ``bending k``.
+Labels (:func:`dominant_content`): a rigid-body mode is ``hub``; every other mode is flexible,
+``axial k`` when the axial coordinates hold the larger share of ``|w_i u_i|^2``, else ``bending k``
+(the transverse share counts the hub's and the root's angles), ``k`` the coordinate with the
+largest share inside the group.
 :func:`numbered_by_frequency` then numbers each group's modes by their rank in frequency, the name
 that stays distinct on a light free hub (where every bending mode's content is mostly the first
 clamped-free function).
@@ -62,7 +63,7 @@ from scipy.optimize import linear_sum_assignment
 ZERO_TOLERANCE = 10.0 * np.sqrt(np.finfo(float).eps)
 
 #: coordinate group of a position state name, by its prefix
-GROUPS = {"theta": "hub", "q1": "axial", "q2": "bending"}
+GROUPS = {"theta": "hub", "phi": "hub", "q1": "axial", "q2": "bending"}
 
 
 @dataclass(frozen=True)
@@ -191,40 +192,48 @@ def track(modes: Modes) -> Modes:
 
 
 def coordinate_groups(names) -> list[tuple[str, int]]:
-    """``(group, k)`` of each position state name: ``theta`` -> ``("hub", 0)``, ``q1_3`` ->
-    ``("axial", 3)``, ``q2_1`` -> ``("bending", 1)`` (groups: :data:`GROUPS`)."""
+    """``(group, k)`` of each position state name: ``theta`` (the hub's, or with a compliant root
+    the root's angle) and ``phi`` (the hub's angle with a compliant root) -> ``("hub", 0)``,
+    ``q1_3`` -> ``("axial", 3)``, ``q2_1`` -> ``("bending", 1)`` (groups: :data:`GROUPS`)."""
     groups = []
     for name in names:
         prefix, _, index = name.partition("_")
-        hub_angle = prefix == "theta" and not index
-        modal = prefix in GROUPS and prefix != "theta" and index.isdigit()
-        if not (hub_angle or modal):
-            raise ValueError(f"state name {name!r}: expected theta, q1_<k> or q2_<k>")
+        angle = GROUPS.get(prefix) == "hub" and not index
+        modal = prefix in GROUPS and GROUPS[prefix] != "hub" and index.isdigit()
+        if not (angle or modal):
+            raise ValueError(f"state name {name!r}: expected theta, phi, q1_<k> or q2_<k>")
         groups.append((GROUPS[prefix], int(index) if index else 0))
     return groups
 
 
-def dominant_content(shapes: np.ndarray, names, weights: np.ndarray):
+def dominant_content(shapes: np.ndarray, names, weights: np.ndarray, rigid: np.ndarray):
     """Labels and group fractions of mode shapes (..., p) with position state names ``names``.
 
-    Returns ``labels`` (...,) of ``hub``, ``axial k`` or ``bending k`` and ``fractions``, a dict
-    group -> (...,) share of ``sum |w_i u_i|^2`` in that group's coordinates.
+    Returns ``labels`` (...,) and ``fractions``, a dict group -> (...,) share of ``sum |w_i u_i|^2``
+    in that group's coordinates. A ``rigid`` mode (a free hub's rigid-body mode, a held hub's
+    prescribed angle) is ``hub``; every other mode is flexible, whatever coordinate dominates it:
+    ``axial k`` when the axial coordinates hold more of it than the transverse ones (the bending
+    functions with the hub's and root's angles, which turn the beam sideways), else ``bending k``
+    (``k`` the dominant function; :func:`numbered_by_frequency` numbers them by frequency).
     """
     coordinates = coordinate_groups(names)
     energy = np.abs(shapes * weights) ** 2
     energy = energy / energy.sum(axis=-1, keepdims=True)
-    group_names = list(dict.fromkeys(group for group, _ in coordinates))
-    members = {g: np.array([i for i, (group, _) in enumerate(coordinates) if group == g])
-               for g in group_names}
-    fractions = {g: energy[..., members[g]].sum(axis=-1) for g in group_names}
-    winner = np.argmax(np.stack([fractions[g] for g in group_names], axis=-1), axis=-1)
-    labels = np.empty(winner.shape, dtype=object)
-    for g_index, group in enumerate(group_names):
-        inside = members[group][np.argmax(energy[..., members[group]], axis=-1)]
-        text = np.array([group if group == "hub" else f"{group} {coordinates[i][1]}"
-                         for i in range(len(coordinates))], dtype=object)
-        labels = np.where(winner == g_index, text[inside], labels)
-    return labels.astype(str), fractions
+    members = {group: np.array([i for i, (g, _) in enumerate(coordinates) if g == group], dtype=int)
+               for group in dict.fromkeys(GROUPS.values())}
+    fractions = {group: energy[..., index].sum(axis=-1) for group, index in members.items() if index.size}
+    axial = fractions.get("axial", np.zeros(energy.shape[:-1]))
+    transverse = fractions.get("bending", 0.0) + fractions.get("hub", 0.0)
+
+    def named(group):  # "<group> k" of the group's dominant function
+        index = members[group]
+        if not index.size:
+            return np.full(energy.shape[:-1], group, dtype=object)
+        text = np.array([f"{group} {k}" for _, k in coordinates], dtype=object)
+        return text[index[np.argmax(energy[..., index], axis=-1)]]
+
+    labels = np.where(axial > transverse, named("axial"), named("bending"))
+    return np.where(np.asarray(rigid, dtype=bool), "hub", labels).astype(str), fractions
 
 
 def numbered_by_frequency(labels: np.ndarray, frequency: np.ndarray | None = None) -> np.ndarray:

@@ -79,7 +79,9 @@ def check_motor(motor) -> DcMotor:
 def linearised_damping(motor: DcMotor, speed: float) -> float:
     """``c = kV Kg km + B + (Fc / eps) sech^2(speed / eps)``: minus the slope of the drive's torque
     with the hub speed at ``speed`` (rad s-1), N m s rad-1 (module docstring)."""
-    coulomb = motor.coulomb_friction / motor.coulomb_smoothing / math.cosh(speed / motor.coulomb_smoothing) ** 2
+    x = abs(speed) / motor.coulomb_smoothing
+    sech2 = 4.0 * math.exp(-2.0 * x) / (1.0 + math.exp(-2.0 * x)) ** 2  # 1 / cosh(x)^2, without overflow
+    coulomb = motor.coulomb_friction / motor.coulomb_smoothing * sech2
     return motor.hub_damping + coulomb
 
 

@@ -131,17 +131,41 @@ def _check_search_max(search_max):
 
 
 def critical_speed(model, params, tip, n_modes, search_max, n_quad=64):
-    """Critical angular velocity (rad s-1) at which ``K22`` stops being positive definite.
+    """Critical angular velocity (rad s-1) at which ``K22`` stops being positive definite, for the
+    beam ``params`` with ``tip`` (:func:`critical_speed_of` on its matrices)."""
+    return critical_speed_of(assemble(params, tip, n_modes, n_quad), model, search_max)
 
-    Exact: ``Omega_c = mu_max^(-1/2)``, ``mu_max`` the largest eigenvalue of ``(M2 - c D) v =
-    mu K2 v`` (c = 0 TLAM, 1 FOAM). Returns NaN when there is none up to ``search_max``
-    (always for FOAM, see the module docstring).
+
+def critical_speed_of(sm, model, search_max, root_spring: RootSpring | None = None):
+    """Critical angular velocity (rad s-1) of the matrices ``sm`` with the hub held: the lowest
+    speed at which the stiffness of ``model``'s linearisation stops being positive definite; NaN
+    when there is none up to ``search_max`` (always for FOAM, see the module docstring).
+
+    Clamped to the hub, exact: ``Omega_c = mu_max^(-1/2)``, ``mu_max`` the largest eigenvalue of
+    ``(M2 - c D) v = mu K2 v`` (c = 0 TLAM, 1 FOAM). On a compliant root ``root_spring`` the root's
+    angle joins ``q2`` and the spring's stiffness the lag direction: the first zero of the lowest
+    eigenvalue of the hub-held stiffness of ``hubbeam.model.root.joint_second_order`` (Brent's
+    method, bracketed on a grid of 400 speeds).
     """
     _check_search_max(search_max)
     _check_model(model)
-    sm = assemble(params, tip, n_modes, n_quad)
-    B = linearised.centrifugal_matrix(sm.M2, sm.D, model)
-    return float(_critical_from_mu(_mu_max(sm.K2, B), search_max))
+    if checked_spring(root_spring) is None:
+        B = linearised.centrifugal_matrix(sm.M2, sm.D, model)
+        return float(_critical_from_mu(_mu_max(sm.K2, B), search_max))
+    traits, damping = model_traits(model), np.zeros((2,) + sm.K2.shape)
+
+    def lowest(speed):
+        K = joint_second_order(sm, root_spring, traits, float(speed), damping)[3][:-1, :-1]
+        return np.linalg.eigvalsh(0.5 * (K + K.T))[0]
+
+    grid = np.linspace(0.0, search_max, 401)
+    values = np.array([lowest(speed) for speed in grid])
+    negative = np.flatnonzero(values <= 0.0)
+    if negative.size == 0:
+        return float("nan")
+    k = negative[0]
+    return float(grid[0]) if k == 0 else float(scipy.optimize.brentq(lowest, grid[k - 1], grid[k], xtol=1e-14,
+                                                                    rtol=1e-14))
 
 
 def critical_speed_by_root_search(model, params, tip, n_modes, search_max, n_quad=64):

@@ -29,6 +29,7 @@ from hubbeam.reporting.products import (
     CONTROL_FOLDER,
     CONTROL_NC,
     CRITICAL_SPEEDS_CSV,
+    PLANT_FIGURE,
     TABLE,
     TABLE2_CSV,
     Product,
@@ -131,7 +132,10 @@ class PlanContext:
 
     def figure_names(self, key: str, product: Product) -> list[tuple[str, str]]:
         """``(label, figure name)`` of every figure of ``product``: its key, or one ``<key>_<name>``
-        per case or per comparison, labelled by the case or the comparison."""
+        per case or per comparison, labelled by the case or the comparison, or per plant, labelled
+        ``<plant>/<key>``."""
+        if product.kind == PLANT_FIGURE:
+            return [(f"{plant}/{key}", f"{key}_{plant}") for plant in self.settings.plants]
         names = {CASE_FIGURE: self.cases, COMPARISON_FIGURE: sorted(self.comparisons)}.get(product.kind)
         return [(key, key)] if names is None else [(name, f"{key}_{name}") for name in names]
 

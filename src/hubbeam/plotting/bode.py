@@ -1,4 +1,5 @@
-"""Bode diagrams from the hub torque of a free hub to the hub angle, the tip deflection ``v(L)``
+"""Bode diagrams from the rig's input (the hub torque of a free hub, or its drive's voltage) to the
+hub angle, the tip deflection ``v(L)``
 and the tip's arc position ``(rA + L) theta + v(L)``, for each model at several hub speeds.
 
 Drawn from :func:`hubbeam.linear.datasets.bode` (computed with python-control): one column per
@@ -12,18 +13,21 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from hubbeam.plotting.campbell_tracked import one_tip_mass
+from hubbeam.plotting.campbell_tracked import one_plant
 from hubbeam.plotting.style import axis_label, model_style, new_figure, units_tex
 
+INPUTS = {"torque": "hub torque", "voltage": "drive voltage"}
 OUTPUT_NAMES = {"hub_angle": r"hub angle $\theta$", "tip_deflection": r"tip deflection $v(L)$",
                 "tip_arc": r"tip arc $(r_A + L)\theta + v(L)$"}
 
 
 def plot(bode: xr.Dataset, tip_mass: float | str | None = None):
     """Magnitude and phase against frequency: rows per output, columns per speed."""
-    ds, where = one_tip_mass(bode, tip_mass, "Bode")
+    ds, where = one_plant(bode, tip_mass, "Bode")
     outputs = [name.removesuffix("_magnitude") for name in ds.data_vars if name.endswith("_magnitude")]
     speeds = ds["speed"].values
+    # the rig's input: the drive's voltage (magnitudes per volt) or the hub torque
+    source = "voltage" if ds[f"{outputs[0]}_magnitude"].attrs.get("units", "").endswith("V-1") else "torque"
     fig, axes = new_figure(2 * len(outputs), len(speeds), width=2.6 * len(speeds) + 0.8,
                            height=1.7 * 2 * len(outputs), sharex=True, sharey="row")
     omega = ds["frequency"].values
@@ -43,13 +47,13 @@ def plot(bode: xr.Dataset, tip_mass: float | str | None = None):
         axes[-1, column].set_xlabel(axis_label(r"frequency $\omega$", "rad s-1"))
     for o, output in enumerate(outputs):
         units = ds[f"{output}_magnitude"].attrs.get("units", "")
-        axes[2 * o, 0].set_ylabel(f"|{OUTPUT_NAMES.get(output, output)} / torque|\n({units_tex(units)})",
+        axes[2 * o, 0].set_ylabel(f"|{OUTPUT_NAMES.get(output, output)} / {source}|\n({units_tex(units)})",
                                   fontsize=7)
         axes[2 * o + 1, 0].set_ylabel("phase (deg)", fontsize=7)
         phase = ds[f"{output}_phase"].values
         low, high = np.floor(np.nanmin(phase) / 180.0), np.ceil(np.nanmax(phase) / 180.0)
         step = 180 if high - low <= 6 else 360  # ticks at whole half turns, or whole turns
         axes[2 * o + 1, 0].set_yticks(np.arange(low * 180, high * 180 + 1, step))
-    fig.suptitle(f"hub torque to hub angle, tip deflection and tip arc, free hub, {where}", fontsize=9)
+    fig.suptitle(f"{INPUTS[source]} to hub angle, tip deflection and tip arc, free hub, {where}", fontsize=9)
     fig.legend(*axes[0, 0].get_legend_handles_labels(), loc="outside lower center", ncols=4)
     return fig

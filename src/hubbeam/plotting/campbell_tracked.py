@@ -16,12 +16,16 @@ import xarray as xr
 from hubbeam.plotting.fig09 import labelled
 from hubbeam.plotting.style import LABEL_BOX, axis_label, model_style, new_figure, panel_title
 
-HUB_TITLES = {"held": "hub held (speed prescribed)", "free": "free hub (torque input)"}
+HUB_TITLES = {"held": "hub held (speed prescribed)", "free": "free hub (torque input)",
+              "driven": "free hub through its drive (voltage input)"}
 
 
-def one_tip_mass(ds: xr.Dataset, tip_mass: float | str | None, what: str) -> tuple[xr.Dataset, str]:
-    """``ds`` at ``tip_mass`` (kg; the first one by default, ``"largest"`` the largest; a clear
-    error if absent) and a caption fragment naming it."""
+def one_plant(ds: xr.Dataset, tip_mass: float | str | None, what: str) -> tuple[xr.Dataset, str]:
+    """``ds`` of one plant and a caption fragment naming it: a study's plant (its ``plant``
+    coordinate), or one tip mass of the paper's grid (kg; the first one by default, ``"largest"``
+    the largest; a clear error if absent)."""
+    if "plant" in ds.dims:
+        return ds.isel(plant=0), f"plant {ds['plant'].values[0]}"
     masses = ds["tip_mass"].values
     mass = float({None: masses[0], "largest": masses.max()}.get(tip_mass, tip_mass))
     labelled(ds, next(iter(ds.data_vars)), what, tip_mass=mass)
@@ -31,10 +35,11 @@ def one_tip_mass(ds: xr.Dataset, tip_mass: float | str | None, what: str) -> tup
 
 def plot(campbell: xr.Dataset, tip_mass: float | str | None = None):
     """Frequency (top) and damping ratio (bottom) against hub speed, held and free hub."""
-    ds, where = one_tip_mass(campbell, tip_mass, "Campbell")
-    fig, axes = new_figure(2, 2, width=7.0, height=5.6, sharex=True)
+    ds, where = one_plant(campbell, tip_mass, "Campbell")
+    hubs = ds["hub"].values
+    fig, axes = new_figure(2, len(hubs), width=3.5 * len(hubs), height=5.6, sharex=True)
     speed = ds["speed"].values
-    for column, hub in enumerate(ds["hub"].values):
+    for column, hub in enumerate(hubs):
         top, bottom = axes[0, column], axes[1, column]
         for model in ds["model"].values:
             one = ds.sel(model=model, hub=hub)
@@ -65,10 +70,11 @@ def plot(campbell: xr.Dataset, tip_mass: float | str | None = None):
                 for ax in (top, bottom):
                     ax.axvline(critical, color=style["color"], linewidth=0.7, linestyle=":")
         top.set_yscale("log")
-        panel_title(top, column, f"{HUB_TITLES.get(str(hub), str(hub))}, {where}")
-        panel_title(bottom, 2 + column, "damping ratio (-1: divergent)")
+        panel_title(top, column, HUB_TITLES.get(str(hub), str(hub)))
+        panel_title(bottom, len(hubs) + column, "damping ratio (-1: divergent)")
         bottom.set_xlabel(axis_label(r"hub speed $\Omega$", "rad s-1"))
     axes[0, 0].set_ylabel(axis_label("frequency", "Hz"))
     axes[1, 0].set_ylabel(axis_label(r"damping ratio $\zeta$", "1"))
     fig.legend(*axes[0, 0].get_legend_handles_labels(), loc="outside upper center", ncols=4)
+    fig.suptitle(f"Campbell diagram, {where}", fontsize=9, y=0.0, va="bottom")
     return fig

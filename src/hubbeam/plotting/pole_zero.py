@@ -15,7 +15,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.lines import Line2D
 
-from hubbeam.plotting.campbell_tracked import one_tip_mass
+from hubbeam.plotting.campbell_tracked import one_plant
 from hubbeam.plotting.style import axis_label, model_style, new_figure, panel_title
 
 #: the largest |root| drawn (rad s-1): the first bending modes and the lowest tip zeros
@@ -32,16 +32,17 @@ def _near(values, limit):
 
 def plot(poles_zeros: xr.Dataset, tip_mass: float | str | None = None, limit: float = LIMIT):
     """Root frequencies against speed (top, per model) and tip-arc pole-zero maps (bottom)."""
-    ds, where = one_tip_mass(poles_zeros, tip_mass, "poles and zeros")
+    ds, where = one_plant(poles_zeros, tip_mass, "poles and zeros")
     models = ds["model"].values
     fig, axes = new_figure(2, len(models), width=2.2 * len(models), height=5.4, sharex=False)
     speed = ds["speed"].values
+    rig = "driven" if "driven_pole_real" in ds else "free"  # the poles of the rig's input: through a drive
     for column, model in enumerate(models):
         ax = axes[0, column]
         one = ds.sel(model=model)
         style = model_style(str(model))
         for k, value in enumerate(speed):
-            poles = one["free_pole_real"][k].values + 1j * one["free_pole_imag"][k].values
+            poles = one[f"{rig}_pole_real"][k].values + 1j * one[f"{rig}_pole_imag"][k].values
             zeros = (one["zero_real"].sel(output="hub_angle")[k].values
                      + 1j * one["zero_imag"].sel(output="hub_angle")[k].values)
             p = _near(np.abs(poles.imag[poles.imag >= 0]), limit)
@@ -66,7 +67,7 @@ def plot(poles_zeros: xr.Dataset, tip_mass: float | str | None = None, limit: fl
         for model in models:
             one = ds.sel(model=model).isel(speed=k)
             style = model_style(str(model))
-            poles = one["free_pole_real"].values + 1j * one["free_pole_imag"].values
+            poles = one[f"{rig}_pole_real"].values + 1j * one[f"{rig}_pole_imag"].values
             zeros = (one["zero_real"].sel(output="tip_arc").values
                      + 1j * one["zero_imag"].sel(output="tip_arc").values)
             poles, zeros = (v[np.isfinite(v) & (np.abs(v) <= limit)] for v in (poles, zeros))

@@ -44,8 +44,12 @@ DESIGNS_FIGURE = "figure of the feedback designs"
 #: one figure (``<key>``) of every run of a study that shapes a case's command (``shaper``); its
 #: ``options`` select the shapers it needs (:func:`shaped_cases`)
 SHAPING_FIGURE = "figure of the shaped commands"
+#: one figure per plant of a study (``<key>_<plant>``), drawn from that plant's result files (its
+#: ``files`` hold the wildcard ``{plant}``)
+PLANT_FIGURE = "figure per plant"
 TABLE = "table"
-KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, FILES_FIGURE, DESIGNS_FIGURE, SHAPING_FIGURE, TABLE)
+KINDS = (SIMULATION_FIGURE, CASE_FIGURE, COMPARISON_FIGURE, FILES_FIGURE, DESIGNS_FIGURE, SHAPING_FIGURE,
+         PLANT_FIGURE, TABLE)
 
 #: the section of the reports a product is shown in: the paper's reproduction report, or a
 #: section of the study report (the beam, the cases, the comparisons, the feedback designs, the
@@ -58,8 +62,9 @@ DESIGNS_SECTION = "designs"
 EIGEN_SECTION = "eigen"
 LINEAR_SECTION = "linear"
 SHAPING_SECTION = "shaping"
+PLANTS_SECTION = "plants"
 SECTIONS = (PAPER_SECTION, BEAM_SECTION, CASES_SECTION, COMPARISONS_SECTION, DESIGNS_SECTION, EIGEN_SECTION,
-            LINEAR_SECTION, SHAPING_SECTION)
+            LINEAR_SECTION, SHAPING_SECTION, PLANTS_SECTION)
 
 # the result files the products and the claims read, relative to a results folder: each named once
 K22_NC = IN_RESULTS.eigen("k22")
@@ -73,6 +78,10 @@ LINEAR_NC = {name: IN_RESULTS.linear(name) for name in ("campbell", "mode_shapes
 TABLE2_CSV = IN_RESULTS.table("table2", "csv")
 #: the critical speed of each tip mass at the beam tip (the claims read it)
 CRITICAL_SPEEDS_CSV = IN_RESULTS.table("critical_speeds", "csv")
+#: the products of each plant of a study (hubbeam.linear.datasets on hubbeam.linear.axes.plant_axis; the
+#: plant's natural frequencies, their convergence and its critical speeds: hubbeam.study.plants), by name
+PLANT_NC = {name: IN_RESULTS.plant("{plant}", name) for name in ("plant", "campbell", "mode_shapes", "poles_zeros",
+                                                                  "bode")}
 #: the analyses of the sampled controllers (``control`` section, hubbeam.control.analyses) and their folder
 CONTROL_FOLDER = "control"
 CONTROL_NC = {name: IN_RESULTS.result(CONTROL_FOLDER, f"{name}.nc") for name in ("sample_time", "robustness")}
@@ -92,7 +101,8 @@ class Product:
     ``study.comparisons``; a number indexes a list) without which it is not built. ``options``: keyword arguments of the
     drawing function besides the files (e.g. which tip mass a linear-model figure shows).
     ``paper``: what the paper shows in it; ``ours``: what our product shows. ``section``: the
-    section of the reports it is shown in (:data:`SECTIONS`).
+    section of the reports it is shown in (:data:`SECTIONS`). ``unless``: configuration keys whose
+    presence means the product is not built (a study's plants replace the paper's grid of tip masses).
     """
 
     key: str
@@ -108,6 +118,7 @@ class Product:
     needs: tuple[str, ...] = ()
     options: Mapping[str, object] = field(default_factory=dict)
     section: str = PAPER_SECTION
+    unless: tuple[str, ...] = ()
 
     def __post_init__(self):
         if self.kind not in KINDS:
@@ -124,6 +135,7 @@ class Product:
         object.__setattr__(self, "files", MappingProxyType(dict(self.files)))
         object.__setattr__(self, "claims", tuple(self.claims))
         object.__setattr__(self, "needs", tuple(self.needs))
+        object.__setattr__(self, "unless", tuple(self.unless))
         object.__setattr__(self, "options", MappingProxyType(dict(self.options)))
 
     @property
@@ -142,6 +154,7 @@ class Product:
         the feedback designs, a designed case; for a figure of the shaped commands, a case with
         the shaper its ``options`` select)."""
         return (all(_has(cfg, key.split(".")) for key in self.needs)
+                and not any(_has(cfg, key.split(".")) for key in self.unless)
                 and (self.kind != DESIGNS_FIGURE or bool(designed_cases(cfg)))
                 and (self.kind != SHAPING_FIGURE or bool(shaped_cases(cfg, **self.options))))
 
@@ -249,7 +262,7 @@ CAMPBELL = Product(
     ours="Frequencies of TLAM and FOAM against hub speed: TLAM's first frequency reaches zero at the "
          "critical speed, FOAM's rises with speed (dynamic stiffening).",
     files={"campbell": CAMPBELL_NC, "critical": CRITICAL_SPEEDS_NC},
-    claims=("table2_tlam_softens_foam_stiffens",))
+    claims=("table2_tlam_softens_foam_stiffens",), unless=("study",))
 
 GENERAL_PRODUCTS: Mapping[str, Product] = registry(
     Product(
@@ -263,20 +276,10 @@ GENERAL_PRODUCTS: Mapping[str, Product] = registry(
         needs=("study.comparisons",), section=COMPARISONS_SECTION),
     CAMPBELL,
     Product(
-        "critical_speeds", FILES_FIGURE, "hubbeam.plotting.study_critical:plot",
-        "Critical speeds over tip-mass position", in_paper=False,
-        ours="The hub speed at which each model's transverse stiffness K22 becomes singular, against "
-             "the tip-mass position, one curve per tip mass.",
-        files={"critical": CRITICAL_SPEEDS_NC}, needs=("study",), section=EIGEN_SECTION),
-    Product(
         "beam_properties", FILES_FIGURE, "hubbeam.plotting.beam_properties:plot", "The beam",
         ours="rhoA, EI and EA along the span, the stations marked, and the tip mass of every case at "
              "its position.", in_paper=False,
         files={"beam": BEAM_NC}, needs=("study",), section=BEAM_SECTION),
-    Product(
-        "mode_shapes", FILES_FIGURE, "hubbeam.plotting.mode_shapes:plot", "First mode shapes",
-        ours="The first transverse mode shapes of FOAM at rest and at the top of the speed grid.",
-        in_paper=False, files={"beam": BEAM_NC}, needs=("study",), section=EIGEN_SECTION),
     *(product for key, function, title, what, files in (
         ("linear_campbell", "campbell_tracked", "Tracked, damped Campbell diagram",
          "Frequency and damping ratio of every mode of every model against hub speed, with the hub "
@@ -300,11 +303,31 @@ GENERAL_PRODUCTS: Mapping[str, Product] = registry(
     ) for product in (
         Product(key, FILES_FIGURE, f"hubbeam.plotting.{function}:plot",
                 f"{title}, no tip mass",
-                ours=what, in_paper=False, files=files, options={"tip_mass": 0.0}, section=LINEAR_SECTION),
+                ours=what, in_paper=False, files=files, options={"tip_mass": 0.0}, section=LINEAR_SECTION,
+                unless=("study",)),
         Product(f"{key}_tip", FILES_FIGURE, f"hubbeam.plotting.{function}:plot",
                 f"{title}, the largest tip mass",
                 ours=what, in_paper=False, files=files, options={"tip_mass": "largest"},
-                needs=("linear.tip_masses.1",), section=LINEAR_SECTION),
+                needs=("linear.tip_masses.1",), section=LINEAR_SECTION, unless=("study",)),
+    )),
+    *(Product(f"plant_{name}", PLANT_FIGURE, f"hubbeam.plotting.{function}:plot", f"{title} of the plant",
+              ours=what, in_paper=False, files={files: PLANT_NC[name]}, needs=("study",), section=PLANTS_SECTION)
+      for name, function, files, title, what in (
+        ("campbell", "campbell_tracked", "campbell", "Tracked, damped Campbell diagram",
+         "Frequency and damping ratio of every mode of every model of the plant (the arm as its cases run it: "
+         "its tip body, root spring, drive and damping) against hub speed, with the hub held, free and, with a "
+         "drive, driven through it; each mode followed by the similarity of its shape (MAC); the speeds where a "
+         "model is unstable shaded, its critical speed marked."),
+        ("mode_shapes", "linear_mode_shapes", "shapes", "Mode shapes",
+         "The first vibration mode shapes of the plant along the span at rest and at the highest speed, every "
+         "hub condition and model, with the rotation of a tip body drawn at its position."),
+        ("poles_zeros", "pole_zero", "poles_zeros", "Poles and zeros over hub speed",
+         "Poles and zeros of the plant from the rig's input (the drive's voltage with a drive, else the hub "
+         "torque) against hub speed for every model."),
+        ("bode", "bode", "bode", "Bode diagrams",
+         "Bode diagrams of the plant from the rig's input (the drive's voltage with a drive, else the hub "
+         "torque) to the hub angle, the tip deflection and the tip's arc position, every model, at several "
+         "hub speeds."),
     )),
     Product(
         "controller_trust", DESIGNS_FIGURE, "hubbeam.plotting.controller_trust:plot",

@@ -37,6 +37,7 @@ FOLDERS = {
     "sweep": "sweeps",
     "reading": "readings",
     "benchmark": "benchmarks",
+    "plant": "plants",
 }
 
 
@@ -83,6 +84,16 @@ class StudyPaths:
         """The exported linear models of ``model`` with the hub ``hub`` at the tip mass of index
         ``tip_mass`` of ``linear.tip_masses``, as ``nc`` or ``mat``."""
         return self.linear(f"models/{model}_{hub}_tip{tip_mass}", ext)
+
+    def plant(self, plant: str, name: str, ext: str = "nc") -> str:
+        """A product of the plant ``plant`` of a study (``plant``, ``campbell``, ``poles_zeros``,
+        ``bode``, ``mode_shapes``)."""
+        return self.result(FOLDERS["plant"], plant, f"{name}.{ext}")
+
+    def plant_model(self, plant: str, model: str, hub: str, ext: str) -> str:
+        """The exported linear models of ``model`` for the plant ``plant`` with the hub ``hub``, as
+        ``nc`` or ``mat``."""
+        return self.result(FOLDERS["plant"], plant, "models", f"{model}_{hub}.{ext}")
 
     def figure(self, key: str, ext: str) -> str:
         return self.result(FOLDERS["figure"], f"{key}.{ext}")

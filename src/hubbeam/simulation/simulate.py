@@ -35,7 +35,7 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import cumulative_simpson
 
-from hubbeam.configuration.settings import Case, ConvergenceCheck, Numerics, simulation_settings
+from hubbeam.configuration.settings import Case, ConvergenceCheck, Numerics, case_plant, simulation_settings
 from hubbeam.core import maneuver as kernel_maneuvers
 from hubbeam.core import radau
 from hubbeam.core.eom import free_coordinates
@@ -52,10 +52,10 @@ from hubbeam.model.limits import (
     MIN_RTOL,
 )
 from hubbeam.model.maneuvers import FeedbackLaw, Maneuver, PdControl, SpinUp, Tracking
-from hubbeam.model.matrices import SystemMatrices, assemble
+from hubbeam.model.matrices import SystemMatrices
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
-from hubbeam.model.plant import with_drive
+from hubbeam.model.plant import plant_matrices, with_drive
 from hubbeam.model.root import joint_inputs
 from hubbeam.model.shapers import Shaper, shaped_stops
 from hubbeam.results.provenance import global_attributes
@@ -113,15 +113,16 @@ def kernel_matrices(sm: SystemMatrices) -> SystemMatrices:
 
 def case_matrices(case: Case, params: BeamParameters, numerics: Numerics,
                   matrices: SystemMatrices | None = None) -> SystemMatrices:
-    """The system matrices of ``case``: ``matrices`` (checked) or assembled from ``params`` (the case's
-    tip body, modes and transverse functions), with the
-    reflected inertia of the case's drive rotor in the hub's (:func:`hubbeam.model.plant.with_drive`)."""
+    """The system matrices of ``case``: those of its plant (``hubbeam.model.plant.plant_matrices``:
+    ``params`` with the case's tip body, modes and transverse functions, the reflected inertia of the
+    case's drive rotor in the hub's), or ``matrices`` given (checked; the rotor added,
+    :func:`hubbeam.model.plant.with_drive`)."""
     n = case.modes
     if matrices is None:
         if numerics.quadrature_points is None:
             raise SimulationError(f"numerics.quadrature_points: missing (required when no matrices are "
                                   f"given); allowed: an integer in {MIN_QUADRATURE_POINTS}..{MAX_QUADRATURE_POINTS}")
-        matrices = assemble(params, case.tip_mass, n, numerics.quadrature_points, case.transverse_functions)
+        return kernel_matrices(plant_matrices(case_plant(case, params, numerics)))
     if np.shape(matrices.K1) != (n, n):
         raise SimulationError(f"cases.{case.label}.modes = {n}, but the matrices given have "
                               f"{np.shape(matrices.K1)[0]} modes; allowed: matrices assembled with the case's "

@@ -26,21 +26,22 @@ from hubbeam.reporting.products import (
     DESIGNS_SECTION,
     EIGEN_SECTION,
     LINEAR_SECTION,
+    PLANTS_SECTION,
     SHAPING_SECTION,
 )
-from hubbeam.study.frequencies import frequencies_markdown
+from hubbeam.study.plants import plants_markdown
 from hubbeam.study.summary import NO_SHAPER
 from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE, performance, verdicts
 
 
 def study_markdown(study, beam, rows: Sequence[Mapping],
                    figures: Mapping[str, Mapping[str, str]], designs: Sequence[Mapping] = (),
-                   frequencies: Sequence[Mapping] = (), controllers: str = "",
+                   plants: Sequence[Mapping] = (), controllers: str = "",
                    shaping: Mapping | None = None) -> str:
     """The report in Markdown of the study ``study`` (its record: name, title, description) and its
     beam (a beam record). ``rows`` are summary rows, ``designs`` the rows of
-    :func:`hubbeam.study.trust.design_table`, ``frequencies`` those of
-    :func:`hubbeam.study.frequencies.case_frequencies`; ``figures`` gives, per section of the report (the
+    :func:`hubbeam.study.trust.design_table`, ``plants`` those of
+    :func:`hubbeam.study.plants.plant_row`; ``figures`` gives, per section of the report (the
     products' ``section``, :data:`hubbeam.reporting.products.SECTIONS`), the PNG paths relative
     to the report by label: the case of a figure per case, the comparison of a figure per
     comparison, the figure's name otherwise. Sections the study report has no place for (the
@@ -53,7 +54,8 @@ def study_markdown(study, beam, rows: Sequence[Mapping],
 
     return render("study_report.md.j2", study=study, beam=beam_config(beam), rows=rows,
                   beam_table=beam_markdown(beam), cases_table=cases_markdown(rows),
-                  frequencies_table=frequencies_markdown(frequencies) if frequencies else "",
+                  plants_table=plants_markdown(plants) if plants else "",
+                  plant_figures=_by_plant(figures.get(PLANTS_SECTION, {})),
                   case_figures=figures.get(CASES_SECTION, {}),
                   comparison_figures=figures.get(COMPARISONS_SECTION, {}),
                   beam_figure=first(BEAM_SECTION),
@@ -65,6 +67,15 @@ def study_markdown(study, beam, rows: Sequence[Mapping],
                   eigen_figures=figures.get(EIGEN_SECTION, {}), linear_figures=figures.get(LINEAR_SECTION, {}),
                   controllers=controllers,
                   shaping=shaping, shaping_figures=figures.get(SHAPING_SECTION, {}))
+
+
+def _by_plant(figures: Mapping[str, str]) -> dict[str, dict[str, str]]:
+    """The plants' figures (labelled ``<plant>/<product>``) by plant, then by product."""
+    grouped: dict[str, dict[str, str]] = {}
+    for label, path in figures.items():
+        plant, _, product = label.partition("/")
+        grouped.setdefault(plant, {})[product] = path
+    return grouped
 
 
 def beam_summary(params) -> list[dict]:

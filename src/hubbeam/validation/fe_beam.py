@@ -86,9 +86,12 @@ class FeMatrices(NamedTuple):
     R: np.ndarray
 
 
-def matrices(params, tip=None, n_elements: int = 160) -> FeMatrices:
+def matrices(params, tip=None, n_elements: int = 160, root_spring=None) -> FeMatrices:
     """The :class:`FeMatrices` of the beam ``params`` with the tip body ``tip`` (a
-    :class:`~hubbeam.model.parameters.TipMass` or ``None``, checked by ``check_tip``)."""
+    :class:`~hubbeam.model.parameters.TipMass` or ``None``, checked by ``check_tip``), clamped at the
+    root, or, with a ``root_spring`` (``hubbeam.model.root.RootSpring``), hinged there: the root's
+    deflection held, its slope restrained by the spring's stiffness and carrying the clamp's
+    inertia (the hub held)."""
     tip = TipMass(0.0, params.L) if tip is None else tip
     check_tip(tip, params.L)
     mass, position, offset = tip.mass, tip.position, tip.offset
@@ -114,11 +117,15 @@ def matrices(params, tip=None, n_elements: int = 160) -> FeMatrices:
     G[2 * tip_node + 1, 2 * tip_node + 1] += mass * lever * offset
     R[2 * tip_node + 1, 2 * tip_node + 1] += tip.inertia
     free = slice(2, None)  # clamped root: w(0) = w'(0) = 0
+    if root_spring is not None:  # hinged root: w(0) = 0, w'(0) on the spring
+        Kb[1, 1] += root_spring.stiffness
+        R[1, 1] += root_spring.clamp_inertia
+        free = slice(1, None)
     return FeMatrices(*(A[free, free] for A in (M, Kb, G, R)))
 
 
 def frequencies(params, speeds, direction: str, tip=None, n_elements: int = 160,
-                n_frequencies: int = 6) -> np.ndarray:
+                n_frequencies: int = 6, root_spring=None) -> np.ndarray:
     """Lowest ``n_frequencies`` circular frequencies (rad s-1) at each hub speed of ``speeds``.
 
     ``direction`` is ``"flapwise"`` (stiffening only) or ``"inplane"`` (stiffening and the
@@ -130,14 +137,14 @@ def frequencies(params, speeds, direction: str, tip=None, n_elements: int = 160,
     ``K`` is positive definite in both directions: in-plane, ``int T w'^2 >= Omega^2 int rhoA
     w^2`` for every ``w`` with ``w(0) = 0`` when ``rA > 0`` (``hubbeam.model.eigen``: no critical
     speed), for a point mass; a body's offset adds to both sides. ``tip`` as in :func:`matrices`;
-    its rotary inertia is defined in-plane only.
+    its rotary inertia is defined in-plane only; ``root_spring`` as in :func:`matrices`.
     """
     if direction not in _SOFTENING:
         raise ValueError(f"direction = {direction!r}: expected one of {', '.join(DIRECTIONS)}")
     if direction == "flapwise" and tip is not None and tip.inertia != 0.0:
         raise ValueError(f"tip_mass.inertia = {tip.inertia!r} with direction = 'flapwise': expected 0 "
                          "(the rotary inertia about the hub axis turns with in-plane motion only)")
-    fe = matrices(params, tip, n_elements)
+    fe = matrices(params, tip, n_elements, root_spring)
     mass = fe.M + fe.R
     if not 1 <= n_frequencies <= mass.shape[0]:
         raise ValueError(f"n_frequencies = {n_frequencies!r}: expected 1..{mass.shape[0]} "

@@ -5,7 +5,18 @@ own (``target_rules(ctx)``: rule name -> its files, or a function giving them wh
 Every family reads the checked configuration through :class:`hubbeam.pipeline.context.PlanContext`
 and no other family. A new family is a new module here and its line in :data:`FAMILIES`."""
 
-from hubbeam.pipeline.families import control, eigen, figures, linear, paper, reports, simulations, sweeps, validation
+from hubbeam.pipeline.families import (
+                                       control,
+                                       eigen,
+                                       figures,
+                                       linear,
+                                       paper,
+                                       plants,
+                                       reports,
+                                       simulations,
+                                       sweeps,
+                                       validation,
+)
 
 #: every family of steps, in the order their targets are listed
-FAMILIES = (simulations, eigen, linear, control, figures, paper, reports, sweeps, validation)
+FAMILIES = (simulations, eigen, linear, plants, control, figures, paper, reports, sweeps, validation)

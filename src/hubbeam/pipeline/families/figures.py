@@ -12,6 +12,7 @@ from hubbeam.reporting.products import (
     COMPARISON_FIGURE,
     FILES_FIGURE,
     PAPER_PRODUCTS,
+    PLANT_FIGURE,
     SHAPING_FIGURE,
     SIMULATION_FIGURE,
     TABLE,
@@ -69,6 +70,12 @@ def figure_step(ctx: PlanContext, key: str, product: Product) -> Step:
                         input={"simulations": lambda wildcards: ctx.simulations(comparison(wildcards))},
                         params={**common, "per_case": False, "cases": comparison, "name": "{comparison}"},
                         wildcards=[{"comparison": name} for name in sorted(ctx.comparisons)], **flags)
+    if product.kind == PLANT_FIGURE:
+        files = {name: ctx.result(path) for name, path in product.files.items()}
+        return ctx.step(f"{FIGURES}:files_figure", output=ctx.figure(f"{key}_{{plant}}"),
+                        log=ctx.paths.log("figures", f"{key}_{{plant}}.log"), input={**files, "style": ctx.style},
+                        params={**common, "options": dict(product.options)},
+                        wildcards=[{"plant": plant} for plant in ctx.settings.plants], **flags)
     name = ctx.settings.study.name if ctx.settings.study is not None else key
     cases = list(ctx.cases) if product.kind == SHAPING_FIGURE else designed_cases(ctx)
     return ctx.step(f"{FIGURES}:study_figure", output=ctx.figure(key), log=log,

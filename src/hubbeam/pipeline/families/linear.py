@@ -6,6 +6,7 @@ speed and the Bode diagrams)."""
 
 from __future__ import annotations
 
+from hubbeam.linear.axes import tip_mass_axis
 from hubbeam.linear.statespace import HUBS
 from hubbeam.model.models import MODELS
 from hubbeam.pipeline.context import PlanContext
@@ -17,13 +18,16 @@ JOBS = "hubbeam.pipeline.jobs.linear"
 
 
 def exports(ctx: PlanContext) -> list[LinearExport]:
-    """Every model and hub condition at every tip mass of ``linear.tip_masses``."""
+    """Every model and hub condition at every tip mass of ``linear.tip_masses`` (none for a study,
+    whose plants have their own: :mod:`hubbeam.pipeline.families.plants`)."""
+    if ctx.settings.study is not None:
+        return []
     return [LinearExport(k, name, hub, *(ctx.paths.linear_model(name, hub, k, ext) for ext in ("nc", "mat")))
             for k in range(len(ctx.settings.linear.tip_masses)) for name in MODELS for hub in HUBS]
 
 
 def targets(ctx: PlanContext) -> list[str]:
-    """The exported models and the datasets the products read."""
+    """The exported models and the datasets the products read (none for a study)."""
     read = {ctx.result(path) for product in ctx.products.values() for path in product.files.values()}
     return [path for export in exports(ctx) for path in (export.netcdf, export.matlab)] + sorted(
         read & {ctx.result(path) for path in LINEAR_NC.values()})
@@ -31,9 +35,12 @@ def targets(ctx: PlanContext) -> list[str]:
 
 def steps(ctx: PlanContext) -> dict[str, Step]:
     settings = ctx.settings
+    if settings.study is not None:
+        return {}
     linear, numerics = settings.linear, settings.numerics
-    common = {"beam": settings.beam, "tip_masses": list(linear.tip_masses), "speeds": linear.speeds,
-              "damping": linear.damping, "n_modes": numerics.modes, "n_quad": numerics.quadrature_points}
+    plants = tip_mass_axis(settings.beam, linear.tip_masses, numerics.modes, numerics.quadrature_points,
+                           linear.damping)
+    common = {"plants": plants, "speeds": linear.speeds}
 
     def dataset(product, **params):
         return ctx.step(f"{JOBS}:linear_dataset", output={"nc": ctx.result(LINEAR_NC[product])},
@@ -51,5 +58,5 @@ def steps(ctx: PlanContext) -> dict[str, Step]:
             # no more than the vibration modes every model has (SFOAM: numerics.modes)
             f"{JOBS}:linear_mode_shapes", output={"nc": ctx.result(LINEAR_NC["mode_shapes"])},
             log=ctx.paths.log("linear", "mode_shapes.log"), input={"campbell": ctx.result(LINEAR_NC["campbell"])},
-            params={"beam": settings.beam, "shapes": min(linear.shapes, numerics.modes)}),
+            params={"plants": plants, "shapes": min(linear.shapes, numerics.modes)}),
     }

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from hubbeam.pipeline.context import PlanContext
 from hubbeam.pipeline.steps import Step
+from hubbeam.reporting.products import PLANT_NC
 
 REPORTS = "hubbeam.pipeline.jobs.reports"
 
@@ -27,8 +28,9 @@ def steps(ctx: PlanContext) -> dict[str, Step]:
                     "summary": paths.summary(), **ctx.shaping_data()},
             log=paths.log("report", "report.log"),
             input={"simulations": ctx.simulations(ctx.cases), "figures": list(ctx.figure_files("png").values()),
-                   "matrices": [ctx.matrices_file(case) for case in cases], **ctx.control_report_inputs()},
-            params={"study": settings.study, "beam": settings.beam, "cases": list(ctx.cases), "case_settings": cases,
+                   "plants": [ctx.result(PLANT_NC["plant"].replace("{plant}", plant)) for plant in settings.plants],
+                   **ctx.control_report_inputs()},
+            params={"study": settings.study, "beam": settings.beam, "cases": list(ctx.cases),
                     "figures": ctx.report_figures(), "control_cases": ctx.control_cases()},
             local=True, stands_for=cases),
         "archive": ctx.step(

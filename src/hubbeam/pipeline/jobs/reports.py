@@ -19,7 +19,7 @@ from hubbeam.reporting.archive import build_archive, verify_archive
 from hubbeam.reporting.document import markdown_to_html
 from hubbeam.results.io import open_result, staged, write_netcdf, write_text
 from hubbeam.study.controllers import controllers_markdown
-from hubbeam.study.frequencies import case_frequencies
+from hubbeam.study.plants import plant_row
 from hubbeam.study.report import study_html, study_markdown
 from hubbeam.study.shaping import reference_modes, shaped_runs, shaping_dataset
 from hubbeam.study.shaping_report import shaping_section
@@ -55,16 +55,15 @@ def reproduction_report(job: Job) -> None:
 
 def study_report(job: Job) -> None:
     """A study's report (Markdown, HTML) and its summary.csv, a row per case (``input.simulations``
-    of ``params.cases``); the natural frequencies of each case (``params.case_settings``) from its
-    matrices (``input.matrices``); its figures by section of the report (``params.figures``). With
+    of ``params.cases``); its plants (``input.plants``, each plant's dataset); its figures by section
+    of the report (``params.figures``). With
     an output ``shaping`` (a study that shapes commands), the section and the numbers of
     :mod:`hubbeam.study.shaping`, on the reference model's modes from the linear models."""
     p, out = job.params, job.output
     report_dir = Path(out["markdown"]).parent
     datasets = {case: open_result(path) for case, path in zip(p["cases"], job.input["simulations"])}
     rows = [case_summary(case, ds) for case, ds in datasets.items()]
-    frequencies = [case_frequencies(name, case, open_result(path))
-                   for name, case, path in zip(p["cases"], p["case_settings"], job.input["matrices"])]
+    plants = [plant_row(open_result(path)) for path in job.input.get("plants", ())]
     figures = {name: {label: os.path.relpath(path, report_dir) for label, path in shown.items()}
                for name, shown in p["figures"].items()}
     shaping = None
@@ -74,7 +73,7 @@ def study_report(job: Job) -> None:
         critical = dataset_critical_speed(next(iter(datasets.values())), "TLAM")
         shaping = shaping_section(runs, modes, critical)
     markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets),
-                              frequencies=frequencies, shaping=shaping,
+                              plants=plants, shaping=shaping,
                               controllers=_controllers(job, datasets, figures, report_dir))
     write_text(out["markdown"], markdown)
     write_text(out["html"], study_html(markdown, p["study"].title or p["study"].name, report_dir))

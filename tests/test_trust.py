@@ -18,7 +18,7 @@ def _run(design, model, speed, amplitude, status="success"):
     s = t - TF
     tip = np.where(t <= TF, amplitude * np.sin(np.pi * t / TF), 0.5 * amplitude * np.exp(-s) * np.cos(10 * s))
     maneuver = {"kind": "state_feedback", "reference": {"kind": "prescribed", "wf": speed, "tf": TF},
-                "design": {"model": design, "speed": speed}}
+                "design": {"model": design, "speed": speed, "weights": {"tip_deflection": 1.0}}}
     return xr.Dataset({"tip_transverse": ("time", tip), "hub_torque": ("time", 3.0 * tip)},
                       coords={"time": t},
                       attrs={"maneuver": json.dumps(maneuver), "model": model, "integrator_status": status})

@@ -52,6 +52,7 @@ from hubbeam.control.feedback import design_plant
 from hubbeam.control.sampled import closed_loop_matrix, kernel_layout, state_controller
 from hubbeam.control.sampling import zero_tolerance
 from hubbeam.linear.discrete import discretise
+from hubbeam.linear.reduction import reduce_for_sampling
 from hubbeam.linear.statespace import linear_model
 from hubbeam.linear.voltage import voltage_model
 from hubbeam.model.damping import damping_matrices
@@ -68,6 +69,8 @@ REAL_MODE = "hub (real)"
 CONTROLLER_MODE = "controller"
 #: a closed-loop eigenvector whose plant part is below this share of its norm is the controller's
 CONTROLLER_SHARE = 1e-6
+#: the boundary's mode of a sweep in which no sample time has a design
+NO_DESIGN = "no design at any sample time"
 #: relative tolerance of Brent's method on a stability boundary's sample time
 BOUNDARY_XTOL = 1e-6
 
@@ -157,7 +160,10 @@ def state_feedback(case: Case, beam, sm, truth, Ts: float, delay: float, gain: s
     if gain not in GAINS:
         raise ValueError(f"gain = {gain!r}; allowed: one of {', '.join(GAINS)}")
     spec = case.maneuver.design
-    dm = discretise(design_plant(case, beam, sm), Ts, delay)
+    plant = design_plant(case, beam, sm)
+    if case.maneuver.sampling.reduce:  # the modes the sample time resolves, as the case's own controller
+        plant, _ = reduce_for_sampling(plant, Ts)
+    dm = discretise(plant, Ts, delay)
     if gain == "discrete":
         lqr = discrete_lqr(dm, spec.weights, spec.input_weight)
     else:
@@ -217,15 +223,19 @@ def stability_boundary(case: Case, beam, sm, truth, sample_times, radii, delay: 
                        modes: PlantModes | None = None) -> tuple[float, str]:
     """The first sample time of the grid's interval where the loop's spectral radius reaches 1,
     refined by Brent's method between the last stable and the first unstable grid point, and the
-    truth's mode that crosses; ``(nan, "")`` when every grid point is stable, ``(sample_times[0],
-    mode)`` when the first already is not."""
+    truth's mode that crosses; ``(nan, "")`` when every grid point is stable, ``(nan,``
+    :data:`NO_DESIGN` ``)`` when no sample time of the grid has a design, ``(sample_times[0], mode)``
+    when the first already is not stable (a sample time without a design counts as neither)."""
     modes = plant_modes(truth) if modes is None else modes
-    unstable = np.flatnonzero(~(np.asarray(radii) < 1.0))
+    radii = np.asarray(radii)
+    if not np.isfinite(radii).any():  # no design at any sample time: no boundary either
+        return math.nan, NO_DESIGN
+    unstable = np.flatnonzero(radii >= 1.0)
     if unstable.size == 0:
         return math.nan, ""
     i = int(unstable[0])
-    if i == 0:
-        return float(sample_times[0]), _radius(case, beam, sm, truth, modes, sample_times[0], delay, gain).mode
+    if i == 0 or not np.isfinite(radii[i - 1]):  # nothing stable just below to refine from
+        return float(sample_times[i]), _radius(case, beam, sm, truth, modes, sample_times[i], delay, gain).mode
 
     def excess(Ts):
         return _radius(case, beam, sm, truth, modes, Ts, delay, gain).radius - 1.0

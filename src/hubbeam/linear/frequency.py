@@ -70,8 +70,33 @@ def frequency_response(lm: LinearModel, outputs, omega):
     response = ct.frequency_response(lm.to_control()[names, lm.inputs[0]], omega, squeeze=False)
     values = np.asarray(response.complex)[:, 0, :]
     phase = np.unwrap(np.angle(values), axis=-1)
+    for row, output in enumerate(names):
+        phase[row] = _half_turns(lm, output, omega, phase[row])
     phase -= 2.0 * np.pi * np.ceil(phase[:, :1] / (2.0 * np.pi))
     return np.abs(values), np.degrees(phase)
+
+
+#: a phase step between two frequencies within this of a half turn (rad) is an undamped root's
+HALF_TURN = 1e-3
+
+
+def _half_turns(lm: LinearModel, output: str, omega, phase):
+    """``phase`` (unwrapped, rad) with each step of a half turn between two frequencies of ``omega``
+    given the sign of the roots on the imaginary axis between them: an undamped zero turns the phase
+    by +pi, an undamped pole by -pi, which the unwrapping cannot tell apart from the wrap of -pi
+    (the collocated response of an undamped arm would sit at -360 degrees instead of 0)."""
+    steps = np.diff(phase)
+    ambiguous = np.flatnonzero(np.abs(np.abs(steps) - np.pi) < HALF_TURN)
+    if ambiguous.size == 0:
+        return phase
+    scale = float(np.abs(omega).max())
+    on_axis = {sign: roots[(np.abs(roots.real) <= 1e-9 * scale) & (roots.imag > 0)].imag
+               for sign, roots in ((1, zeros(lm, output)), (-1, poles(lm)))}
+    for k in ambiguous:
+        turns = sum(sign * int(np.sum((found > omega[k]) & (found < omega[k + 1]))) for sign, found in on_axis.items())
+        if turns:
+            steps[k] = turns * np.pi
+    return np.concatenate([phase[:1], phase[0] + np.cumsum(steps)])
 
 
 def poles(lm: LinearModel) -> np.ndarray:

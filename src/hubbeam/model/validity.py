@@ -14,6 +14,9 @@ foreshortening to second order (Eqs. 11-13, 35), and nothing of higher order. A 
 * ``left_range``: it was stopped when ``|v(L)|`` exceeded ``numerics.divergence_limit * L``
   (radau status ``left_range``) although the model's linearised stiffness stays positive: a
   bounded response that the models cannot describe;
+* ``stopped`` (a single run's, not a sweep's category: a sweep counts its stopped runs apart): the
+  integrator's step budget ``numerics.max_steps`` ran out before the end of the run; what it
+  computed is kept, the rest is NaN, and nothing is known of the run after ``t_stop``;
 * ``diverged``: unbounded growth. The transverse stiffness ``K22(Omega)`` of Eq. (31) of the
   model's linearisation (TLAM's for TLAM, FOAM's for FOAM, SFOAM and CFOAM, which keep the
   stiffening term ``Omega^2 D``) lost positive definiteness at the highest hub speed of the run,
@@ -40,6 +43,9 @@ LABELS = {
     "left_range": "left the range of the models (stopped, bounded response)",
     "diverged": "diverged (beyond the critical speed, unbounded growth)",
 }
+#: a single run stopped by its step budget (:func:`run_attributes`; a sweep counts such runs apart)
+STOPPED = "stopped"
+LABELS[STOPPED] = "stopped by the step budget before its end"
 #: the integrator statuses of a blown-up state
 BLOWN_UP = (radau.NON_FINITE, radau.STEP_UNDERFLOW)
 
@@ -64,18 +70,28 @@ def classify(status: int, lost_stiffness: bool, deflection_ratio: float, small_l
 
 
 def run_attributes(status: int, t_stop: float, model: str, sm, theta_dot: np.ndarray,
-                   tip: np.ndarray, length: float, small_limit: float) -> dict:
+                   tip: np.ndarray, length: float, small_limit: float, t_end: float = math.nan,
+                   max_steps: int | None = None) -> dict:
     """The validity attributes of a simulation dataset: ``validity`` (a :data:`CATEGORIES` name),
     ``diverged``, ``diverged_at_s``, ``left_range``, ``large_deflection`` (1 when the deflection
     exceeded the small-deflection limit, also in a run that was stopped), ``max_deflection_ratio``
     (``max |v(L)| / L`` over the outputs) and ``small_deflection_limit``; plus ``warning``, the
-    sentence for the dataset's ``warnings`` (empty for a valid run)."""
+    sentence for the dataset's ``warnings`` (empty for a valid run; for a run stopped by the step
+    budget ``max_steps`` before ``t_end``, what stopped it and what to change)."""
     finite = np.isfinite(tip)
     ratio = float(np.max(np.abs(tip[finite])) / length) if finite.any() else math.nan
     speeds = np.abs(theta_dot[np.isfinite(theta_dot)])
     speed = float(speeds.max()) if speeds.size else math.nan
     category = classify(status, stiffness_lost(sm.K2, sm.M2, sm.D, model, speed), ratio, small_limit)
     name = CATEGORIES[category]
+    if status == radau.TOO_MANY_STEPS:
+        budget = "" if max_steps is None else f" = {max_steps}"
+        return {"validity": STOPPED, "diverged": 0, "diverged_at_s": math.nan, "left_range": 0,
+                "large_deflection": int(ratio > small_limit), "max_deflection_ratio": ratio,
+                "small_deflection_limit": float(small_limit),
+                "warning": f"stopped at t = {t_stop:.6g} s of {t_end:.6g} s: the step budget numerics.max_steps"
+                           f"{budget} ran out; allowed: a larger numerics.max_steps (or a looser numerics.rtol, "
+                           "fewer modes, a shorter t_end); the run is not valid after it"}
     warning = {
         VALID: "",
         LARGE_DEFLECTION: f"large deflection: max |v(L)| = {ratio:.3g} L exceeds numerics."
@@ -111,4 +127,6 @@ def describe(attrs: Mapping) -> str:
         return f"large deflection ({ratio})"
     if name == "left_range":
         return f"left range at {float(attrs['stopped_at_s']):.2f} s ({ratio})"
+    if name == STOPPED:
+        return f"stopped at {float(attrs['stopped_at_s']):.2f} s by numerics.max_steps"
     return f"diverged at {float(attrs['diverged_at_s']):.2f} s"

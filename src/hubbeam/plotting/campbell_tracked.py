@@ -16,6 +16,8 @@ import xarray as xr
 from hubbeam.plotting.fig09 import labelled
 from hubbeam.plotting.style import LABEL_BOX, axis_label, model_style, new_figure, panel_title
 
+#: damping ratios below this are rounding (an undamped mode's -Re lambda / |lambda| of 1e-14), drawn as 0
+ROUNDING = 1e-9
 HUB_TITLES = {"held": "hub held (speed prescribed)", "free": "free hub (torque input)",
               "driven": "free hub through its drive (voltage input)"}
 
@@ -51,7 +53,8 @@ def plot(campbell: xr.Dataset, tip_mass: float | str | None = None):
                 label = str(model) if index == 0 else None
                 top.plot(speed, np.where(curve["frequency"] > 0, curve["frequency"], np.nan),
                          **style, label=label)
-                bottom.plot(speed, curve["damping_ratio"], **style)
+                ratio = curve["damping_ratio"].values
+                bottom.plot(speed, np.where(np.abs(ratio) < ROUNDING, 0.0, ratio), **style)
                 drawn = np.flatnonzero(curve["frequency"].values > 0)
                 if model == ds["model"].values[-1] and drawn.size:
                     last = drawn[-1]

@@ -1,6 +1,7 @@
 """The figure of one simulation of a study: tip deflection, hub speed, hub torque and energy.
 
-Panels: (a) the tip deflection v(L) = f2(L) q2; (b) the hub angular velocity theta'; (c) the torque
+Panels: (a) the tip deflection v(L) = f2(L) q2; (b) the hub angular velocity theta' (with a
+compliant root the hub's phi' and the beam root's theta', each named); (c) the torque
 on the hub (applied, or required by a prescribed hub); (d) the change of the total mechanical
 energy T + U since t = 0 and, where the dataset has them, the work of the hub torque and the
 damping dissipation, whose difference it equals (energy balance). The end of the maneuver and a
@@ -67,7 +68,14 @@ def plot(case: str, ds: xr.Dataset):
     style = model_style(model(case, ds))
     end = maneuver_end(found)
     for index, (name, label) in enumerate(SERIES.values()):
-        axes[index].plot(t, variable(case, ds, name).values, **style)
+        if name == "theta_dot" and "hub_speed" in ds:  # a compliant root: the hub's and the root's speeds
+            axes[index].plot(t, variable(case, ds, "hub_speed").values, **style, label=r"hub $\dot\phi$")
+            axes[index].plot(t, variable(case, ds, name).values, color="0.3", linestyle=":",
+                             label=r"beam root $\dot\theta$")
+            axes[index].legend(loc="best")
+            label = axis_label("hub and root speed", "rad s-1")
+        else:
+            axes[index].plot(t, variable(case, ds, name).values, **style)
         axes[index].set_ylabel(label)
         mark_events(axes[index], case, ds, end)
     ax = axes[3]

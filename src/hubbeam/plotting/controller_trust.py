@@ -34,6 +34,8 @@ def plot(name: str, datasets: Mapping[str, xr.Dataset]):
         for which, style, label in (("reference", "-o", f"designed on {design}, run on {REFERENCE_MODEL}"),
                                     ("own", "--s", f"designed on {design}, run on {design}")):
             runs = [(row["design_speed"], row[which]) for row in rows if row[which]]
+            if not runs:  # no such run: no curve and no legend entry
+                continue
             speeds = [speed for speed, _ in runs]
             for ax, key in zip(axes, MEASURES):
                 ax.plot(speeds, [run[key] for _, run in runs], style, color=color, markersize=4,
@@ -44,9 +46,12 @@ def plot(name: str, datasets: Mapping[str, xr.Dataset]):
                 axes[0].plot(unstable, [0.0] * len(unstable), "x", color=color, markersize=9,
                              clip_on=False, label=f"unstable ({design} design on "
                              f"{REFERENCE_MODEL if which == 'reference' else design})")
+    speeds = sorted({row["design_speed"] for row in table})
     for ax, key in zip(axes, MEASURES):
         ax.set_ylabel(axis_label(*LABELS[key]))
         ax.set_ylim(bottom=0.0)
+        if len(speeds) == 1:  # one design speed: the axis from rest, not a sliver around it
+            ax.set_xlim(0.0, 1.25 * speeds[0] if speeds[0] > 0 else 1.0)
     axes[-1].set_xlabel(axis_label(r"design speed = final speed $\omega_f$", "rad s$^{-1}$"))
     panel_title(axes[0], 0, f"LQR designs of {name}")
     axes[0].legend(loc="best", fontsize=6)

@@ -191,11 +191,32 @@ def _prony_pole(y, dt) -> complex:
     return pole
 
 
+def _dominant_omega(y, step) -> float:
+    """The circular frequency of the highest peak of the spectrum of ``y`` (its mean removed, a
+    Hann window, zero-padded eightfold); ValueError for a signal without one."""
+    pad = 8 * len(y)
+    spectrum = np.abs(np.fft.rfft((y - y.mean()) * np.hanning(len(y)), pad))
+    omega = float(2 * np.pi * np.fft.rfftfreq(pad, step)[1 + np.argmax(spectrum[1:])])
+    if not np.any(spectrum[1:] > 0.0) or omega < 2.0 * 2 * np.pi / (len(y) * step):
+        raise ValueError("fit_decaying_sinusoid found no oscillation in the signal (no spectral peak of two "
+                         "periods or more in the record)")
+    return omega
+
+
 def fit_decaying_sinusoid(t, y, t0: float) -> DecayingSinusoidFit:
-    """Least-squares decaying sinusoid through ``y(t)`` (uniform ``t``), phase at ``t0``."""
+    """Least-squares decaying sinusoid through ``y(t)`` (uniform ``t``), phase at ``t0``.
+
+    Started from the two-term linear prediction's pole (Prony's method), or, where that finds no
+    oscillation (a record of several modes, an offset, quantised readings), from the spectrum's
+    highest peak with the decay of its envelope (:func:`envelope_growth_rate`); a ValueError when
+    the signal is constant."""
     t, y, step = _uniform(t, y, "fit_decaying_sinusoid")
     s = t - t0
-    pole = _prony_pole(y, step)
+    try:
+        pole = _prony_pole(y, step)
+    except ValueError:
+        rate = envelope_growth_rate(t, y - y.mean(), float(t[0]))
+        pole = complex(rate if math.isfinite(rate) else 0.0, _dominant_omega(y, step))
 
     def residual(p):
         basis = _decaying_basis(s, *p)

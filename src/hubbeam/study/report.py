@@ -135,7 +135,8 @@ def designs_markdown(designs: Sequence[Mapping]) -> str:
             run = row[which]
             ran_on = run["model"] if run else (row["design_model"] if which == "own" else REFERENCE_MODEL)
             gap = number(100 * row["gap"], 2) if which == "reference" and row["gap"] == row["gap"] else ""
-            verdict = ("good enough" if row["good"] else "not good enough") if which == "reference" else ""
+            verdict = ({True: "good enough", False: "not good enough", None: "not judged (no prediction)"}[row["good"]]
+                       if which == "reference" else "")
             lines.append([row["design_model"], number(row["design_speed"]), ran_on, *cells(run), gap, verdict])
     return markdown_table(("designed on", "at (rad/s)", "run on", "loop", "peak v(L) (m)", "residual (m)",
                            "settling (s)", "peak torque (N m)", "gap (%)", "verdict"), lines)

@@ -45,6 +45,15 @@ COLUMNS = ("case", "model", "maneuver", "modes", "tip_mass_kg", "peak_tip_deflec
 NO_SHAPER = "none"
 
 
+def residual(case: str, ds: xr.Dataset) -> float:
+    """The residual amplitude of ``case``'s run: ``max |v(L)|`` after its command ends, the
+    maneuver's end (a reference's last time) delayed by a shaper's duration; the one definition of
+    the residual every section of the study report uses (NaN where nothing finite is left)."""
+    tip = variable(case, ds, "tip_transverse").values
+    return measures.shaped_residual_amplitude(times(ds), tip, maneuver_end(maneuver(case, ds)),
+                                              shaper_duration(case, ds))
+
+
 def case_summary(case: str, ds: xr.Dataset) -> dict:
     """The summary row of ``case``'s simulation dataset ``ds`` (keys :data:`COLUMNS`)."""
     found = maneuver(case, ds)
@@ -66,7 +75,7 @@ def case_summary(case: str, ds: xr.Dataset) -> dict:
         "maneuver_end_s": end,
         "shaper": NO_SHAPER if shaped is None else shaped["name"],
         "move_time_penalty_s": penalty,
-        "residual_amplitude_m": measures.shaped_residual_amplitude(t, tip, end, penalty),
+        "residual_amplitude_m": residual(case, ds),
         "validity": validity.describe(ds.attrs),
         "max_deflection_ratio": float(attr(case, ds, "max_deflection_ratio")),
         "diverged": stopped is not None,

@@ -29,6 +29,7 @@ import xarray as xr
 
 from hubbeam.results import measures
 from hubbeam.results.reader import attr, maneuver, model, times, variable
+from hubbeam.study.summary import residual
 
 #: the model the designs are tried on (the most complete of the four)
 REFERENCE_MODEL = "CFOAM"
@@ -63,7 +64,7 @@ def closed_loop_measures(case: str, ds: xr.Dataset) -> dict:
         "case": case, "design_model": found["design"]["model"],
         "design_speed": float(found["design"]["speed"]), "model": model(case, ds), "stable": stable,
         "peak_tip_deflection_m": measures.peak(tip) if stable else math.nan,
-        "residual_vibration_m": measures.residual_amplitude(t, tip, tf) if stable else math.nan,
+        "residual_vibration_m": residual(case, ds) if stable else math.nan,
         "settling_time_s": measures.settling_time(t, tip, tf, SETTLING_BAND) if stable else math.nan,
         "peak_torque_Nm": measures.peak(torque) if stable else math.nan,
     }
@@ -72,7 +73,8 @@ def closed_loop_measures(case: str, ds: xr.Dataset) -> dict:
 def design_table(datasets: Mapping[str, xr.Dataset]) -> list[dict]:
     """One row per design (model, speed): the measures on its own model (``own``) and on
     :data:`REFERENCE_MODEL` (``reference``; None when not run), the relative ``gap`` of the peak
-    and residual deflections and ``good`` (module docstring); sorted by model and speed."""
+    and residual deflections and ``good`` (module docstring; None, not judged, when the design
+    did not run on its own model); sorted by model and speed."""
     runs = [closed_loop_measures(case, ds) for case, ds in datasets.items() if is_designed(case, ds)]
     rows = {}
     for run in runs:
@@ -89,7 +91,9 @@ def design_table(datasets: Mapping[str, xr.Dataset]) -> list[dict]:
         if own and truth and own["stable"] and truth["stable"]:
             row["gap"] = max(abs(truth[key] - own[key]) / own[key]
                              for key in ("peak_tip_deflection_m", "residual_vibration_m"))
-        row["good"] = bool(truth and truth["stable"] and row["gap"] <= TRUST_TOLERANCE)
+        # not judged (None) where the study has no run of the design on its own model: no prediction
+        row["good"] = (None if truth and truth["stable"] and not own
+                       else bool(truth and truth["stable"] and row["gap"] <= TRUST_TOLERANCE))
     return [rows[key] for key in sorted(rows)]
 
 
@@ -100,6 +104,13 @@ def verdicts(table: list[dict]) -> dict[str, str]:
     for name in dict.fromkeys(row["design_model"] for row in table):
         rows = [row for row in table if row["design_model"] == name and row["reference"]]
         if not rows:
+            continue
+        unjudged = [row["design_speed"] for row in rows if row["good"] is None]
+        rows = [row for row in rows if row["good"] is not None]
+        if not rows:
+            out[name] = (f"not judged: the study runs this design on {REFERENCE_MODEL} only (at "
+                         f"{', '.join(f'{speed:g}' for speed in unjudged)} rad/s), not on {name} itself, whose run "
+                         "is the prediction")
             continue
         failed = next((row for row in rows if not row["good"]), None)
         worst = max((row["gap"] for row in rows if row["good"]), default=math.nan)

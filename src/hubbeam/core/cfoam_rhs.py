@@ -23,12 +23,12 @@ from collections import namedtuple
 import numpy as np
 
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
-from hubbeam.core.drive import drive_torque
+from hubbeam.core.drive import free_hub_torque
 from hubbeam.core.eom import add_damping, solve_spd
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.radau import register_rhs
 from hubbeam.core.root import add_joint, has_joint, joint_rows, packed_joint, unpacked_joint
-from hubbeam.core.shaping import shaped_motion, shaped_torque
+from hubbeam.core.shaping import shaped_motion
 
 #: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, damping matrices ``C``,
 #: the tensors ``ct``, and work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F``
@@ -67,8 +67,7 @@ def joint_cfoam_rhs(t, yf, vf, af, problem):
     if nf == hub:
         y[hub], v[hub], phdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)
     else:
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, yf, vf, problem.mp, problem.shaper, hub),
-                           vf[hub])
+        tau = free_hub_torque(problem.drive, problem.kind, t, yf, vf, problem.mp, problem.shaper, hub)
     for i in range(nf):
         y[i] = yf[i]
         v[i] = vf[i]
@@ -100,8 +99,7 @@ def cfoam_rhs(t, yf, vf, af, problem):
         y[0], thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)
         v[0] = thd
     else:
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, yf, vf, problem.mp, problem.shaper, 0),
-                           vf[0])
+        tau = free_hub_torque(problem.drive, problem.kind, t, yf, vf, problem.mp, problem.shaper, 0)
     for i in range(nf):
         y[o + i] = yf[i]
         v[o + i] = vf[i]

@@ -41,11 +41,11 @@ from collections import namedtuple
 
 import numpy as np
 
-from hubbeam.core.drive import drive_torque
+from hubbeam.core.drive import free_hub_torque
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import prescribed
 from hubbeam.core.root import add_joint, damper_power, has_joint, hub_index, spring_energy, spring_torque
-from hubbeam.core.shaping import shaped_motion, shaped_torque
+from hubbeam.core.shaping import shaped_motion
 
 
 @kernel
@@ -349,7 +349,7 @@ def impose_constraints(inputs, t, y, v, a):
             v[1 + i] = 0.0
             a[1 + i] = 0.0
     if not prescribed(kind):
-        tau = drive_torque(inputs.drive, shaped_torque(kind, t, y, v, inputs.mp, inputs.shaper, hub), v[hub])
+        tau = free_hub_torque(inputs.drive, kind, t, y, v, inputs.mp, inputs.shaper, hub)
     return tau
 
 

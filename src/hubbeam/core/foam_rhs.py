@@ -52,7 +52,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from hubbeam.core.drive import drive_torque
+from hubbeam.core.drive import free_hub_torque
 from hubbeam.core.eom import cholesky_factor, cholesky_solve, free_coordinates
 from hubbeam.core.jit import borrowing_kernel, inline_kernel, kernel
 from hubbeam.core.maneuver import prescribed
@@ -68,7 +68,7 @@ from hubbeam.core.root import (
     packed_joint,
     unpacked_joint,
 )
-from hubbeam.core.shaping import shaped_motion, shaped_torque
+from hubbeam.core.shaping import shaped_motion
 
 #: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1, P3, Me`` and ``b``
 #: stacks ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
@@ -278,8 +278,7 @@ def joint_rhs(t, y, v, a, problem):
     a12 = root_hub - c_w
     b1 = q_theta + root_force + twist - c_u - c_f
     if free_hub:
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper, nf - 1),
-                           phd)
+        tau = free_hub_torque(problem.drive, problem.kind, t, y, v, problem.mp, problem.shaper, nf - 1)
         a21 = root_hub + w_r
         a22 = root.scalars[HUB_INERTIA] + root.scalars[HINGE_MASS] - w_w
         b2 = tau + hub_force - twist - w_u - w_f
@@ -314,7 +313,7 @@ def foam_rhs(t, y, v, a, problem):
     if o == 1:
         # hub row (Eqs. 25-27, 32) with e'' eliminated
         m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, r, 0, problem)
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper, 0), thd)
+        tau = free_hub_torque(problem.drive, problem.kind, t, y, v, problem.mp, problem.shaper, 0)
         thdd = (tau + q_theta - c_u) / (m00 + c_r)
         a[0] = thdd
     for i in range(ne):
@@ -338,7 +337,7 @@ def foam_outputs(t, y, v, a, problem):
     else:
         thd = v[0]
         thdd = a[0]
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper, 0), thd)
+        tau = free_hub_torque(problem.drive, problem.kind, t, y, v, problem.mp, problem.shaper, 0)
     m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, a, o, problem)
     eMe = 0.0  # e'^T Me e'
     for i in range(ne):

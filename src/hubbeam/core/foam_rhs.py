@@ -294,16 +294,15 @@ def joint_rhs(t, y, v, a, problem):
 
 
 @borrowing_kernel
-def foam_rhs(t, y, v, a, problem):
-    """Accelerations ``a`` of the free coordinates (theta first unless prescribed, then ``e``;
-    with a compliant root :func:`joint_rhs`)."""
-    if problem.joint.shape[0] > 0:
-        joint_rhs(t, y, v, a, problem)
-        return
+def _clamped_rhs(t, y, v, a, problem):
+    """:func:`foam_rhs` on the rigid root: ``e'' = u + theta_ddot r`` with theta_ddot prescribed or,
+    for a free hub, from the hub row with ``e''`` eliminated (module docstring). Returns the hub's
+    rate and acceleration and the applied torque (0 for a prescribed hub)."""
     u = problem.work[0]
     r = problem.work[1]
     o = 0 if prescribed(problem.kind) else 1
     ne = y.shape[0] - o
+    tau = 0.0
     if o == 0:
         thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)[1:]
     else:
@@ -318,26 +317,30 @@ def foam_rhs(t, y, v, a, problem):
         a[0] = thdd
     for i in range(ne):
         a[o + i] = u[i] + thdd * r[i]
+    return thd, thdd, tau
+
+
+@borrowing_kernel
+def foam_rhs(t, y, v, a, problem):
+    """Accelerations ``a`` of the free coordinates (theta first unless prescribed, then ``e``):
+    :func:`_clamped_rhs`, or with a compliant root :func:`joint_rhs`."""
+    if problem.joint.shape[0] > 0:
+        joint_rhs(t, y, v, a, problem)
+    else:
+        _clamped_rhs(t, y, v, a, problem)
 
 
 @borrowing_kernel
 def foam_outputs(t, y, v, a, problem):
-    """Accelerations ``a`` of the free coordinates (:func:`foam_rhs`) and
+    """Accelerations ``a`` of the free coordinates (:func:`foam_rhs` on the rigid root) and
     ``(torque, Q_theta, kinetic energy, angular momentum)`` of the state ``(y, v)`` (free
     coordinates, as in :func:`foam_rhs`), from the hub row of Eq. (24) (Eqs. 25-27, 32; see the
     module docstring). ``torque`` is the applied torque of a free hub, or the one a prescribed
     hub requires."""
-    foam_rhs(t, y, v, a, problem)
+    thd, thdd, tau = _clamped_rhs(t, y, v, a, problem)
     P = problem.P
     o = 0 if prescribed(problem.kind) else 1
     ne = y.shape[0] - o
-    if o == 0:
-        thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)[1:]
-        tau = 0.0
-    else:
-        thd = v[0]
-        thdd = a[0]
-        tau = free_hub_torque(problem.drive, problem.kind, t, y, v, problem.mp, problem.shaper, 0)
     m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, a, o, problem)
     eMe = 0.0  # e'^T Me e'
     for i in range(ne):

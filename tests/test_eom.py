@@ -395,10 +395,10 @@ def test_outputs_give_energy_and_momentum_of_the_state(sm, state):
         free = eom.free_dofs(model, TORQUE, n)
         yy, vv, a = y.copy(), v.copy(), np.zeros_like(y)
         ws = eom.workspace(sm, free)
-        tau = eom.impose_constraints(SimulationInputs(model, TORQUE, mp, _undamped(sm), sm), 4.0, yy,
-                                     vv, a)
+        inputs = SimulationInputs(model, TORQUE, mp, _undamped(sm), sm)
+        tau = eom.impose_constraints(inputs, 4.0, yy, vv, a)
         eom.mass_matrix_and_force(model, yy, vv, tau, sm, ws.M, ws.F)
-        torque, q_theta, e, p = eom.outputs(TORQUE, tau, yy, vv, sm, free, a, ws)
+        torque, q_theta, e, p = eom.outputs(inputs, tau, yy, vv, free, a, ws)
         assert e == pytest.approx(eom.energy(model, yy, vv, sm), rel=1e-13)
         assert p == pytest.approx(eom.angular_momentum(model, yy, vv, sm), rel=1e-13)
         assert torque == pytest.approx(200.0 * np.sin(2 * np.pi * 4.0 / 10.0), rel=1e-13)
@@ -431,7 +431,7 @@ def test_dataset_outputs_equal_the_general_equations(sm, state, maneuver, model)
         tau = eom.impose_constraints(inputs, t[k], yy, vv, a)
         eom.mass_matrix_and_force(model, yy, vv, tau, sm, ws.M, ws.F)
         eom.add_damping(C, vv, ws.F)
-        torque, q_theta, e, p = eom.outputs(kind, tau, yy, vv, sm, free, a, ws)
+        torque, q_theta, e, p = eom.outputs(inputs, tau, yy, vv, free, a, ws)
         dissipation = vv[1:1 + n] @ C[0] @ vv[1:1 + n] + vv[1 + n:] @ C[1] @ vv[1 + n:]
         q1, q2 = yy[1:1 + n], yy[1 + n:]  # the body's centre is the last point of the cloud
         body = (sm.F2[-1] @ q2, sm.F1[-1] @ q1 - 0.5 * q2 @ sm.S[-1] @ q2)

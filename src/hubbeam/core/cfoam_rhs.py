@@ -14,8 +14,8 @@ hold the two to rounding error.
 
 With a compliant root (``hubbeam.core.root``) the tensors are the link's about its hinge and the
 joint's terms (``hubbeam.core.root.add_joint``) join ``M`` and ``F`` of ``(theta, q1, q2, phi)``;
-theta is always integrated, the hub angle phi unless the maneuver prescribes it
-(:func:`joint_cfoam_rhs`).
+theta is always integrated, the hub angle phi unless the maneuver prescribes it; one right-hand
+side (:func:`cfoam_rhs`) serves both roots.
 """
 
 from collections import namedtuple
@@ -23,12 +23,12 @@ from collections import namedtuple
 import numpy as np
 
 from hubbeam.core.cfoam_tensors import cfoam_system, cfoam_tensors
-from hubbeam.core.drive import drive_torque
+from hubbeam.core.drive import free_hub_torque
 from hubbeam.core.eom import add_damping, solve_spd
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.radau import register_rhs
 from hubbeam.core.root import add_joint, has_joint, joint_rows, packed_joint, unpacked_joint
-from hubbeam.core.shaping import shaped_motion, shaped_torque
+from hubbeam.core.shaping import shaped_motion
 
 #: CFOAM as a radau5 problem: maneuver ``kind`` and parameters ``mp``, damping matrices ``C``,
 #: the tensors ``ct``, and work arrays: full-length ``y, v``, the mass matrix ``M`` and force ``F``
@@ -56,61 +56,45 @@ def cfoam_problem(inputs):
 
 
 @borrowing_kernel
-def joint_cfoam_rhs(t, yf, vf, af, problem):
-    """:func:`cfoam_rhs` with a compliant root: accelerations of ``(theta, q1, q2)`` and, unless
-    prescribed, of the hub angle phi (the last free coordinate)."""
-    y, v, M, F = problem.y, problem.v, problem.M, problem.F
-    nf = yf.shape[0]
-    hub = y.shape[0] - 1
-    phdd = 0.0
-    tau = 0.0
-    if nf == hub:
-        y[hub], v[hub], phdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)
-    else:
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, yf, vf, problem.mp, problem.shaper, hub),
-                           vf[hub])
-    for i in range(nf):
-        y[i] = yf[i]
-        v[i] = vf[i]
-    cfoam_system(y, v, 0.0, problem.ct, M, F)
-    traits, root = unpacked_joint(problem.joint)
-    first = joint_rows(problem.joint)
-    add_joint(traits, root, y, v, tau, M, F, problem.joint[first:first + 2])
-    add_damping(problem.C, v, F)
-    for i in range(nf):
-        af[i] = F[i] - M[i, hub] * phdd
-    if not solve_spd(M[:nf, :nf], af):
-        for i in range(nf):
-            af[i] = np.nan
-
-
-@borrowing_kernel
 def cfoam_rhs(t, yf, vf, af, problem):
-    """Accelerations ``af`` of the free coordinates (theta first unless prescribed, then q1, q2;
-    with a compliant root :func:`joint_cfoam_rhs`)."""
-    if problem.joint.shape[0] > 0:
-        joint_cfoam_rhs(t, yf, vf, af, problem)
-        return
+    """Accelerations ``af`` of the free coordinates ``(yf, vf)``: Eq. (24) with ``M`` and ``F`` from
+    the tensors, solved on the free block.
+
+    The hub's coordinate is theta on the rigid root (an empty ``problem.joint``) and the hub angle
+    phi, the last, with a compliant root, whose terms then join ``M`` and ``F`` (the link's
+    equations about its hinge, the hub torque on phi: ``hubbeam.core.root.add_joint``). A free hub
+    receives the torque of its shaped command through its drive; a prescribed hub's coordinate is
+    not integrated (on the rigid root the free coordinates then start at q1) and its shaped
+    acceleration moves to the right-hand side: ``M_ff a_f = F_f - M_fh theta_ddot``."""
     y, v, M, F = problem.y, problem.v, problem.M, problem.F
+    joint = problem.joint
     nf = yf.shape[0]
-    o = y.shape[0] - nf  # 1: theta is prescribed
-    thdd = 0.0
+    N = y.shape[0]
+    hub = N - 1 if joint.shape[0] > 0 else 0
+    o = 0  # the index in y of the first free coordinate
+    hdd = 0.0
     tau = 0.0
-    if o == 1:
-        y[0], thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)
-        v[0] = thd
+    if nf < N:
+        y[hub], v[hub], hdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)
+        if hub == 0:
+            o = 1
     else:
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, yf, vf, problem.mp, problem.shaper, 0),
-                           vf[0])
+        tau = free_hub_torque(problem.drive, problem.kind, t, yf, vf, problem.mp, problem.shaper, hub)
     for i in range(nf):
         y[o + i] = yf[i]
         v[o + i] = vf[i]
-    cfoam_system(y, v, tau, problem.ct, M, F)
+    if joint.shape[0] > 0:
+        cfoam_system(y, v, 0.0, problem.ct, M, F)
+        traits, root = unpacked_joint(joint)
+        first = joint_rows(joint)
+        add_joint(traits, root, y, v, tau, M, F, joint[first:first + 2])
+    else:
+        cfoam_system(y, v, tau, problem.ct, M, F)
     add_damping(problem.C, v, F)
     for i in range(nf):
-        af[i] = F[o + i] - M[o + i, 0] * thdd
+        af[i] = F[o + i] - M[o + i, hub] * hdd
     # the free block is factored where it lies (M is rebuilt at every call)
-    if not solve_spd(M[o:, o:], af):
+    if not solve_spd(M[o:o + nf, o:o + nf], af):
         for i in range(nf):
             af[i] = np.nan
 

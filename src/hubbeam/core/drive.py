@@ -9,11 +9,15 @@ With a drive, a free hub's maneuver gives the amplifier's command ``V`` (volts) 
 Packed as ``[torque_gain, Kg km, B, Fc, eps, V_max]`` (:data:`TORQUE_GAIN` ... :data:`VOLTAGE_LIMIT`).
 An empty array (``hubbeam.core.inputs.NO_DRIVE``) is an ideal torque actuator: the command is the
 torque, and no floating-point operation is added to a run without a drive.
+
+Every kernel that needs a free hub's torque takes it from :func:`free_hub_torque`: the maneuver's
+command, shaped (``hubbeam.core.shaping``), through this law.
 """
 
 import math
 
 from hubbeam.core.jit import borrowing_kernel
+from hubbeam.core.shaping import shaped_torque
 
 TORQUE_GAIN, BACK_EMF, VISCOUS, COULOMB, SMOOTHING, VOLTAGE_LIMIT = range(6)
 #: values of a packed drive
@@ -45,6 +49,16 @@ def drive_torque(drive, command, speed):
     if drive.shape[0] == 0:
         return command
     return motor_torque(drive, command, speed) - friction_torque(drive, speed)
+
+
+@borrowing_kernel
+def free_hub_torque(drive, kind, t, y, v, mp, shaper, hub):
+    """The torque a free hub receives at ``t`` in the state ``(y, y')``: the maneuver's shaped
+    command (:func:`hubbeam.core.shaping.shaped_torque`: a controller's law on the hub's angle
+    ``y[hub]``, or the shaped open-loop torque or voltage of Eq. 44 and its tables) through the
+    drive at the hub's speed ``v[hub]`` (:func:`drive_torque`; without a drive, the command).
+    ``hub`` is 0 on a rigid root, the hub angle's index with a compliant one (``hubbeam.core.root``)."""
+    return drive_torque(drive, shaped_torque(kind, t, y, v, mp, shaper, hub), v[hub])
 
 
 @borrowing_kernel

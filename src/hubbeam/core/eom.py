@@ -41,11 +41,11 @@ from collections import namedtuple
 
 import numpy as np
 
-from hubbeam.core.drive import drive_torque
+from hubbeam.core.drive import free_hub_torque
 from hubbeam.core.jit import borrowing_kernel, kernel
 from hubbeam.core.maneuver import prescribed
 from hubbeam.core.root import add_joint, damper_power, has_joint, hub_index, spring_energy, spring_torque
-from hubbeam.core.shaping import shaped_motion, shaped_torque
+from hubbeam.core.shaping import shaped_motion
 
 
 @kernel
@@ -349,7 +349,7 @@ def impose_constraints(inputs, t, y, v, a):
             v[1 + i] = 0.0
             a[1 + i] = 0.0
     if not prescribed(kind):
-        tau = drive_torque(inputs.drive, shaped_torque(kind, t, y, v, inputs.mp, inputs.shaper, hub), v[hub])
+        tau = free_hub_torque(inputs.drive, kind, t, y, v, inputs.mp, inputs.shaper, hub)
     return tau
 
 
@@ -484,6 +484,18 @@ def solve_free(kind, tau, free, a_out, ws, hub):
     return tau, q_theta
 
 
+@borrowing_kernel
+def solve_hub(inputs, tau, y, v, free, a_out, ws):
+    """:func:`solve_free` of the simulation ``inputs`` at the state ``(y, v)``, whose mass matrix and
+    force are in ``ws`` (hub torque ``tau``): ``(torque, Q_theta)`` with the torque of the hub's row
+    (theta's, or with a compliant root the hub angle's) and, with a compliant root, ``Q_theta`` the
+    root angle's force besides the spring's and the damper's torque."""
+    torque, q_theta = solve_free(inputs.kind, tau, free, a_out, ws, hub_index(inputs.root, y.shape[0]))
+    if has_joint(inputs.root):
+        q_theta = ws.F[0] - spring_torque(inputs.root, y, v)
+    return torque, q_theta
+
+
 @kernel
 def accelerations(inputs, t, y, v, free, a_out):
     """Accelerations of every coordinate at time ``t``; returns ``(torque, Q_theta)``.
@@ -500,10 +512,7 @@ def accelerations(inputs, t, y, v, free, a_out):
     ws = inputs_workspace(inputs, free)
     tau = impose_constraints(inputs, t, y, v, a_out)
     equations(inputs, y, v, tau, ws)
-    torque, q_theta = solve_free(inputs.kind, tau, free, a_out, ws, hub_index(inputs.root, y.shape[0]))
-    if has_joint(inputs.root):
-        q_theta = ws.F[0] - spring_torque(inputs.root, y, v)
-    return torque, q_theta
+    return solve_hub(inputs, tau, y, v, free, a_out, ws)
 
 
 @borrowing_kernel
@@ -531,25 +540,19 @@ def add_kinetic(M, v, e, hub):
 
 
 @borrowing_kernel
-def outputs(kind, tau, y, v, sm, free, a_out, ws):
-    """Accelerations and ``(torque, Q_theta, energy, angular_momentum)`` of a state whose mass
-    matrix and force are already in ``ws.M``, ``ws.F`` (applied torque ``tau``, constrained
-    entries of ``y, v, a_out`` imposed): one mass matrix for all of them."""
-    torque, q_theta = solve_free(kind, tau, free, a_out, ws, 0)
-    e, p = add_kinetic(ws.M, v, strain_energy(y, sm.K1, sm.K2), 0)
+def outputs(inputs, tau, y, v, free, a_out, ws):
+    """Accelerations and ``(torque, Q_theta, energy, angular_momentum)`` of a state of the simulation
+    ``inputs`` whose mass matrix and force are already in ``ws.M``, ``ws.F`` (applied torque
+    ``tau``, constrained entries of ``y, v, a_out`` imposed): one mass matrix for all of them
+    (:func:`solve_hub`, :func:`add_kinetic`). With a compliant root the torque is the hub angle's,
+    the energy includes the spring's and the angular momentum about the hub axis is that of hub and
+    link (the hub angle's and the root angle's momenta)."""
+    torque, q_theta = solve_hub(inputs, tau, y, v, free, a_out, ws)
+    energy = strain_energy(y, inputs.sm.K1, inputs.sm.K2)
+    if has_joint(inputs.root):
+        energy += spring_energy(inputs.root, y)
+    e, p = add_kinetic(ws.M, v, energy, hub_index(inputs.root, y.shape[0]))
     return torque, q_theta, e, p
-
-
-@borrowing_kernel
-def joint_outputs(inputs, tau, y, v, free, a_out, ws):
-    """:func:`outputs` with a compliant root: accelerations and ``(hub torque, Q_theta, energy,
-    angular momentum)``, the energy with the spring's, the angular momentum about the hub axis of
-    hub and link (the hub angle's and the root angle's momenta), ``Q_theta`` the root angle's force
-    besides the spring and the damper."""
-    hub = y.shape[0] - 1
-    torque, _ = solve_free(inputs.kind, tau, free, a_out, ws, hub)
-    e, p = add_kinetic(ws.M, v, strain_energy(y, inputs.sm.K1, inputs.sm.K2) + spring_energy(inputs.root, y), hub)
-    return torque, ws.F[0] - spring_torque(inputs.root, y, v), e, p
 
 
 @borrowing_kernel

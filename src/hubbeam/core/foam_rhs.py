@@ -52,7 +52,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from hubbeam.core.drive import drive_torque
+from hubbeam.core.drive import free_hub_torque
 from hubbeam.core.eom import cholesky_factor, cholesky_solve, free_coordinates
 from hubbeam.core.jit import borrowing_kernel, inline_kernel, kernel
 from hubbeam.core.maneuver import prescribed
@@ -68,7 +68,7 @@ from hubbeam.core.root import (
     packed_joint,
     unpacked_joint,
 )
-from hubbeam.core.shaping import shaped_motion, shaped_torque
+from hubbeam.core.shaping import shaped_motion
 
 #: TLAM, FOAM or SFOAM as a radau5 problem. ``P`` stacks ``P0, P1, P2, G, C1, P3, Me`` and ``b``
 #: stacks ``b0, b1, g, C0`` (few array fields keep the reference-count work of every call small);
@@ -278,8 +278,7 @@ def joint_rhs(t, y, v, a, problem):
     a12 = root_hub - c_w
     b1 = q_theta + root_force + twist - c_u - c_f
     if free_hub:
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper, nf - 1),
-                           phd)
+        tau = free_hub_torque(problem.drive, problem.kind, t, y, v, problem.mp, problem.shaper, nf - 1)
         a21 = root_hub + w_r
         a22 = root.scalars[HUB_INERTIA] + root.scalars[HINGE_MASS] - w_w
         b2 = tau + hub_force - twist - w_u - w_f
@@ -295,16 +294,15 @@ def joint_rhs(t, y, v, a, problem):
 
 
 @borrowing_kernel
-def foam_rhs(t, y, v, a, problem):
-    """Accelerations ``a`` of the free coordinates (theta first unless prescribed, then ``e``;
-    with a compliant root :func:`joint_rhs`)."""
-    if problem.joint.shape[0] > 0:
-        joint_rhs(t, y, v, a, problem)
-        return
+def _clamped_rhs(t, y, v, a, problem):
+    """:func:`foam_rhs` on the rigid root: ``e'' = u + theta_ddot r`` with theta_ddot prescribed or,
+    for a free hub, from the hub row with ``e''`` eliminated (module docstring). Returns the hub's
+    rate and acceleration and the applied torque (0 for a prescribed hub)."""
     u = problem.work[0]
     r = problem.work[1]
     o = 0 if prescribed(problem.kind) else 1
     ne = y.shape[0] - o
+    tau = 0.0
     if o == 0:
         thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)[1:]
     else:
@@ -314,31 +312,35 @@ def foam_rhs(t, y, v, a, problem):
     if o == 1:
         # hub row (Eqs. 25-27, 32) with e'' eliminated
         m00, q_theta, c_u, c_r = _hub_row(y, v, 1, thd, u, r, 0, problem)
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper, 0), thd)
+        tau = free_hub_torque(problem.drive, problem.kind, t, y, v, problem.mp, problem.shaper, 0)
         thdd = (tau + q_theta - c_u) / (m00 + c_r)
         a[0] = thdd
     for i in range(ne):
         a[o + i] = u[i] + thdd * r[i]
+    return thd, thdd, tau
+
+
+@borrowing_kernel
+def foam_rhs(t, y, v, a, problem):
+    """Accelerations ``a`` of the free coordinates (theta first unless prescribed, then ``e``):
+    :func:`_clamped_rhs`, or with a compliant root :func:`joint_rhs`."""
+    if problem.joint.shape[0] > 0:
+        joint_rhs(t, y, v, a, problem)
+    else:
+        _clamped_rhs(t, y, v, a, problem)
 
 
 @borrowing_kernel
 def foam_outputs(t, y, v, a, problem):
-    """Accelerations ``a`` of the free coordinates (:func:`foam_rhs`) and
+    """Accelerations ``a`` of the free coordinates (:func:`foam_rhs` on the rigid root) and
     ``(torque, Q_theta, kinetic energy, angular momentum)`` of the state ``(y, v)`` (free
     coordinates, as in :func:`foam_rhs`), from the hub row of Eq. (24) (Eqs. 25-27, 32; see the
     module docstring). ``torque`` is the applied torque of a free hub, or the one a prescribed
     hub requires."""
-    foam_rhs(t, y, v, a, problem)
+    thd, thdd, tau = _clamped_rhs(t, y, v, a, problem)
     P = problem.P
     o = 0 if prescribed(problem.kind) else 1
     ne = y.shape[0] - o
-    if o == 0:
-        thd, thdd = shaped_motion(problem.kind, t, problem.mp, problem.shaper)[1:]
-        tau = 0.0
-    else:
-        thd = v[0]
-        thdd = a[0]
-        tau = drive_torque(problem.drive, shaped_torque(problem.kind, t, y, v, problem.mp, problem.shaper, 0), thd)
     m00, q_theta, c_v, c_a = _hub_row(y, v, o, thd, v, a, o, problem)
     eMe = 0.0  # e'^T Me e'
     for i in range(ne):

@@ -32,18 +32,15 @@ from hubbeam.core.eom import (
     add_damping,
     body_outputs,
     coordinate_count,
-    dissipation_rate,
     equations,
     free_coordinates,
     high_order_terms,
     impose_constraints,
     inputs_workspace,
     joint_dissipation,
-    joint_outputs,
     outputs,
     strain_energy,
     tip_outputs,
-    workspace,
 )
 from hubbeam.core.foam_rhs import foam_outputs, foam_problem
 from hubbeam.core.inputs import FAMILIES, Trajectory, family
@@ -175,12 +172,41 @@ def _drive_columns(out_row, inputs, t, y, v, torque):
         out_row[MOTOR_TORQUE] = motor_torque(drive, command, v[hub])
 
 
-# Outputs of an undamped run (C = 0) have a dissipation rate of exactly zero, not summed.
+@kernel
+def _summed_dissipation(inputs):
+    """Whether the outputs sum the dissipation rate (:func:`hubbeam.core.eom.joint_dissipation`):
+    for damping matrices or a compliant root (its damper); an undamped run on the rigid root records
+    exactly zero, not a sum."""
+    return has_joint(inputs.root) or np.any(inputs.C != 0.0)
+
+
+@borrowing_kernel
+def _output_row(out_row, inputs, t, state, hub, summed):
+    """The columns of one output time ``t`` (:func:`output_columns`) from the state ``state = (y,
+    v, a)`` (full length, constraints imposed, accelerations solved) and ``hub = (torque, Q_theta,
+    energy, angular momentum)``; the dissipation rate summed if ``summed``
+    (:func:`_summed_dissipation`); with a compliant root its columns :data:`JOINT_OUTPUTS`."""
+    y, v, a = state
+    sm = inputs.sm
+    _write_row(out_row, y, v, a, hub, (tip_outputs(y, sm), body_outputs(y, sm)),
+               joint_dissipation(inputs, v) if summed else 0.0)
+    _drive_columns(out_row, inputs, t, y, v, hub[0])
+    if has_joint(inputs.root):
+        first = N_SCALAR + 4 * sm.K1.shape[0] + 2
+        last = y.shape[0] - 1
+        out_row[first] = y[last]
+        out_row[first + 1] = v[last]
+        out_row[first + 2] = a[last]
+        out_row[first + 3] = spring_torque(inputs.root, y, v)
+
+
 # TLAM, FOAM and SFOAM fill their rows in a loop compiled without numba's reference counting
 # (``jit.borrowing_kernel``; its work arrays are rows of ``work``): with the counts the loop took
 # twice as long. CFOAM's loop, whose rows cost more, measured faster with them.
 @borrowing_kernel
-def _foam_rows(problem, inputs, damped, free, states, out, work):
+def _foam_rows(problem, inputs, summed, free, states, out, work):
+    """:func:`fill_outputs` of TLAM, FOAM or SFOAM on the rigid root (:func:`_fill_rows_foam`), its
+    work arrays the rows of ``work``."""
     y = work[0]
     v = work[1]
     a = work[2]
@@ -194,34 +220,14 @@ def _foam_rows(problem, inputs, damped, free, states, out, work):
         torque, q_theta, kinetic, p = foam_outputs(t_out[k], states.y[k], states.v[k], af, problem)
         for i in range(free.shape[0]):
             a[free[i]] = af[i]
-        _write_row(out[k], y, v, a, (torque, q_theta, kinetic + strain_energy(y, sm.K1, sm.K2), p),
-                   (tip_outputs(y, sm), body_outputs(y, sm)),
-                   dissipation_rate(inputs.C, v) if damped else 0.0)
-        _drive_columns(out[k], inputs, t_out[k], y, v, torque)
-
-
-@borrowing_kernel
-def _joint_row(out_row, inputs, t, state, tau, free, ws):
-    """The columns of one output time of a run with a compliant root, whose mass matrix and force
-    (:func:`hubbeam.core.eom.equations`) are in ``ws`` for ``state = (y, v, a)`` (constraints
-    imposed, hub torque ``tau``); ``a`` receives the accelerations."""
-    y, v, a = state
-    sm = inputs.sm
-    hub = joint_outputs(inputs, tau, y, v, free, a, ws)
-    _write_row(out_row, y, v, a, hub, (tip_outputs(y, sm), body_outputs(y, sm)), joint_dissipation(inputs, v))
-    _drive_columns(out_row, inputs, t, y, v, hub[0])
-    first = N_SCALAR + 4 * sm.K1.shape[0] + 2
-    last = y.shape[0] - 1
-    out_row[first] = y[last]
-    out_row[first + 1] = v[last]
-    out_row[first + 2] = a[last]
-    out_row[first + 3] = spring_torque(inputs.root, y, v)
+        _output_row(out[k], inputs, t_out[k], (y, v, a),
+                    (torque, q_theta, kinetic + strain_energy(y, sm.K1, sm.K2), p), summed)
 
 
 @kernel
 def _joint_rows_foam(inputs, free, states, out):
     """:func:`fill_outputs` of TLAM, FOAM or SFOAM with a compliant root: the general equations
-    (:func:`hubbeam.core.eom.equations`) at every output time."""
+    (:func:`hubbeam.core.eom.equations`, :func:`hubbeam.core.eom.outputs`) at every output time."""
     N = coordinate_count(inputs)
     y = np.zeros(N)
     v = np.zeros(N)
@@ -233,31 +239,39 @@ def _joint_rows_foam(inputs, free, states, out):
             continue
         tau = impose_constraints(inputs, t_out[k], y, v, a)
         equations(inputs, y, v, tau, ws)
-        _joint_row(out[k], inputs, t_out[k], (y, v, a), tau, free, ws)
+        _output_row(out[k], inputs, t_out[k], (y, v, a), outputs(inputs, tau, y, v, free, a, ws), True)
 
 
 @kernel
 def _fill_rows_foam(problem, inputs, free, states, out):
     """:func:`fill_outputs` of TLAM, FOAM or SFOAM from its ``FoamProblem``: the accelerations
     and the hub row from the constant modal mass (``foam_rhs.foam_outputs``), no mass matrix
-    (with a compliant root, :func:`_joint_rows_foam`)."""
+    (with a compliant root, whose two hub rows ``foam_outputs`` does not solve, the general
+    equations: :func:`_joint_rows_foam`)."""
     if has_joint(inputs.root):
         _joint_rows_foam(inputs, free, states, out)
         return
     work = np.zeros((4, 1 + 2 * inputs.sm.K1.shape[0]))
-    _foam_rows(problem, inputs, np.any(inputs.C != 0.0), free, states, out, work)
+    _foam_rows(problem, inputs, _summed_dissipation(inputs), free, states, out, work)
 
 
 @kernel
-def _joint_rows_cfoam(ct, inputs, free, states, out):
-    """:func:`fill_outputs` of CFOAM with a compliant root: its link's mass matrix and force from
-    the tensors ``ct`` with the joint's terms at every output time; the high-order terms are the
-    link's (the joint's terms are the same in FOAM)."""
+def _fill_rows_cfoam(ct, inputs, free, states, out):
+    """:func:`fill_outputs` of CFOAM from its tensors ``ct``: one mass matrix and force of
+    Eq. (24) per output time gives the accelerations, the torque, the energy, the angular
+    momentum (:func:`hubbeam.core.eom.outputs`) and the high-order terms
+    (:func:`hubbeam.core.eom.high_order_terms`).
+
+    With a compliant root (``inputs.root``; empty: the rigid root) the tensors give the link's
+    equations about its hinge, the joint's terms join them with the hub torque on the hub angle
+    (``hubbeam.core.root.add_joint``), and the high-order terms are the link's, from its own
+    equations without the joint (the joint's terms are the same in FOAM)."""
     sm = inputs.sm
     C = inputs.C
     n = sm.K1.shape[0]
     link = 1 + 2 * n
-    N = link + 1
+    N = coordinate_count(inputs)
+    joint = has_joint(inputs.root)
     y = np.zeros(N)
     v = np.zeros(N)
     a = np.zeros(N)
@@ -267,55 +281,27 @@ def _joint_rows_cfoam(ct, inputs, free, states, out):
     Mf = np.empty((link, link))
     Ff = np.empty(link)
     ws = inputs_workspace(inputs, free)
+    summed = _summed_dissipation(inputs)
     t_out = states.t
     for k in range(t_out.shape[0]):
         if not _start_row(out, k, free, states, y, v):
             continue
         tau = impose_constraints(inputs, t_out[k], y, v, a)
-        cfoam_system(y, v, 0.0, ct, ws.M, ws.F)
-        add_joint(inputs.traits, inputs.root, y, v, tau, ws.M, ws.F, ws.joint)
+        link_tau = 0.0 if joint else tau  # with a joint the hub torque acts on the hub angle
+        cfoam_system(y, v, link_tau, ct, ws.M, ws.F)
+        if joint:
+            add_joint(inputs.traits, inputs.root, y, v, tau, ws.M, ws.F, ws.joint)
         add_damping(C, v, ws.F)
-        _joint_row(out[k], inputs, t_out[k], (y, v, a), tau, free, ws)
-        cfoam_system(y, v, 0.0, ct, Mc, Fc)
-        add_damping(C, v, Fc)
-        out[k, N_SCALAR + 2 * n] = high_order_terms(Mc, Fc, 0.0, (y, v, a), inputs, Mf, Ff, dQ)
+        _output_row(out[k], inputs, t_out[k], (y, v, a), outputs(inputs, tau, y, v, free, a, ws), summed)
+        M_link = ws.M
+        F_link = ws.F
+        if joint:
+            cfoam_system(y, v, 0.0, ct, Mc, Fc)
+            add_damping(C, v, Fc)
+            M_link = Mc
+            F_link = Fc
+        out[k, N_SCALAR + 2 * n] = high_order_terms(M_link, F_link, link_tau, (y, v, a), inputs, Mf, Ff, dQ)
         for i in range(link):
-            out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
-
-
-@kernel
-def _fill_rows_cfoam(ct, inputs, free, states, out):
-    """:func:`fill_outputs` of CFOAM from its tensors ``ct``: one mass matrix and force of
-    Eq. (24) per output time gives the accelerations, the torque, the energy, the angular
-    momentum and the high-order terms (with a compliant root, :func:`_joint_rows_cfoam`)."""
-    if has_joint(inputs.root):
-        _joint_rows_cfoam(ct, inputs, free, states, out)
-        return
-    sm = inputs.sm
-    C = inputs.C
-    n = sm.K1.shape[0]
-    N = 1 + 2 * n
-    y = np.zeros(N)
-    v = np.zeros(N)
-    a = np.zeros(N)
-    dQ = np.zeros(N)
-    Mf = np.empty((N, N))
-    Ff = np.empty(N)
-    ws = workspace(sm, free)
-    damped = np.any(C != 0.0)
-    t_out = states.t
-    for k in range(t_out.shape[0]):
-        if not _start_row(out, k, free, states, y, v):
-            continue
-        tau = impose_constraints(inputs, t_out[k], y, v, a)
-        cfoam_system(y, v, tau, ct, ws.M, ws.F)
-        add_damping(C, v, ws.F)
-        hub = outputs(inputs.kind, tau, y, v, sm, free, a, ws)
-        _write_row(out[k], y, v, a, hub, (tip_outputs(y, sm), body_outputs(y, sm)),
-                   dissipation_rate(C, v) if damped else 0.0)
-        _drive_columns(out[k], inputs, t_out[k], y, v, hub[0])
-        out[k, N_SCALAR + 2 * n] = high_order_terms(ws.M, ws.F, tau, (y, v, a), inputs, Mf, Ff, dQ)
-        for i in range(N):
             out[k, N_SCALAR + 2 * n + 1 + i] = dQ[i]
 
 

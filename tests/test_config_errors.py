@@ -2,7 +2,9 @@
 
 * a gain of ``output_feedback`` on a signal that is none (``tip_acceleration``): the schema's
   explainer crashed on the list of allowed names (``_pattern_words``); now every rule of the schema,
-  on values or on the names and keys of a mapping, is said in words at its key.
+  on values or on the names and keys of a mapping, is said in words at its key;
+* a huge number (``beam.length: 1e300``) overflowed the model while the check completed the
+  configuration: numbers beyond ``checks.LARGEST_NUMBER`` are refused at their key.
 
 Each through :func:`hubbeam.pipeline.plan.checked_configuration` on a shipped study.
 """
@@ -13,7 +15,9 @@ from pathlib import Path
 
 import pytest
 
+from hubbeam.configuration import checks
 from hubbeam.configuration.load import read_config_file
+from hubbeam.linear import lumped
 from hubbeam.pipeline.plan import checked_configuration
 
 REPO = Path(__file__).resolve().parents[1]
@@ -60,3 +64,17 @@ def test_every_rule_on_the_names_and_keys_of_a_mapping_is_said_in_words(names, w
     found = [problem for problem in problems(cfg, TRUST) if problem.startswith(key + ": ")]
     assert found and allowed in found[0], problems(cfg, TRUST)
     assert not any('"enum"' in problem or "described in docs" in problem for problem in problems(cfg, TRUST))
+
+
+def test_a_huge_number_is_refused_before_it_overflows_the_model():
+    """1e300 m of beam overflowed the eigen defaults (``L**2``): refused at the key."""
+    path = REPO / "studies" / "first_study.yaml"
+    cfg = read_config_file(path)
+    cfg["beam"]["length"] = 1e300
+    assert problems(cfg, path) == [f"beam.length: got 1e+300; allowed: a number of magnitude at most "
+                                   f"{checks.LARGEST_NUMBER:g} (SI units; beyond, the products of the model's "
+                                   "quantities overflow double precision)"]
+
+
+def test_the_checks_name_the_lumped_model_s_states_and_outputs_as_it_does():
+    assert checks.LUMPED_STATES == lumped.LUMPED_STATES and checks.LUMPED_OUTPUTS == lumped.LUMPED_OUTPUTS

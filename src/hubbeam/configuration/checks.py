@@ -1,7 +1,8 @@
 """Checks of a configuration that a JSON schema cannot express (:func:`physical_problems`).
 
 The tip mass lies on the beam (``0 <= l <= L``) and a tip body's centre beyond the root, every
-case spans at least one output step, grids increase, numbers are finite, case names stay
+case spans at least one output step, grids increase, numbers are finite and at most
+:data:`LARGEST_NUMBER` in magnitude, case names stay
 distinct on case-insensitive file systems, keys are text; a beam has the keys of one form only
 (the forms and their keys are the schema's), stations run from x = 0 to x = L, tables of stations
 and times increase, a case can start from its ``initial`` state (one value per mode, no axial
@@ -37,6 +38,15 @@ from hubbeam.model.modes import CLAMPED_FREE, TIP_BODY
 from hubbeam.reporting.products import PAPER
 from hubbeam.results import variables
 from hubbeam.results.paths import PAPER_FOLDERS
+
+#: the lumped design model's states and outputs, as ``hubbeam.linear.lumped`` names them (which imports
+#: the configuration, so it cannot be imported here; a test keeps the two the same)
+LUMPED_STATES = ("theta", "alpha", "theta_dot", "alpha_dot")
+LUMPED_OUTPUTS = ("hub_angle", "deflection_angle", "hub_speed", "deflection_rate", "tip_deflection", "tip_arc")
+#: the largest magnitude of a number in a configuration: SI quantities of a beam on a hub stay far below
+#: it (a steel's Young's modulus is 2e11 Pa), and the model multiplies them (E I, Omega^2 m L^2, ...) in
+#: double precision, which overflows at 1.8e308
+LARGEST_NUMBER = 1e15
 
 
 def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
@@ -96,7 +106,7 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
                                     f"got {offset}; allowed: offset >= -position = {-attached} (the body's centre "
                                     "on the beam's side of the clamped root, not inside the hub)"))
         entry_problems = _case_entry_problems(f"cases.{name}", case)
-        modes = _integer(case.get("modes", numerics.get("modes")))
+        modes = _modes(case.get("modes", numerics.get("modes")))
         problems += entry_problems + _initial_problems(f"cases.{name}", case, modes, check_speed=not entry_problems)
         problems += _feedback_problems(f"cases.{name}.maneuver", case, modes)
         problems += _drive_problems(f"cases.{name}", case) + _shaper_problems(f"cases.{name}.shaper", case, modes)
@@ -115,7 +125,7 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
     (:mod:`hubbeam.results.variables`), each named with its estimated size and the budget."""
     numerics = _section(cfg, "numerics")
     budget_mb = _positive(numerics.get("memory_budget_mb", limits.MEMORY_BUDGET_MB))
-    default_modes = _integer(numerics.get("modes"))
+    default_modes = _modes(numerics.get("modes"))
     if budget_mb is None or output_step is None:
         return []  # the schema reports it
     budget = budget_mb * variables.MIB
@@ -138,14 +148,16 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
 
     for name, case in _section(cfg, "cases").items():
         case = case if isinstance(case, dict) else {}
-        t_end, modes, model = _positive(case.get("t_end")), case.get("modes", default_modes), case.get("model")
-        if t_end is not None and _integer(modes) is not None and model in MODELS:  # else the schema reports it
-            check_run(f"cases.{name}.t_end", f"case {name}", model, modes, t_end)
+        t_end, modes, model = _positive(case.get("t_end")), _modes(case.get("modes", default_modes)), \
+            _name(case.get("model"))
+        if t_end is None or modes is None or model not in MODELS:
+            continue  # the schema reports it
+        check_run(f"cases.{name}.t_end", f"case {name}", model, modes, t_end)
     validation = _section(cfg, "validation")
-    models = [m for m in validation.get("models", []) if m in MODELS] if isinstance(
+    models = [m for m in validation.get("models", []) if _name(m) in MODELS] if isinstance(
         validation.get("models"), list) else []
     study = validation.get("mode_study") if isinstance(validation.get("mode_study"), list) else []
-    modes = max((m for m in [default_modes, *study] if _integer(m) is not None), default=None)
+    modes = max((m for m in [default_modes, *study] if _modes(m) is not None), default=None)
     for name, case in _section(validation, "cases").items():
         t_end = _positive(case.get("t_end")) if isinstance(case, dict) else None
         if t_end is not None and models and modes is not None:
@@ -214,7 +226,7 @@ def _case_entry_problems(where: str, case: Mapping) -> list[Problem]:
     problems = []
     for path, entry, kinds in ((f"{where}.maneuver", maneuver, MANEUVER_PARAMETERS),
                                (f"{where}.maneuver.reference", reference, REFERENCE_PARAMETERS)):
-        columns = kinds.get(entry.get("kind"), ())
+        columns = kinds.get(_name(entry.get("kind")), ())
         if "time" not in columns:
             continue
         problems += _table_problems(path, entry, "time", columns[1:], "s")
@@ -236,15 +248,16 @@ def _initial_problems(where: str, case: Mapping, modes: int | None, check_speed:
     no axial coordinates for a model that keeps none (Eq. 40), and, if ``check_speed`` (its
     maneuver's tables are in order), for a prescribed hub the maneuver's own speed at ``t = 0``."""
     spec = _section(case, "initial")
-    model = MODELS.get(case.get("model"))
+    model = MODELS.get(_name(case.get("model")))
     problems = []
     for key in INITIAL_MODAL_KEYS:
         value = spec.get(key)
         if not isinstance(value, list) or any(_number(v) is None for v in value):
             continue  # the schema reports it
         if modes is not None and len(value) != modes:
+            source = f"{where}.modes" if "modes" in case else "numerics.modes"
             problems.append(Problem(f"{where}.initial.{key}", f"got {show(value)}; allowed: a list of {modes} "
-                                    "numbers, one per mode (kg1/2 m, or kg1/2 m s-1 for rates)"))
+                                    f"numbers, one per mode ({source} = {modes}; kg1/2 m, or kg1/2 m s-1 for rates)"))
         elif key in ("q1", "q1_dot") and any(value) and model is not None and not model.keeps_axial:
             problems.append(Problem(f"{where}.initial.{key}", f"got {show(value)}; allowed: zeros or no {key}: "
                                     f"{model.name} keeps no axial coordinates (q1 = 0, Eq. 40)"))
@@ -270,17 +283,25 @@ def _feedback_problems(where: str, case: Mapping, modes: int | None) -> list[Pro
     if maneuver.get("kind") != "state_feedback" or modes is None:
         return []
     problems = []
-    model, design = MODELS.get(case.get("model")), _section(maneuver, "design")
-    named = [("gains", _section(maneuver, "gains"), model, ())]
-    named.append(("design.weights", _section(design, "weights"), MODELS.get(design.get("model")), MEASURED_SIGNALS))
-    for key, values, owner, signals in named:
-        if owner is None:
+    model, design = MODELS.get(_name(case.get("model"))), _section(maneuver, "design")
+    design_modes = _modes(design.get("modes", modes))
+    names = {"gains": (_section(maneuver, "gains"),
+                       None if model is None else (f"{model.name} with {modes} modes", model.state_names(modes)))}
+    if _design_model(maneuver) in DESIGN_ONLY_MODELS:  # the lumped model: its states and outputs
+        names["design.weights"] = (_section(design, "weights"), (f"the {design['model']} model",
+                                                                 LUMPED_STATES + LUMPED_OUTPUTS))
+    elif _design_model(maneuver) is not None and design_modes is not None:
+        owner = MODELS[design["model"]]
+        names["design.weights"] = (_section(design, "weights"), (f"{owner.name} with {design_modes} modes",
+                                                                 owner.state_names(design_modes) + MEASURED_SIGNALS))
+    for key, (values, known) in names.items():
+        if known is None:
             continue  # the schema reports the model
-        allowed_names = owner.state_names(modes) + signals
-        problems += [Problem(f"{where}.{key}.{name}", f"unknown name for {owner.name} with {modes} modes; allowed: "
+        what, allowed_names = known
+        problems += [Problem(f"{where}.{key}.{name}", f"unknown name for {what}; allowed: "
                              f"{', '.join(allowed_names)}") for name in values if name not in allowed_names]
     reference = _section(maneuver, "reference")
-    if maneuver.get("feedforward") is True and reference.get("kind") in REFERENCES \
+    if maneuver.get("feedforward") is True and _name(reference.get("kind")) in REFERENCES \
             and not REFERENCES[reference["kind"]].gives_acceleration:
         problems.append(Problem(f"{where}.feedforward", f"got true with reference.kind = {reference['kind']!r}; "
                                 "allowed: a reference whose acceleration is known (prescribed, Eq. 43), or "
@@ -294,9 +315,11 @@ def _drive_problems(where: str, case: Mapping) -> list[Problem]:
     model needs a drive and its held-hub frequency; a sampled controller runs a design, with sensors
     its estimator can use."""
     maneuver = _section(case, "maneuver")
-    record = MANEUVERS.get(maneuver.get("kind"))
+    record = MANEUVERS.get(_name(maneuver.get("kind")))
     if record is None:
         return []  # the schema reports the kind
+    if "drive" in case and not isinstance(case["drive"], dict):
+        return []  # the schema reports the drive; whether one is given is unknown
     driven = isinstance(case.get("drive"), dict)
     problems = []
     if record.needs_drive and not driven:
@@ -305,6 +328,8 @@ def _drive_problems(where: str, case: Mapping) -> list[Problem]:
     if driven and not record.takes_drive:
         problems.append(Problem(f"{where}.drive", f"given with maneuver.kind = {record.kind!r}, an open-loop torque; "
                                 "allowed: a voltage_table (or a controller) with a drive, or no drive"))
+    if "design" in maneuver and not _design_model(maneuver):  # the schema reports the design
+        return problems + _sampling_problems(f"{where}.maneuver", maneuver, None)
     design = _section(maneuver, "design")
     if "torque_weight" in design and driven:
         problems.append(Problem(f"{where}.maneuver.design.torque_weight", "given with a drive, whose input is the "
@@ -320,15 +345,24 @@ def _drive_problems(where: str, case: Mapping) -> list[Problem]:
         problems.append(Problem(f"{where}.maneuver.design.model", f"got {design['model']!r} without a drive; "
                                 "allowed: a hub-beam model, or a case with a drive (the lumped model's input is the "
                                 "voltage)"))
-    if "held_frequency" in design and design.get("model") in MODELS:
+    if "held_frequency" in design and _name(design.get("model")) in MODELS:
         problems.append(Problem(f"{where}.maneuver.design.held_frequency", f"given with model = "
                                 f"{design['model']!r}; allowed: only with {', '.join(DESIGN_ONLY_MODELS)}"))
     return problems + _sampling_problems(f"{where}.maneuver", maneuver, lumped)
 
 
-def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Problem]:
+def _design_model(maneuver: Mapping) -> str | None:
+    """The name of the model of ``maneuver``'s LQR design, None without a design or when the schema
+    refuses the design or its model."""
+    model = _name(_section(maneuver, "design").get("model"))
+    return model if model in MODELS or model in DESIGN_ONLY_MODELS else None
+
+
+def _sampling_problems(where: str, maneuver: Mapping, lumped: bool | None) -> list[Problem]:
     """A sampled controller runs a design; the exact estimator reads the design's states (no sensors),
-    the filtered differences need the lumped design and its two angles, a Kalman filter sensors."""
+    the filtered differences need the lumped design (``lumped``; None: a design the schema refuses)
+    and its two angles, a Kalman filter sensors. What depends on an estimator the schema refuses is
+    left to it."""
     sampling = _section(maneuver, "sampling")
     if not sampling:
         return []
@@ -336,9 +370,13 @@ def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Prob
     if "design" not in maneuver:
         problems.append(Problem(f"{where}.sampling", "given without a design; allowed: a design (LQR) to sample, "
                                 "not gains or output_feedback"))
-    estimator = _section(sampling, "estimator").get("kind", "exact")
+    estimator = sampling.get("estimator", {"kind": "exact"})
+    estimator = estimator.get("kind") if isinstance(estimator, dict) else None
+    if estimator not in ("exact", "kalman", "filtered_differences"):
+        return problems  # the schema reports the estimator
     sensors = sampling.get("sensors") if isinstance(sampling.get("sensors"), list) else None
-    signals = [sensor.get("signal") for sensor in sensors or [] if isinstance(sensor, dict)]
+    signals = [sensor.get("signal") for sensor in sensors or [] if isinstance(sensor, dict)
+               and isinstance(sensor.get("signal"), str)]  # the schema reports other signals
     if estimator == "exact" and sampling.get("reduce") is True:
         problems.append(Problem(f"{where}.sampling.reduce", "true with the exact estimator, whose readings are the "
                                 "design's states (a truncated model's are modal coordinates); allowed: a kalman "
@@ -356,7 +394,7 @@ def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Prob
         problems.append(Problem(f"{where}.sampling.sensors", f"missing for the {estimator} estimator; allowed: "
                                 "a list of sensors"))
     if estimator == "filtered_differences":
-        if not lumped:
+        if lumped is False:
             problems.append(Problem(f"{where}.sampling.estimator.kind", "got 'filtered_differences' with a design "
                                     f"on a hub-beam model; allowed: a design on {', '.join(DESIGN_ONLY_MODELS)} "
                                     "(its states are the measured angles and their rates), or kalman or exact"))
@@ -422,15 +460,15 @@ def _shaper_problems(where: str, case: Mapping, modes: int | None) -> list[Probl
     return problems
 
 
-#: the forms of a beam (schema ``beam.allOf``): (condition, title, the keys of the form)
-BEAM_FORMS = tuple((rule["if"], rule["then"]["title"], tuple(rule["then"]["required"]))
+#: the forms of a beam (schema ``beam.allOf``): (a validator of its condition, title, the keys of the form)
+BEAM_FORMS = tuple((Validator(rule["if"]), rule["then"]["title"], tuple(rule["then"]["required"]))
                    for rule in SCHEMA["properties"]["beam"]["allOf"])
 
 
 def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
     """A beam has the keys of one form only (:data:`BEAM_FORMS`; the schema requires the form's
     keys); stations run from 0 to L."""
-    own = next((keys for condition, _, keys in BEAM_FORMS if Validator(condition).is_valid(beam)), ())
+    own = next((keys for condition, _, keys in BEAM_FORMS if condition.is_valid(beam)), ())
     given = next((key for key in own if key in beam), None)
     forms = "; ".join(f"{title.removeprefix('for ')}: {', '.join(keys)}" for _, title, keys in BEAM_FORMS)
     problems = [Problem(f"beam.{key}", f"got {show(beam[key])}; not allowed together with beam.{given} "
@@ -499,7 +537,7 @@ def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
                 problems.append(Problem(f"{where}.grid.tip_position.stop", f"got {stop}; allowed: a "
                                         f"position on the beam, <= beam.length = {length}"))
         maneuver = _section(spec, "maneuver")
-        needed = MANEUVER_PARAMETERS.get(maneuver.get("kind"))
+        needed = MANEUVER_PARAMETERS.get(_name(maneuver.get("kind")))
         if needed is not None:
             for key in ("wf", "tf", "tau_max"):
                 fixed, swept = key in maneuver, key in grid
@@ -526,6 +564,8 @@ def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
         models = spec.get("models") if isinstance(spec.get("models"), list) else []
         figure = _section(spec, "figure")
+        if not models or not all(_name(model) in MODELS for model in models):
+            continue  # the schema reports the models
         for key in ("model", "reference"):
             if key in figure and figure[key] not in models:
                 problems.append(Problem(f"{where}.figure.{key}",
@@ -622,7 +662,20 @@ def _integer(value: Any) -> int | None:
     return value if isinstance(value, int) and not isinstance(value, bool) else None
 
 
+def _modes(value: Any) -> int | None:
+    """``value`` if it is a number of modes the schema accepts (an integer in ``MIN_MODES..MAX_MODES``),
+    else None: the schema reports it, and a check must not build names or sizes from it."""
+    modes = _integer(value)
+    return modes if modes is not None and limits.MIN_MODES <= modes <= limits.MAX_MODES else None
+
+
+def _name(value: Any) -> str | None:
+    """``value`` if it is text (a name to look up: a model, a kind), else None (the schema reports it)."""
+    return value if isinstance(value, str) else None
+
+
 def _non_finite_numbers_and_non_text_keys(node: Any, parts: list) -> list[Problem]:
+    """Keys that are not text, and numbers that are not finite or beyond :data:`LARGEST_NUMBER`."""
     problems = []
     if isinstance(node, dict):
         for key, value in node.items():
@@ -636,4 +689,8 @@ def _non_finite_numbers_and_non_text_keys(node: Any, parts: list) -> list[Proble
             problems += _non_finite_numbers_and_non_text_keys(item, parts + [index])
     elif isinstance(node, float) and not math.isfinite(node):
         problems.append(Problem(key_path(parts), f"got {node}; allowed: a finite number"))
+    elif isinstance(node, (int, float)) and not isinstance(node, bool) and abs(node) > LARGEST_NUMBER:
+        problems.append(Problem(key_path(parts), f"got {node:g}; allowed: a number of magnitude at most "
+                                f"{LARGEST_NUMBER:g} (SI units; beyond, the products of the model's quantities "
+                                "overflow double precision)"))
     return problems

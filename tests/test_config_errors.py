@@ -1,10 +1,13 @@
-"""Inputs the one check of a configuration once crashed on, refused by name before any job.
+"""Inputs the one check of a configuration once let through or crashed on, refused by name before any job.
 
 * a gain of ``output_feedback`` on a signal that is none (``tip_acceleration``): the schema's
   explainer crashed on the list of allowed names (``_pattern_words``); now every rule of the schema,
   on values or on the names and keys of a mapping, is said in words at its key;
 * a huge number (``beam.length: 1e300``) overflowed the model while the check completed the
-  configuration: numbers beyond ``checks.LARGEST_NUMBER`` are refused at their key.
+  configuration: numbers beyond ``checks.LARGEST_NUMBER`` are refused at their key;
+* a sampled controller at ``sample_time: 1.0e-7`` for 50 s: 5e8 samples, whose arrays the check did
+  not count, so the simulation job died of a MemoryError; now the memory budget counts them (and
+  a shaper's impulses, and a table's rows) and the check refuses it at the key.
 
 Each through :func:`hubbeam.pipeline.plan.checked_configuration` on a shipped study.
 """
@@ -13,12 +16,17 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from hubbeam.configuration import checks
 from hubbeam.configuration.load import read_config_file
+from hubbeam.core.inputs import IDENTITY_SHAPER
 from hubbeam.linear import lumped
+from hubbeam.model.limits import MEMORY_BUDGET_MB
 from hubbeam.pipeline.plan import checked_configuration
+from hubbeam.results import variables
+from hubbeam.simulation.sampled import SampledLoop, Sensor, held_table, loop_arrays
 
 REPO = Path(__file__).resolve().parents[1]
 TRUST = REPO / "studies" / "controller_trust.yaml"
@@ -39,6 +47,15 @@ def with_output_feedback() -> dict:
         "model": "FOAM", "t_end": 30.0,
         "maneuver": {"kind": "state_feedback", "reference": {"kind": "prescribed", "wf": 1.0, "tf": 15.0},
                      "output_feedback": OUTPUT_FEEDBACK}}}
+    return cfg
+
+
+def sampled_too_fast() -> dict:
+    """studies/quanser_rotflex.yaml with its Kalman case sampled every 1e-7 s for 50 s."""
+    cfg = read_config_file(QUANSER)
+    case = cfg["cases"]["lumped_kalman"]
+    case["t_end"] = 50.0
+    case["maneuver"]["sampling"]["sample_time"] = 1.0e-7
     return cfg
 
 
@@ -64,6 +81,60 @@ def test_every_rule_on_the_names_and_keys_of_a_mapping_is_said_in_words(names, w
     found = [problem for problem in problems(cfg, TRUST) if problem.startswith(key + ": ")]
     assert found and allowed in found[0], problems(cfg, TRUST)
     assert not any('"enum"' in problem or "described in docs" in problem for problem in problems(cfg, TRUST))
+
+
+def test_a_sampled_controller_too_fast_for_the_memory_budget_is_refused_at_its_sample_time():
+    """5e8 samples of 23 values (2 sensors, 4 estimated states, 13 of the loop) x 8 bytes = 85.7 GiB,
+    where the job used to die of a MemoryError at its first array (3.7 GiB)."""
+    [problem] = problems(sampled_too_fast(), QUANSER)
+    assert problem.startswith("cases.lumped_kalman.maneuver.sampling.sample_time: got 1e-07 s: the sampled "
+                              "controller runs 500000001 samples up to t_end = 50 s, each holding 23 values")
+    assert f"above the memory budget numerics.memory_budget_mb = {MEMORY_BUDGET_MB:g} MiB" in problem
+    assert "allowed: sample_time >= 4.3e-06 s" in problem
+    cfg = sampled_too_fast()
+    cfg["cases"]["lumped_kalman"]["maneuver"]["sampling"]["sample_time"] = 4.3e-6  # the smallest allowed
+    assert problems(cfg, QUANSER) == []
+
+
+def test_the_sampled_loop_s_arrays_are_what_the_budget_counts():
+    """The arrays :func:`hubbeam.simulation.sampled.loop_arrays` and ``held_table`` allocate per sample
+    (records, noise, sample and switch times, stops, the held command's table) are
+    ``variables.sampled_loop_bytes`` but for the working copies numpy's union of the stops makes."""
+    N, t_end, Ts = 3, 1.0, 1.0e-3
+    loop = SampledLoop([Sensor("hub_angle", np.eye(2 * N)[0]), Sensor("hub_speed", np.eye(2 * N)[N])],
+                       np.zeros((0, 0)), np.zeros((0, 2)), np.zeros(0), np.zeros((3, 0)), np.ones((3, 2)),
+                       np.ones(3), np.zeros((2, 3)), np.zeros(3), np.zeros(0), Ts=Ts, D=0.5)
+    arrays, stops, noise = loop_arrays(loop, np.arange(N), t_end, np.zeros(4), IDENTITY_SHAPER)
+    count = arrays.timing.sample_times.size
+    held = sum(np.asarray(array).nbytes for array in arrays.records) + arrays.timing.sample_times.nbytes \
+        + arrays.timing.switch_times.nbytes + stops.nbytes + noise.nbytes + held_table(count, 0.0).nbytes
+    estimate = variables.sampled_loop_bytes(t_end, Ts, sensors=2, estimated=3)
+    assert count == variables.sample_count(t_end, Ts) == 1001
+    assert held <= estimate <= held + 4 * variables.BYTES_PER_VALUE * count + 64
+
+
+def test_a_shaper_of_too_many_impulses_is_refused_at_its_modes():
+    """A ZVD shaper convolved over 20 frequencies has up to 3^20 impulses: 442 GiB."""
+    cfg = read_config_file(REPO / "studies" / "first_study.yaml")
+    [case] = cfg["cases"].values()
+    case["shaper"] = {"kind": "ZVD", "frequencies": [1.0 + k for k in range(20)]}
+    [problem] = problems(cfg, REPO / "studies" / "first_study.yaml")
+    assert problem.startswith("cases.spinup.shaper.frequencies: got 20 frequencies: the ZVD shaper convolves one "
+                              "per mode, up to 3^20 = 3486784401 impulses")
+    assert "allowed: at most 15 frequencies for a ZVD shaper" in problem
+
+
+def test_a_table_of_too_many_rows_is_refused_at_its_times():
+    path = REPO / "studies" / "first_study.yaml"
+    cfg = read_config_file(path)
+    [case] = cfg["cases"].values()
+    rows = 20_000
+    case["maneuver"] = {"kind": "torque_table", "time": [0.001 * k for k in range(rows)], "torque": [0.0] * rows}
+    cfg["numerics"] = {"memory_budget_mb": 1.0}
+    [problem] = problems(cfg, path)
+    assert problem.startswith(f"cases.spinup.maneuver.time: got {rows} rows: the kernel's table of them holds "
+                              f"{variables.TABLE_VALUES} values per row")
+    assert "above the memory budget numerics.memory_budget_mb = 1 MiB; allowed: at most" in problem
 
 
 def test_a_huge_number_is_refused_before_it_overflows_the_model():

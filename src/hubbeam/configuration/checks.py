@@ -9,7 +9,8 @@ and times increase, a case can start from its ``initial`` state (one value per m
 coordinates for SFOAM, a prescribed hub at its maneuver's speed at t = 0), a state feedback names
 states and signals its models have, a study (``study`` section) neither takes a folder of the
 paper's products nor compares unknown cases, and no case, validation run or sweep would need more
-memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.results.variables`). Each check runs only
+memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.results.variables`: a case's outputs, and the
+arrays of its sampled controller per sample, of its shaper's impulses and of its tables). Each check runs only
 on values the schema accepted, and each problem names the key, the value and what is allowed."""
 
 from __future__ import annotations
@@ -17,8 +18,8 @@ from __future__ import annotations
 import itertools
 import math
 import os
-from collections.abc import Mapping
-from typing import Any
+from collections.abc import Callable, Mapping
+from typing import Any, NamedTuple
 
 from hubbeam.configuration.schema import (
     MEASURED_SIGNALS,
@@ -152,7 +153,19 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
             _name(case.get("model"))
         if t_end is None or modes is None or model not in MODELS:
             continue  # the schema reports it
-        check_run(f"cases.{name}.t_end", f"case {name}", model, modes, t_end)
+        outputs = variables.simulation_bytes(model, modes, t_end, output_step)
+        if outputs > budget:
+            check_run(f"cases.{name}.t_end", f"case {name}", model, modes, t_end)
+            continue
+        parts = _run_parts(f"cases.{name}", case, modes, t_end)
+        total = outputs + sum(part.size for part in parts)
+        if total > budget:
+            largest = max(parts, key=lambda part: part.size)
+            rest = total - largest.size
+            problems.append(Problem(largest.where, f"{largest.text}; with the rest of case {name} (its outputs "
+                                    f"and arrays: {variables.size_text(rest)}) it would take "
+                                    f"{variables.budget_text(total, budget_mb)}; allowed: "
+                                    f"{largest.allowed(budget - rest)}, or a larger numerics.memory_budget_mb"))
     validation = _section(cfg, "validation")
     models = [m for m in validation.get("models", []) if _name(m) in MODELS] if isinstance(
         validation.get("models"), list) else []
@@ -165,6 +178,101 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
             check_run(f"validation.cases.{name}.t_end", f"validation run {name}", model, modes, t_end)
     problems += _sweep_memory_problems(_section(cfg, "sweeps"), default_modes, budget_mb)
     return problems
+
+
+class _Part(NamedTuple):
+    """Memory a case takes besides its outputs, for one key: its ``size`` (bytes), the key
+    (``where``), what it holds in words (``text``) and ``allowed(room)``, the values of the key that
+    fit into ``room`` bytes."""
+
+    size: int
+    where: str
+    text: str
+    allowed: Callable[[float], str]
+
+
+def _run_parts(where: str, case: Mapping, modes: int, t_end: float) -> list[_Part]:
+    """The arrays a run of ``case`` holds besides its outputs, each for the key that sizes it
+    (:mod:`hubbeam.results.variables`): a sampled controller's per-sample arrays, a command shaper's
+    impulses (convolved and shifting the maneuver's stops), the kernel's tables of a tabulated
+    maneuver or reference. Values the schema refuses count nothing."""
+    maneuver = _section(case, "maneuver")
+    tables = [(f"{where}.maneuver", maneuver), (f"{where}.maneuver.reference", _section(maneuver, "reference"))]
+    rows = {path: len(entry["time"]) for path, entry in tables if isinstance(entry.get("time"), list)}
+    parts = [_Part(variables.table_bytes(count), f"{path}.time",
+                   f"got {count} rows: the kernel's table of them holds {variables.TABLE_VALUES} values per row x "
+                   f"{variables.BYTES_PER_VALUE} bytes = {variables.size_text(variables.table_bytes(count))}",
+                   lambda room: f"at most {math.floor(room / variables.table_bytes(1))} rows")
+             for path, count in rows.items()]
+    sampled = _sampled_part(f"{where}.maneuver", maneuver, _modes(_section(maneuver, "design").get("modes", modes)),
+                            t_end)
+    shaper = _shaper_part(f"{where}.shaper", _section(case, "shaper"), max(rows.values(), default=2))
+    return parts + [part for part in (sampled, shaper) if part is not None]
+
+
+def _sampled_part(where: str, maneuver: Mapping, design_modes: int | None, t_end: float) -> _Part | None:
+    """The per-sample arrays of a sampled controller (``maneuver.sampling``), None without one: its
+    readings are the design's states (the exact estimator) or its sensors; it estimates the design's
+    states and the commands its delay holds back (filtered differences: two per sensor)."""
+    sampling, design = _section(maneuver, "sampling"), _section(maneuver, "design")
+    sample_time, delay = _positive(sampling.get("sample_time")), _number(sampling.get("delay", 0.0))
+    design_model, kind = _name(design.get("model")), _name(_section(sampling, "estimator").get("kind", "exact"))
+    sensors = sampling.get("sensors") if isinstance(sampling.get("sensors"), list) else []
+    if maneuver.get("kind") != "state_feedback" or sample_time is None or delay is None or delay < 0:
+        return None
+    if design_model in DESIGN_ONLY_MODELS:
+        states = len(LUMPED_STATES)
+    elif design_model in MODELS and design_modes is not None:
+        states = len(MODELS[design_model].state_names(design_modes))
+    else:
+        return None  # the schema reports the design
+    lags = math.floor(delay) + (1 if delay > math.floor(delay) else 0)  # hubbeam.linear.discrete.discretise
+    readings, estimated = {"exact": (states, states + lags), "kalman": (len(sensors), states + lags),
+                           "filtered_differences": (len(sensors), 2 * len(sensors))}.get(kind, (None, None))
+    if readings is None:
+        return None  # the schema reports the estimator
+    count, values = variables.sample_count(t_end, sample_time), variables.sample_values(readings, estimated)
+    size = variables.sampled_loop_bytes(t_end, sample_time, readings, estimated)
+
+    def allowed(room: float) -> str:
+        samples = math.floor(room / (variables.BYTES_PER_VALUE * values))
+        return (f"sample_time >= {_rounded_up(t_end / (samples - 1))} s (at most {samples} samples up to t_end = "
+                f"{t_end:g} s), a shorter t_end" if samples >= 2 else "a shorter t_end")
+
+    return _Part(size, f"{where}.sampling.sample_time",
+                 f"got {sample_time:g} s: the sampled controller runs {count} samples up to t_end = {t_end:g} s, each "
+                 f"holding {values} values ({readings} readings, {estimated} estimated states and "
+                 f"{variables.SAMPLE_VALUES} of the loop itself) x {variables.BYTES_PER_VALUE} bytes = "
+                 f"{variables.size_text(size)}", allowed)
+
+
+def _shaper_part(where: str, shaper: Mapping, stops: int) -> _Part | None:
+    """A command shaper's impulses (one shaper per mode, convolved) and the ``stops`` of the
+    maneuver each of them shifts; None without a shaper."""
+    kind = _name(shaper.get("kind"))
+    key = "frequencies" if "frequencies" in shaper else "modes"
+    given = shaper.get(key, [1])
+    if kind not in variables.SHAPER_IMPULSES or not isinstance(given, list) or not given:
+        return None  # the schema reports it
+    count = len(given)
+    impulses = variables.shaper_impulses(kind, count)
+    size = variables.shaper_bytes(impulses, stops)
+
+    def allowed(room: float) -> str:
+        most = 0
+        while variables.shaper_bytes(variables.shaper_impulses(kind, most + 1), stops) <= room:
+            most += 1
+        return f"at most {most} {key} for a {kind} shaper" if most else f"no {kind} shaper"
+
+    return _Part(size, f"{where}.{key}", f"got {count} {key}: the {kind} shaper convolves one per mode, up to "
+                 f"{variables.SHAPER_IMPULSES[kind]}^{count} = {impulses} impulses, each shifting the {stops} stops "
+                 f"of the maneuver: {variables.size_text(size)}", allowed)
+
+
+def _rounded_up(value: float) -> str:
+    """``value`` > 0 rounded up to three significant digits, as text."""
+    scale = 10.0 ** (math.floor(math.log10(value)) - 2)
+    return f"{math.ceil(value / scale * (1 - 1e-12)) * scale:.3g}"
 
 
 def _sweep_memory_problems(sweeps: Mapping, default_modes: int, budget_mb: float) -> list[Problem]:

@@ -1,23 +1,26 @@
 """Inputs the one check of a configuration once let through or crashed on, refused by name before any job.
 
 * a gain of ``output_feedback`` on a signal that is none (``tip_acceleration``): the schema's
-  explainer crashed on the list of allowed names (``_pattern_words``); now every rule of the schema,
-  on values or on the names and keys of a mapping, is said in words at its key;
-* a huge number (``beam.length: 1e300``) overflowed the model while the check completed the
-  configuration: numbers beyond ``checks.LARGEST_NUMBER`` are refused at their key;
+  explainer crashed on the list of allowed names (``_pattern_words``);
 * a sampled controller at ``sample_time: 1.0e-7`` for 50 s: 5e8 samples, whose arrays the check did
   not count, so the simulation job died of a MemoryError; now the memory budget counts them (and
-  a shaper's impulses, and a table's rows) and the check refuses it at the key.
+  a shaper's impulses, and a table's rows) and the check refuses it at the key;
+* a Kalman filter without process noise (``input_noise`` left at its default 0): refused, but at
+  ``maneuver.sampling`` without naming the key to set.
 
-Each through :func:`hubbeam.pipeline.plan.checked_configuration` on a shipped study.
+Each through :func:`hubbeam.pipeline.plan.checked_configuration` on a shipped study, and the first
+two through ``snakemake -n``, which stops before any job.
 """
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 from hubbeam.configuration import checks
 from hubbeam.configuration.load import read_config_file
@@ -137,6 +140,19 @@ def test_a_table_of_too_many_rows_is_refused_at_its_times():
     assert "above the memory budget numerics.memory_budget_mb = 1 MiB; allowed: at most" in problem
 
 
+def test_a_kalman_filter_without_process_noise_is_refused_at_input_noise():
+    cfg = read_config_file(QUANSER)
+    del cfg["cases"]["lumped_kalman"]["maneuver"]["sampling"]["estimator"]["input_noise"]
+    [problem] = problems(cfg, QUANSER)
+    assert problem.startswith("cases.lumped_kalman.maneuver.sampling.estimator.input_noise: missing (default 0) with "
+                              "no state_noise: the Kalman filter would have no process noise")
+    assert "allowed: input_noise > 0" in problem
+    cfg["cases"]["lumped_kalman"]["maneuver"]["sampling"]["estimator"]["input_noise"] = 0.0
+    [problem] = problems(cfg, QUANSER)
+    assert problem.startswith("cases.lumped_kalman.maneuver.sampling.estimator.input_noise: got 0.0 with no "
+                              "state_noise")
+
+
 def test_a_huge_number_is_refused_before_it_overflows_the_model():
     """1e300 m of beam overflowed the eigen defaults (``L**2``): refused at the key."""
     path = REPO / "studies" / "first_study.yaml"
@@ -149,3 +165,34 @@ def test_a_huge_number_is_refused_before_it_overflows_the_model():
 
 def test_the_checks_name_the_lumped_model_s_states_and_outputs_as_it_does():
     assert checks.LUMPED_STATES == lumped.LUMPED_STATES and checks.LUMPED_OUTPUTS == lumped.LUMPED_OUTPUTS
+
+
+# ---------------------------------------------------------------------------------------------
+# through Snakemake
+
+
+def snakemake_dry_run(workdir: Path, config: Path) -> subprocess.CompletedProcess:
+    command = [sys.executable, "-m", "snakemake", "--snakefile", str(REPO / "Snakefile"), "--directory", str(workdir),
+               "--dry-run", "--configfile", str(config)]
+    return subprocess.run(command, cwd=REPO, capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.parametrize("build, study, fragments", [
+    (with_output_feedback, TRUST, ["cases.output_gains.maneuver.output_feedback.tip_acceleration: illegal name "
+                                   f"'tip_acceleration'; allowed: one of {SIGNALS}"]),
+    (sampled_too_fast, QUANSER, ["cases.lumped_kalman.maneuver.sampling.sample_time: got 1e-07 s",
+                                 "allowed: sample_time >= 4.3e-06 s"]),
+], ids=["output_feedback", "sample_time"])
+def test_snakemake_refuses_them_before_any_job(tmp_path, build, study, fragments):
+    config = tmp_path / study.name
+    config.write_text(yaml.safe_dump(build(), sort_keys=False))
+    workdir = tmp_path / "work"
+    workdir.mkdir()
+    run = snakemake_dry_run(workdir, config)
+    output = run.stdout + run.stderr
+    assert run.returncode != 0
+    assert output.count("invalid hubbeam configuration") == 1 and "1 problem:" in output, output
+    assert all(fragment in output for fragment in fragments), output
+    assert "Traceback" not in output and 'File "' not in output
+    assert "Building DAG" not in output and "Job stats" not in output
+    assert sorted(p.name for p in workdir.iterdir()) in ([], [".snakemake"])

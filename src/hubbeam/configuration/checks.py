@@ -511,7 +511,23 @@ def _sampling_problems(where: str, maneuver: Mapping, lumped: bool | None) -> li
                                     "deflection_angle, once each, for the filtered differences"))
     if len(set(signals)) < len(signals):
         problems.append(Problem(f"{where}.sampling.sensors", f"measure {signals}; allowed: each signal once"))
-    return problems
+    return problems + _process_noise_problems(f"{where}.sampling.estimator", _section(sampling, "estimator"))
+
+
+def _process_noise_problems(where: str, estimator: Mapping) -> list[Problem]:
+    """A Kalman filter needs process noise: without any (``input_noise`` 0, its default, and no
+    ``state_noise``) it leaves the free hub's rigid-body mode (``z = 1``, which every design has)
+    undisturbed, and ``hubbeam.control.kalman`` refuses it."""
+    if estimator.get("kind") != "kalman":
+        return []
+    noise, states = estimator.get("input_noise", 0.0), estimator.get("state_noise", {})
+    if _number(noise) != 0.0 or not isinstance(states, dict) or any(_number(v) != 0.0 for v in states.values()):
+        return []  # process noise given, or a value the schema reports
+    given = f"got {noise!r}" if "input_noise" in estimator else "missing (default 0)"
+    return [Problem(f"{where}.input_noise", f"{given} with no state_noise: the Kalman filter would have no process "
+                    "noise, which leaves the free hub's rigid-body mode (z = 1) undisturbed, and the filter is "
+                    "refused; allowed: input_noise > 0 (process noise on the input: N m, or V with a drive), or "
+                    "state_noise > 0 on a state that moves that mode (such as theta_dot)")]
 
 
 def _root_problems(where: str, case: Mapping) -> list[Problem]:

@@ -56,6 +56,7 @@ SLOW_TESTS = {
     "test_rig_control::test_the_covariances_are_those_of_the_estimation_errors",
     "test_sampled::test_noise_moves_the_estimate_off_the_state_and_is_the_seed_s",
     "test_maneuvers::test_pd_hub_with_a_stiff_beam_follows_the_rigid_closed_loop",
+    "test_config_mutations::test_every_mutation_of_every_key_of_the_largest_configurations",
 }
 
 

@@ -142,8 +142,15 @@ def test_a_mode_the_sensors_cannot_see_is_refused():
 
 
 def test_process_noise_that_leaves_the_rigid_mode_undisturbed_is_refused():
+    """No process noise at all (input_noise left at 0) is refused at the key to set, before any
+    matrix; noise on a state that does not move the rigid-body mode, once the filter is designed."""
     cfg = study(a=sampled_case(KALMAN, SENSORS), z=sampled_case({"kind": "kalman"}, SENSORS))
-    assert_refused(cfg, "cases.z.maneuver.sampling", "is left undisturbed by the process noise")
+    assert_refused(cfg, "cases.z.maneuver.sampling.estimator.input_noise", "missing (default 0) with no state_noise",
+                   "allowed: input_noise > 0")
+    elastic = {"kind": "kalman", "state_noise": {"q2_1": 1.0}}
+    assert_refused(study(a=sampled_case(KALMAN, SENSORS), z=sampled_case(elastic, SENSORS)),
+                   "cases.z.maneuver.sampling",
+                   "is left undisturbed by the process noise (estimator.input_noise, estimator.state_noise)")
 
 
 def test_a_shaper_above_the_sampling_limit_is_refused():

@@ -1,14 +1,16 @@
 """Checks of a configuration that a JSON schema cannot express (:func:`physical_problems`).
 
 The tip mass lies on the beam (``0 <= l <= L``) and a tip body's centre beyond the root, every
-case spans at least one output step, grids increase, numbers are finite, case names stay
+case spans at least one output step, grids increase, numbers are finite and at most
+:data:`LARGEST_NUMBER` in magnitude, case names stay
 distinct on case-insensitive file systems, keys are text; a beam has the keys of one form only
 (the forms and their keys are the schema's), stations run from x = 0 to x = L, tables of stations
 and times increase, a case can start from its ``initial`` state (one value per mode, no axial
 coordinates for SFOAM, a prescribed hub at its maneuver's speed at t = 0), a state feedback names
 states and signals its models have, a study (``study`` section) neither takes a folder of the
 paper's products nor compares unknown cases, and no case, validation run or sweep would need more
-memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.results.variables`). Each check runs only
+memory than ``numerics.memory_budget_mb`` (:mod:`hubbeam.results.variables`: a case's outputs, and the
+arrays of its sampled controller per sample, of its shaper's impulses and of its tables). Each check runs only
 on values the schema accepted, and each problem names the key, the value and what is allowed."""
 
 from __future__ import annotations
@@ -16,8 +18,8 @@ from __future__ import annotations
 import itertools
 import math
 import os
-from collections.abc import Mapping
-from typing import Any
+from collections.abc import Callable, Mapping
+from typing import Any, NamedTuple
 
 from hubbeam.configuration.schema import (
     MEASURED_SIGNALS,
@@ -37,6 +39,15 @@ from hubbeam.model.modes import CLAMPED_FREE, TIP_BODY
 from hubbeam.reporting.products import PAPER
 from hubbeam.results import variables
 from hubbeam.results.paths import PAPER_FOLDERS
+
+#: the lumped design model's states and outputs, as ``hubbeam.linear.lumped`` names them (which imports
+#: the configuration, so it cannot be imported here; a test keeps the two the same)
+LUMPED_STATES = ("theta", "alpha", "theta_dot", "alpha_dot")
+LUMPED_OUTPUTS = ("hub_angle", "deflection_angle", "hub_speed", "deflection_rate", "tip_deflection", "tip_arc")
+#: the largest magnitude of a number in a configuration: SI quantities of a beam on a hub stay far below
+#: it (a steel's Young's modulus is 2e11 Pa), and the model multiplies them (E I, Omega^2 m L^2, ...) in
+#: double precision, which overflows at 1.8e308
+LARGEST_NUMBER = 1e15
 
 
 def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
@@ -96,7 +107,7 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
                                     f"got {offset}; allowed: offset >= -position = {-attached} (the body's centre "
                                     "on the beam's side of the clamped root, not inside the hub)"))
         entry_problems = _case_entry_problems(f"cases.{name}", case)
-        modes = _integer(case.get("modes", numerics.get("modes")))
+        modes = _modes(case.get("modes", numerics.get("modes")))
         problems += entry_problems + _initial_problems(f"cases.{name}", case, modes, check_speed=not entry_problems)
         problems += _feedback_problems(f"cases.{name}.maneuver", case, modes)
         problems += _drive_problems(f"cases.{name}", case) + _shaper_problems(f"cases.{name}.shaper", case, modes)
@@ -115,7 +126,7 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
     (:mod:`hubbeam.results.variables`), each named with its estimated size and the budget."""
     numerics = _section(cfg, "numerics")
     budget_mb = _positive(numerics.get("memory_budget_mb", limits.MEMORY_BUDGET_MB))
-    default_modes = _integer(numerics.get("modes"))
+    default_modes = _modes(numerics.get("modes"))
     if budget_mb is None or output_step is None:
         return []  # the schema reports it
     budget = budget_mb * variables.MIB
@@ -138,14 +149,28 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
 
     for name, case in _section(cfg, "cases").items():
         case = case if isinstance(case, dict) else {}
-        t_end, modes, model = _positive(case.get("t_end")), case.get("modes", default_modes), case.get("model")
-        if t_end is not None and _integer(modes) is not None and model in MODELS:  # else the schema reports it
+        t_end, modes, model = _positive(case.get("t_end")), _modes(case.get("modes", default_modes)), \
+            _name(case.get("model"))
+        if t_end is None or modes is None or model not in MODELS:
+            continue  # the schema reports it
+        outputs = variables.simulation_bytes(model, modes, t_end, output_step)
+        if outputs > budget:
             check_run(f"cases.{name}.t_end", f"case {name}", model, modes, t_end)
+            continue
+        parts = _run_parts(f"cases.{name}", case, modes, t_end)
+        total = outputs + sum(part.size for part in parts)
+        if total > budget:
+            largest = max(parts, key=lambda part: part.size)
+            rest = total - largest.size
+            problems.append(Problem(largest.where, f"{largest.text}; with the rest of case {name} (its outputs "
+                                    f"and arrays: {variables.size_text(rest)}) it would take "
+                                    f"{variables.budget_text(total, budget_mb)}; allowed: "
+                                    f"{largest.allowed(budget - rest)}, or a larger numerics.memory_budget_mb"))
     validation = _section(cfg, "validation")
-    models = [m for m in validation.get("models", []) if m in MODELS] if isinstance(
+    models = [m for m in validation.get("models", []) if _name(m) in MODELS] if isinstance(
         validation.get("models"), list) else []
     study = validation.get("mode_study") if isinstance(validation.get("mode_study"), list) else []
-    modes = max((m for m in [default_modes, *study] if _integer(m) is not None), default=None)
+    modes = max((m for m in [default_modes, *study] if _modes(m) is not None), default=None)
     for name, case in _section(validation, "cases").items():
         t_end = _positive(case.get("t_end")) if isinstance(case, dict) else None
         if t_end is not None and models and modes is not None:
@@ -153,6 +178,101 @@ def _memory_problems(cfg: Mapping, output_step: float | None) -> list[Problem]:
             check_run(f"validation.cases.{name}.t_end", f"validation run {name}", model, modes, t_end)
     problems += _sweep_memory_problems(_section(cfg, "sweeps"), default_modes, budget_mb)
     return problems
+
+
+class _Part(NamedTuple):
+    """Memory a case takes besides its outputs, for one key: its ``size`` (bytes), the key
+    (``where``), what it holds in words (``text``) and ``allowed(room)``, the values of the key that
+    fit into ``room`` bytes."""
+
+    size: int
+    where: str
+    text: str
+    allowed: Callable[[float], str]
+
+
+def _run_parts(where: str, case: Mapping, modes: int, t_end: float) -> list[_Part]:
+    """The arrays a run of ``case`` holds besides its outputs, each for the key that sizes it
+    (:mod:`hubbeam.results.variables`): a sampled controller's per-sample arrays, a command shaper's
+    impulses (convolved and shifting the maneuver's stops), the kernel's tables of a tabulated
+    maneuver or reference. Values the schema refuses count nothing."""
+    maneuver = _section(case, "maneuver")
+    tables = [(f"{where}.maneuver", maneuver), (f"{where}.maneuver.reference", _section(maneuver, "reference"))]
+    rows = {path: len(entry["time"]) for path, entry in tables if isinstance(entry.get("time"), list)}
+    parts = [_Part(variables.table_bytes(count), f"{path}.time",
+                   f"got {count} rows: the kernel's table of them holds {variables.TABLE_VALUES} values per row x "
+                   f"{variables.BYTES_PER_VALUE} bytes = {variables.size_text(variables.table_bytes(count))}",
+                   lambda room: f"at most {math.floor(room / variables.table_bytes(1))} rows")
+             for path, count in rows.items()]
+    sampled = _sampled_part(f"{where}.maneuver", maneuver, _modes(_section(maneuver, "design").get("modes", modes)),
+                            t_end)
+    shaper = _shaper_part(f"{where}.shaper", _section(case, "shaper"), max(rows.values(), default=2))
+    return parts + [part for part in (sampled, shaper) if part is not None]
+
+
+def _sampled_part(where: str, maneuver: Mapping, design_modes: int | None, t_end: float) -> _Part | None:
+    """The per-sample arrays of a sampled controller (``maneuver.sampling``), None without one: its
+    readings are the design's states (the exact estimator) or its sensors; it estimates the design's
+    states and the commands its delay holds back (filtered differences: two per sensor)."""
+    sampling, design = _section(maneuver, "sampling"), _section(maneuver, "design")
+    sample_time, delay = _positive(sampling.get("sample_time")), _number(sampling.get("delay", 0.0))
+    design_model, kind = _name(design.get("model")), _name(_section(sampling, "estimator").get("kind", "exact"))
+    sensors = sampling.get("sensors") if isinstance(sampling.get("sensors"), list) else []
+    if maneuver.get("kind") != "state_feedback" or sample_time is None or delay is None or delay < 0:
+        return None
+    if design_model in DESIGN_ONLY_MODELS:
+        states = len(LUMPED_STATES)
+    elif design_model in MODELS and design_modes is not None:
+        states = len(MODELS[design_model].state_names(design_modes))
+    else:
+        return None  # the schema reports the design
+    lags = math.floor(delay) + (1 if delay > math.floor(delay) else 0)  # hubbeam.linear.discrete.discretise
+    readings, estimated = {"exact": (states, states + lags), "kalman": (len(sensors), states + lags),
+                           "filtered_differences": (len(sensors), 2 * len(sensors))}.get(kind, (None, None))
+    if readings is None:
+        return None  # the schema reports the estimator
+    count, values = variables.sample_count(t_end, sample_time), variables.sample_values(readings, estimated)
+    size = variables.sampled_loop_bytes(t_end, sample_time, readings, estimated)
+
+    def allowed(room: float) -> str:
+        samples = math.floor(room / (variables.BYTES_PER_VALUE * values))
+        return (f"sample_time >= {_rounded_up(t_end / (samples - 1))} s (at most {samples} samples up to t_end = "
+                f"{t_end:g} s), a shorter t_end" if samples >= 2 else "a shorter t_end")
+
+    return _Part(size, f"{where}.sampling.sample_time",
+                 f"got {sample_time:g} s: the sampled controller runs {count} samples up to t_end = {t_end:g} s, each "
+                 f"holding {values} values ({readings} readings, {estimated} estimated states and "
+                 f"{variables.SAMPLE_VALUES} of the loop itself) x {variables.BYTES_PER_VALUE} bytes = "
+                 f"{variables.size_text(size)}", allowed)
+
+
+def _shaper_part(where: str, shaper: Mapping, stops: int) -> _Part | None:
+    """A command shaper's impulses (one shaper per mode, convolved) and the ``stops`` of the
+    maneuver each of them shifts; None without a shaper."""
+    kind = _name(shaper.get("kind"))
+    key = "frequencies" if "frequencies" in shaper else "modes"
+    given = shaper.get(key, [1])
+    if kind not in variables.SHAPER_IMPULSES or not isinstance(given, list) or not given:
+        return None  # the schema reports it
+    count = len(given)
+    impulses = variables.shaper_impulses(kind, count)
+    size = variables.shaper_bytes(impulses, stops)
+
+    def allowed(room: float) -> str:
+        most = 0
+        while variables.shaper_bytes(variables.shaper_impulses(kind, most + 1), stops) <= room:
+            most += 1
+        return f"at most {most} {key} for a {kind} shaper" if most else f"no {kind} shaper"
+
+    return _Part(size, f"{where}.{key}", f"got {count} {key}: the {kind} shaper convolves one per mode, up to "
+                 f"{variables.SHAPER_IMPULSES[kind]}^{count} = {impulses} impulses, each shifting the {stops} stops "
+                 f"of the maneuver: {variables.size_text(size)}", allowed)
+
+
+def _rounded_up(value: float) -> str:
+    """``value`` > 0 rounded up to three significant digits, as text."""
+    scale = 10.0 ** (math.floor(math.log10(value)) - 2)
+    return f"{math.ceil(value / scale * (1 - 1e-12)) * scale:.3g}"
 
 
 def _sweep_memory_problems(sweeps: Mapping, default_modes: int, budget_mb: float) -> list[Problem]:
@@ -214,7 +334,7 @@ def _case_entry_problems(where: str, case: Mapping) -> list[Problem]:
     problems = []
     for path, entry, kinds in ((f"{where}.maneuver", maneuver, MANEUVER_PARAMETERS),
                                (f"{where}.maneuver.reference", reference, REFERENCE_PARAMETERS)):
-        columns = kinds.get(entry.get("kind"), ())
+        columns = kinds.get(_name(entry.get("kind")), ())
         if "time" not in columns:
             continue
         problems += _table_problems(path, entry, "time", columns[1:], "s")
@@ -236,15 +356,16 @@ def _initial_problems(where: str, case: Mapping, modes: int | None, check_speed:
     no axial coordinates for a model that keeps none (Eq. 40), and, if ``check_speed`` (its
     maneuver's tables are in order), for a prescribed hub the maneuver's own speed at ``t = 0``."""
     spec = _section(case, "initial")
-    model = MODELS.get(case.get("model"))
+    model = MODELS.get(_name(case.get("model")))
     problems = []
     for key in INITIAL_MODAL_KEYS:
         value = spec.get(key)
         if not isinstance(value, list) or any(_number(v) is None for v in value):
             continue  # the schema reports it
         if modes is not None and len(value) != modes:
+            source = f"{where}.modes" if "modes" in case else "numerics.modes"
             problems.append(Problem(f"{where}.initial.{key}", f"got {show(value)}; allowed: a list of {modes} "
-                                    "numbers, one per mode (kg1/2 m, or kg1/2 m s-1 for rates)"))
+                                    f"numbers, one per mode ({source} = {modes}; kg1/2 m, or kg1/2 m s-1 for rates)"))
         elif key in ("q1", "q1_dot") and any(value) and model is not None and not model.keeps_axial:
             problems.append(Problem(f"{where}.initial.{key}", f"got {show(value)}; allowed: zeros or no {key}: "
                                     f"{model.name} keeps no axial coordinates (q1 = 0, Eq. 40)"))
@@ -270,17 +391,25 @@ def _feedback_problems(where: str, case: Mapping, modes: int | None) -> list[Pro
     if maneuver.get("kind") != "state_feedback" or modes is None:
         return []
     problems = []
-    model, design = MODELS.get(case.get("model")), _section(maneuver, "design")
-    named = [("gains", _section(maneuver, "gains"), model, ())]
-    named.append(("design.weights", _section(design, "weights"), MODELS.get(design.get("model")), MEASURED_SIGNALS))
-    for key, values, owner, signals in named:
-        if owner is None:
+    model, design = MODELS.get(_name(case.get("model"))), _section(maneuver, "design")
+    design_modes = _modes(design.get("modes", modes))
+    names = {"gains": (_section(maneuver, "gains"),
+                       None if model is None else (f"{model.name} with {modes} modes", model.state_names(modes)))}
+    if _design_model(maneuver) in DESIGN_ONLY_MODELS:  # the lumped model: its states and outputs
+        names["design.weights"] = (_section(design, "weights"), (f"the {design['model']} model",
+                                                                 LUMPED_STATES + LUMPED_OUTPUTS))
+    elif _design_model(maneuver) is not None and design_modes is not None:
+        owner = MODELS[design["model"]]
+        names["design.weights"] = (_section(design, "weights"), (f"{owner.name} with {design_modes} modes",
+                                                                 owner.state_names(design_modes) + MEASURED_SIGNALS))
+    for key, (values, known) in names.items():
+        if known is None:
             continue  # the schema reports the model
-        allowed_names = owner.state_names(modes) + signals
-        problems += [Problem(f"{where}.{key}.{name}", f"unknown name for {owner.name} with {modes} modes; allowed: "
+        what, allowed_names = known
+        problems += [Problem(f"{where}.{key}.{name}", f"unknown name for {what}; allowed: "
                              f"{', '.join(allowed_names)}") for name in values if name not in allowed_names]
     reference = _section(maneuver, "reference")
-    if maneuver.get("feedforward") is True and reference.get("kind") in REFERENCES \
+    if maneuver.get("feedforward") is True and _name(reference.get("kind")) in REFERENCES \
             and not REFERENCES[reference["kind"]].gives_acceleration:
         problems.append(Problem(f"{where}.feedforward", f"got true with reference.kind = {reference['kind']!r}; "
                                 "allowed: a reference whose acceleration is known (prescribed, Eq. 43), or "
@@ -294,9 +423,11 @@ def _drive_problems(where: str, case: Mapping) -> list[Problem]:
     model needs a drive and its held-hub frequency; a sampled controller runs a design, with sensors
     its estimator can use."""
     maneuver = _section(case, "maneuver")
-    record = MANEUVERS.get(maneuver.get("kind"))
+    record = MANEUVERS.get(_name(maneuver.get("kind")))
     if record is None:
         return []  # the schema reports the kind
+    if "drive" in case and not isinstance(case["drive"], dict):
+        return []  # the schema reports the drive; whether one is given is unknown
     driven = isinstance(case.get("drive"), dict)
     problems = []
     if record.needs_drive and not driven:
@@ -305,6 +436,8 @@ def _drive_problems(where: str, case: Mapping) -> list[Problem]:
     if driven and not record.takes_drive:
         problems.append(Problem(f"{where}.drive", f"given with maneuver.kind = {record.kind!r}, an open-loop torque; "
                                 "allowed: a voltage_table (or a controller) with a drive, or no drive"))
+    if "design" in maneuver and not _design_model(maneuver):  # the schema reports the design
+        return problems + _sampling_problems(f"{where}.maneuver", maneuver, None)
     design = _section(maneuver, "design")
     if "torque_weight" in design and driven:
         problems.append(Problem(f"{where}.maneuver.design.torque_weight", "given with a drive, whose input is the "
@@ -320,15 +453,24 @@ def _drive_problems(where: str, case: Mapping) -> list[Problem]:
         problems.append(Problem(f"{where}.maneuver.design.model", f"got {design['model']!r} without a drive; "
                                 "allowed: a hub-beam model, or a case with a drive (the lumped model's input is the "
                                 "voltage)"))
-    if "held_frequency" in design and design.get("model") in MODELS:
+    if "held_frequency" in design and _name(design.get("model")) in MODELS:
         problems.append(Problem(f"{where}.maneuver.design.held_frequency", f"given with model = "
                                 f"{design['model']!r}; allowed: only with {', '.join(DESIGN_ONLY_MODELS)}"))
     return problems + _sampling_problems(f"{where}.maneuver", maneuver, lumped)
 
 
-def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Problem]:
+def _design_model(maneuver: Mapping) -> str | None:
+    """The name of the model of ``maneuver``'s LQR design, None without a design or when the schema
+    refuses the design or its model."""
+    model = _name(_section(maneuver, "design").get("model"))
+    return model if model in MODELS or model in DESIGN_ONLY_MODELS else None
+
+
+def _sampling_problems(where: str, maneuver: Mapping, lumped: bool | None) -> list[Problem]:
     """A sampled controller runs a design; the exact estimator reads the design's states (no sensors),
-    the filtered differences need the lumped design and its two angles, a Kalman filter sensors."""
+    the filtered differences need the lumped design (``lumped``; None: a design the schema refuses)
+    and its two angles, a Kalman filter sensors. What depends on an estimator the schema refuses is
+    left to it."""
     sampling = _section(maneuver, "sampling")
     if not sampling:
         return []
@@ -336,9 +478,13 @@ def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Prob
     if "design" not in maneuver:
         problems.append(Problem(f"{where}.sampling", "given without a design; allowed: a design (LQR) to sample, "
                                 "not gains or output_feedback"))
-    estimator = _section(sampling, "estimator").get("kind", "exact")
+    estimator = sampling.get("estimator", {"kind": "exact"})
+    estimator = estimator.get("kind") if isinstance(estimator, dict) else None
+    if estimator not in ("exact", "kalman", "filtered_differences"):
+        return problems  # the schema reports the estimator
     sensors = sampling.get("sensors") if isinstance(sampling.get("sensors"), list) else None
-    signals = [sensor.get("signal") for sensor in sensors or [] if isinstance(sensor, dict)]
+    signals = [sensor.get("signal") for sensor in sensors or [] if isinstance(sensor, dict)
+               and isinstance(sensor.get("signal"), str)]  # the schema reports other signals
     if estimator == "exact" and sampling.get("reduce") is True:
         problems.append(Problem(f"{where}.sampling.reduce", "true with the exact estimator, whose readings are the "
                                 "design's states (a truncated model's are modal coordinates); allowed: a kalman "
@@ -356,7 +502,7 @@ def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Prob
         problems.append(Problem(f"{where}.sampling.sensors", f"missing for the {estimator} estimator; allowed: "
                                 "a list of sensors"))
     if estimator == "filtered_differences":
-        if not lumped:
+        if lumped is False:
             problems.append(Problem(f"{where}.sampling.estimator.kind", "got 'filtered_differences' with a design "
                                     f"on a hub-beam model; allowed: a design on {', '.join(DESIGN_ONLY_MODELS)} "
                                     "(its states are the measured angles and their rates), or kalman or exact"))
@@ -365,7 +511,23 @@ def _sampling_problems(where: str, maneuver: Mapping, lumped: bool) -> list[Prob
                                     "deflection_angle, once each, for the filtered differences"))
     if len(set(signals)) < len(signals):
         problems.append(Problem(f"{where}.sampling.sensors", f"measure {signals}; allowed: each signal once"))
-    return problems
+    return problems + _process_noise_problems(f"{where}.sampling.estimator", _section(sampling, "estimator"))
+
+
+def _process_noise_problems(where: str, estimator: Mapping) -> list[Problem]:
+    """A Kalman filter needs process noise: without any (``input_noise`` 0, its default, and no
+    ``state_noise``) it leaves the free hub's rigid-body mode (``z = 1``, which every design has)
+    undisturbed, and ``hubbeam.control.kalman`` refuses it."""
+    if estimator.get("kind") != "kalman":
+        return []
+    noise, states = estimator.get("input_noise", 0.0), estimator.get("state_noise", {})
+    if _number(noise) != 0.0 or not isinstance(states, dict) or any(_number(v) != 0.0 for v in states.values()):
+        return []  # process noise given, or a value the schema reports
+    given = f"got {noise!r}" if "input_noise" in estimator else "missing (default 0)"
+    return [Problem(f"{where}.input_noise", f"{given} with no state_noise: the Kalman filter would have no process "
+                    "noise, which leaves the free hub's rigid-body mode (z = 1) undisturbed, and the filter is "
+                    "refused; allowed: input_noise > 0 (process noise on the input: N m, or V with a drive), or "
+                    "state_noise > 0 on a state that moves that mode (such as theta_dot)")]
 
 
 def _root_problems(where: str, case: Mapping) -> list[Problem]:
@@ -422,15 +584,15 @@ def _shaper_problems(where: str, case: Mapping, modes: int | None) -> list[Probl
     return problems
 
 
-#: the forms of a beam (schema ``beam.allOf``): (condition, title, the keys of the form)
-BEAM_FORMS = tuple((rule["if"], rule["then"]["title"], tuple(rule["then"]["required"]))
+#: the forms of a beam (schema ``beam.allOf``): (a validator of its condition, title, the keys of the form)
+BEAM_FORMS = tuple((Validator(rule["if"]), rule["then"]["title"], tuple(rule["then"]["required"]))
                    for rule in SCHEMA["properties"]["beam"]["allOf"])
 
 
 def _beam_problems(beam: Mapping, length: float | None) -> list[Problem]:
     """A beam has the keys of one form only (:data:`BEAM_FORMS`; the schema requires the form's
     keys); stations run from 0 to L."""
-    own = next((keys for condition, _, keys in BEAM_FORMS if Validator(condition).is_valid(beam)), ())
+    own = next((keys for condition, _, keys in BEAM_FORMS if condition.is_valid(beam)), ())
     given = next((key for key in own if key in beam), None)
     forms = "; ".join(f"{title.removeprefix('for ')}: {', '.join(keys)}" for _, title, keys in BEAM_FORMS)
     problems = [Problem(f"beam.{key}", f"got {show(beam[key])}; not allowed together with beam.{given} "
@@ -499,7 +661,7 @@ def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
                 problems.append(Problem(f"{where}.grid.tip_position.stop", f"got {stop}; allowed: a "
                                         f"position on the beam, <= beam.length = {length}"))
         maneuver = _section(spec, "maneuver")
-        needed = MANEUVER_PARAMETERS.get(maneuver.get("kind"))
+        needed = MANEUVER_PARAMETERS.get(_name(maneuver.get("kind")))
         if needed is not None:
             for key in ("wf", "tf", "tau_max"):
                 fixed, swept = key in maneuver, key in grid
@@ -526,6 +688,8 @@ def _sweep_problems(sweeps: Mapping, length: float | None) -> list[Problem]:
                                     f"got {position}; allowed: 0 <= position <= beam.length = {length}"))
         models = spec.get("models") if isinstance(spec.get("models"), list) else []
         figure = _section(spec, "figure")
+        if not models or not all(_name(model) in MODELS for model in models):
+            continue  # the schema reports the models
         for key in ("model", "reference"):
             if key in figure and figure[key] not in models:
                 problems.append(Problem(f"{where}.figure.{key}",
@@ -622,7 +786,20 @@ def _integer(value: Any) -> int | None:
     return value if isinstance(value, int) and not isinstance(value, bool) else None
 
 
+def _modes(value: Any) -> int | None:
+    """``value`` if it is a number of modes the schema accepts (an integer in ``MIN_MODES..MAX_MODES``),
+    else None: the schema reports it, and a check must not build names or sizes from it."""
+    modes = _integer(value)
+    return modes if modes is not None and limits.MIN_MODES <= modes <= limits.MAX_MODES else None
+
+
+def _name(value: Any) -> str | None:
+    """``value`` if it is text (a name to look up: a model, a kind), else None (the schema reports it)."""
+    return value if isinstance(value, str) else None
+
+
 def _non_finite_numbers_and_non_text_keys(node: Any, parts: list) -> list[Problem]:
+    """Keys that are not text, and numbers that are not finite or beyond :data:`LARGEST_NUMBER`."""
     problems = []
     if isinstance(node, dict):
         for key, value in node.items():
@@ -636,4 +813,8 @@ def _non_finite_numbers_and_non_text_keys(node: Any, parts: list) -> list[Proble
             problems += _non_finite_numbers_and_non_text_keys(item, parts + [index])
     elif isinstance(node, float) and not math.isfinite(node):
         problems.append(Problem(key_path(parts), f"got {node}; allowed: a finite number"))
+    elif isinstance(node, (int, float)) and not isinstance(node, bool) and abs(node) > LARGEST_NUMBER:
+        problems.append(Problem(key_path(parts), f"got {node:g}; allowed: a number of magnitude at most "
+                                f"{LARGEST_NUMBER:g} (SI units; beyond, the products of the model's quantities "
+                                "overflow double precision)"))
     return problems

@@ -128,10 +128,9 @@ def coerce_numbers(node: Any, schema: dict, parts: list | None = None, root: Any
         where = parts + [key]
         if isinstance(value, (dict, list)):
             coerce_numbers(value, schema, where, root)
-        elif isinstance(value, str) and _schema_at(where, schema, root).get("type") == "number":
-            number = _finite_float(value)
-            if number is not None:
-                node[key] = number
+        elif isinstance(value, str) and (number := _finite_float(value)) is not None \
+                and _schema_at(where, schema, root).get("type") == "number":  # the schema's node only for number text
+            node[key] = number
 
 
 def _finite_float(text: str) -> float | None:
@@ -145,41 +144,75 @@ def _finite_float(text: str) -> float | None:
 
 def explain(error: jsonschema.ValidationError, schema: dict, root: Any = None) -> list[Problem]:
     """Turn one schema error into problems that name key, value and what is allowed; ``root`` is
-    the validated instance (it selects the branch of a kind whose keys are described)."""
+    the validated instance (it selects the branch of a kind whose keys are described). Any error of
+    the schema gets words: a rule without words of its own is told by what the schema allows at
+    the key (:func:`allowed`)."""
     parts = list(error.absolute_path)
     kind, instance = error.validator, error.instance
-    if "propertyNames" in error.absolute_schema_path:
-        noun = "case name" if parts[-1:] == ["cases"] else "name"
-        return [Problem(key_path(parts + [instance]),
-                        f"illegal {noun} {instance!r}; allowed: {_pattern_words(error.validator_value)}, "
-                        "as the name becomes a file name")]
+    if "propertyNames" in error.absolute_schema_path:  # a name of a mapping: the instance is the name
+        return [_name_problem(parts, error)]
     if kind == "pattern":
         return [Problem(key_path(parts), f"got {show(instance)}; allowed: {_pattern_words(error.validator_value)}")]
     branch = _branch_condition(error)
-    if kind == "required":
+    if kind == "required" and isinstance(instance, dict):
         why = f"required {branch}" if branch else "required"
         return [Problem(key_path(parts + [key]), f"missing ({why}); allowed: {allowed(parts + [key], schema, root)}")
                 for key in error.validator_value if key not in instance]
-    if kind == "not":  # keys a branch forbids: not: {required: [...]} or not: {anyOf: [{required: [...]}, ...]}
-        negated = error.validator_value
+    if kind == "not" and isinstance(instance, dict):  # keys a branch forbids: not: {required: [...]} or
+        negated = error.validator_value  # not: {anyOf: [{required: [...]}, ...]}
         forbidden = [key for rule in negated.get("anyOf", [negated]) for key in rule.get("required", [])]
-        return [Problem(key_path(parts + [key]), f"got {show(instance[key])}; not allowed {branch or 'here'}")
-                for key in forbidden if key in instance]
-    if kind == "additionalProperties":
-        known = ", ".join(error.schema.get("properties", {}))
+        found = [Problem(key_path(parts + [key]), f"got {show(instance[key])}; not allowed {branch or 'here'}")
+                 for key in forbidden if key in instance]
+        if found:
+            return found
+    if kind == "not" and not isinstance(instance, dict):
+        return []  # a rule on the keys of a mapping: the type error of the same value tells it
+    if kind == "additionalProperties" and isinstance(instance, dict):
+        known = error.schema.get("properties", {})
+        names = ", ".join(known)
         if branch:
             return [Problem(key_path(parts + [key]), f"got {show(instance[key])}; not allowed {branch} "
-                            f"(allowed keys: {known})") for key in instance if key not in error.schema["properties"]]
+                            f"(allowed keys: {names})") for key in instance if key not in known]
         return [Problem(key_path(parts + [key]), f"unknown key (value {show(instance[key])}); allowed keys "
-                        f"here: {known}") for key in instance if key not in error.schema.get("properties", {})]
-    if kind == "minProperties":
-        return [Problem(key_path(parts), "got no entries; allowed: at least one case")]
+                        f"here: {names}") for key in instance if key not in known]
+    if kind in ("oneOf", "anyOf") and _keys_of_branches(error.validator_value):
+        if not isinstance(instance, dict):
+            return []  # a rule on the keys of a mapping: the type error of the same value tells it
+        keys = _keys_of_branches(error.validator_value)
+        given = [key for key in keys if key in instance]
+        count = "exactly one" if kind == "oneOf" else "at least one"
+        return [Problem(key_path(parts), f"got {'the keys ' + ', '.join(given) if given else 'none of them'}; "
+                        f"allowed: {count} of the keys {', '.join(keys)}")]
+    if kind == "minProperties" and isinstance(instance, dict):
+        least, cases = error.validator_value, parts[-1:] == ["cases"]
+        what = (f"one {'case' if cases else 'entry'}" if least == 1
+                else f"{least} {'cases' if cases else 'entries'}")
+        return [Problem(key_path(parts), f"got {len(instance) or 'no'} entries; allowed: at least {what} -- "
+                        f"{allowed(parts, schema, root)}")]
     if kind == "uniqueItems":
         return [Problem(key_path(parts), f"got {show(instance)}; allowed: distinct values")]
     got = f"got {show(instance)}"
     if kind == "type":
         got += f" ({type_name(instance)})"
     return [Problem(key_path(parts), f"{got}; allowed: {allowed(parts, schema, root)}")]
+
+
+def _name_problem(parts: list, error: jsonschema.ValidationError) -> Problem:
+    """The problem of a name that a mapping's ``propertyNames`` refuses (a pattern, or a list of
+    names): the name is the value found."""
+    name = error.instance
+    noun = "case name" if parts[-1:] == ["cases"] else "name"
+    why = ", as the name becomes a file name" if error.validator == "pattern" else ""
+    return Problem(key_path(parts + [name]), f"illegal {noun} {name!r}; allowed: {_allowed_values(error.schema)}{why}")
+
+
+def _keys_of_branches(branches: Any) -> list[str]:
+    """The keys of branches that each only require keys (``oneOf: [{required: [gains]}, ...]``),
+    [] for branches of another form."""
+    if not isinstance(branches, list) or not all(isinstance(rule, dict) and set(rule) == {"required"}
+                                                 for rule in branches):
+        return []
+    return [key for rule in branches for key in rule["required"]]
 
 
 #: the patterns of the schema in words
@@ -190,8 +223,10 @@ _PATTERNS = {"^[A-Za-z0-9_-]+$": "letters, digits, '_' and '-' only",
                                                  "(a dotted path such as maneuver.design.speed)"}
 
 
-def _pattern_words(pattern: str) -> str:
+def _pattern_words(pattern: Any) -> str:
     """A pattern of the schema said in words (:data:`_PATTERNS`; a test keeps it complete)."""
+    if not isinstance(pattern, str):
+        return "text as described in docs/configuration.md"
     return _PATTERNS.get(pattern, f"text matching the pattern {pattern}")
 
 
@@ -254,11 +289,13 @@ def allowed(parts: list, schema: dict, root: Any = None) -> str:
     """What the schema allows at ``parts`` (in the instance ``root``, which selects the branches of
     kinds), followed by the key's description."""
     node = _schema_at(parts, schema, root)
-    text = _allowed_values(node)
+    text = _allowed_values(node, schema)
     return f"{text} -- {node['description'].strip()}" if "description" in node else text
 
 
-def _allowed_values(node: dict) -> str:
+def _allowed_values(node: dict, schema: dict | None = None) -> str:
+    """What ``node`` (its ``$ref`` resolved in ``schema``, default :data:`SCHEMA`) allows, in words."""
+    node = _resolve(node, SCHEMA if schema is None else schema) if isinstance(node, dict) else {}
     if "enum" in node:
         return "one of " + ", ".join(map(str, node["enum"]))
     if "const" in node:
@@ -271,15 +308,20 @@ def _allowed_values(node: dict) -> str:
         return ("an integer" if kind == "integer" else "a number") + (" " + " and ".join(bounds) if bounds else "")
     if kind == "array":
         distinct = " distinct" if node.get("uniqueItems") else ""
-        return f"a list of at least {node.get('minItems', 0)}{distinct} values, each {_allowed_values(node['items'])}"
+        size = (f"{node['minItems']}" if node.get("maxItems") == node.get("minItems", 0)
+                else f"at least {node.get('minItems', 0)}" + (f" and at most {node['maxItems']}" if "maxItems" in node
+                                                              else ""))
+        each = f", each {_allowed_values(node['items'], schema)}" if "items" in node else ""
+        return f"a list of {size}{distinct} values{each}"
     if kind == "object" and "enum" in node.get("properties", {}).get("kind", {}) and "allOf" in node:
         return f"a mapping with a kind ({', '.join(node['properties']['kind']['enum'])}) and the keys of its kind"
     if kind == "object" and "properties" in node:
         return "a mapping with keys " + ", ".join(node["properties"])
     if kind == "object":
         return "a mapping"
-    if kind == "string":
-        return _pattern_words(node["pattern"]) if "pattern" in node else "text"
+    if kind == "string" or (kind is None and "pattern" in node):
+        text = _pattern_words(node["pattern"]) if "pattern" in node else "text"
+        return f"{text}, not empty" if node.get("minLength", 0) > 0 and "pattern" not in node else text
     if kind == "boolean":
         return "true or false"
     return "a value as described in docs/configuration.md"

@@ -144,7 +144,8 @@ def kalman_filter(dm, sensors, input_noise: float = 0.0, state_noise: Mapping[st
     what = f"the Kalman filter of {dm.continuous.name}"
     nyquist_check(dm, what)
     observability_check(dm, Cm, what)
-    reachability_check(dm, G @ np.sqrt(Qw), what, "the process noise", unit_circle_only=True)
+    reachability_check(dm, G @ np.sqrt(Qw), what, "the process noise (estimator.input_noise, estimator.state_noise)",
+                       unit_circle_only=True)
     L, P, poles = ct.dlqe(dm.A, G, Cm, Qw, Rv)
     P = np.asarray(P)
     M = P @ Cm.T @ np.linalg.inv(Cm @ P @ Cm.T + Rv)

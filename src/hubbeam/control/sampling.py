@@ -278,7 +278,7 @@ def reachability_check(dm, columns: np.ndarray, what: str, by: str, unit_circle_
             continue
         place = "on the unit circle" if unit_circle_only else "not asymptotically stable"
         raise ValueError(f"{what}: {_plant_mode(dm, z)} (z = {z:.6g}, {place}, Ts = {dm.Ts:g} s) is left "
-                         f"undisturbed by {by} (PBH on its left eigenvectors); allowed: {by} that move it")
+                         f"undisturbed by {by} (PBH on its left eigenvectors); allowed: {by} that moves it")
 
 
 def stability_check(dm, poles: np.ndarray, what: str) -> None:

@@ -3,7 +3,10 @@
 The tables here name every variable :func:`hubbeam.simulation.simulate.build_dataset` writes; the startup
 checks (:mod:`hubbeam.configuration.load`) count them to estimate, before anything runs, the memory a case, a
 validation run or a sweep needs (:func:`simulation_bytes`, :func:`sweep_bytes`) and reject one
-above ``numerics.memory_budget_mb``. Importing this module is cheap (no numba, no xarray).
+above ``numerics.memory_budget_mb``. A case also holds arrays that grow with other counts than its
+output times, counted here too: a sampled controller's arrays per sample (:func:`sampled_loop_bytes`)
+and a command shaper's impulses, convolved with the maneuver's table (:func:`shaper_bytes`,
+:func:`table_bytes`). Importing this module is cheap (no numba, no xarray).
 """
 
 from __future__ import annotations
@@ -132,6 +135,78 @@ def sweep_bytes(points: int, stored: int, t_end: float, output_step: float, mode
     than :func:`output_count`)."""
     per_run = (output_count(t_end, output_step) + 2) * (1 + 2 * (1 + 2 * modes))
     return BYTES_PER_VALUE * (points * stored + threads * per_run)
+
+
+#: 8-byte values a sampled controller's run holds per sample ``t_k`` besides those of its sensors and
+#: estimated states (``hubbeam.simulation.sampled.loop_arrays`` and ``held_table``): the sample time and
+#: the switch time ``(k + D) Ts``, the stops of the integration (their union, two per sample, and the
+#: concatenation and sorted copy numpy's ``union1d`` makes of them, four more), the held command's
+#: table (a time and a value), and the records' ``t``, ``command`` and ``applied``
+SAMPLE_VALUES = 2 + 2 + 4 + 2 + 3
+#: values per sample and sensor: its noise draw and the records ``measured`` and ``sensed``
+SENSOR_VALUES = 3
+#: values per sample and estimated state: the record ``estimate``
+ESTIMATE_VALUES = 1
+
+
+def sample_count(t_end: float, sample_time: float) -> int:
+    """Samples ``t_k = k Ts <= t_end`` of a sampled controller (``SampledLoop.sample_times``)."""
+    return int(math.floor(t_end / sample_time + 1e-9)) + 1
+
+
+def sample_values(sensors: int, estimated: int) -> int:
+    """Values a sampled controller's run holds per sample with ``sensors`` sensors (readings) and
+    ``estimated`` estimated states (:data:`SAMPLE_VALUES` and the rest)."""
+    return SAMPLE_VALUES + SENSOR_VALUES * sensors + ESTIMATE_VALUES * estimated
+
+
+def sampled_loop_bytes(t_end: float, sample_time: float, sensors: int, estimated: int) -> int:
+    """Bytes of the per-sample arrays of a sampled controller run to ``t_end`` every ``sample_time``
+    (:func:`sample_count` x :func:`sample_values` x 8): its records, which the dataset keeps, its
+    noise, its sample and switch times, the stops of the integration and the held command's table."""
+    return BYTES_PER_VALUE * sample_count(t_end, sample_time) * sample_values(sensors, estimated)
+
+
+#: impulses of a shaper of each kind on one mode (``hubbeam.model.shapers``); a shaper on several modes
+#: convolves one per mode, so it has at most their product
+SHAPER_IMPULSES = {"ZV": 2, "ZVD": 3, "EI": 3}
+#: values per impulse while a shaper on several modes is convolved and held
+#: (``hubbeam.model.shapers.convolve``: the outer sums and products of times and amplitudes, the sorted
+#: keys, their first indices and inverse, the merged amplitudes; the kernel's array of times and amplitudes)
+IMPULSE_VALUES = 2 + 4 + 2
+#: values per impulse and stop of the maneuver the shaper shifts (``hubbeam.model.shapers.shaped_stops``:
+#: the outer sum, its sorted copy, the distinct stops)
+SHIFTED_STOP_VALUES = 3
+
+
+def shaper_impulses(kind: str, modes: int) -> int:
+    """The most impulses a ``kind`` shaper on ``modes`` modes has (:data:`SHAPER_IMPULSES`; coinciding
+    impulses merge, so it may have fewer)."""
+    return SHAPER_IMPULSES[kind] ** modes
+
+
+def shaper_bytes(impulses: int, stops: int) -> int:
+    """Bytes of a shaper of ``impulses`` impulses shaping a maneuver with ``stops`` stops (times where
+    it is not smooth, besides its start): the convolution and the shifted stops."""
+    return BYTES_PER_VALUE * impulses * (IMPULSE_VALUES + SHIFTED_STOP_VALUES * (stops + 1))
+
+
+#: values a tabulated maneuver (or reference) holds per row while the kernels' packed table is built
+#: (``hubbeam.model.maneuvers.packed_table``): the table (time, integral, four cubic coefficients), its
+#: parts before they are joined, the row's time and value as floats and the spline's own coefficients
+TABLE_VALUES = 6 + 6 + 2 + 4
+
+
+def table_bytes(rows: int) -> int:
+    """Bytes of the kernel's packed table of a tabulated maneuver of ``rows`` rows, and its spline."""
+    return BYTES_PER_VALUE * rows * TABLE_VALUES
+
+
+def size_text(size: int) -> str:
+    """``size`` bytes in KiB to PiB, for a message."""
+    exponent = min(max(int(math.log(max(size, 1), 1024)), 1), 5)
+    unit = ("B", "KiB", "MiB", "GiB", "TiB", "PiB")[exponent]
+    return f"{size / 1024**exponent:.4g} {unit}"
 
 
 def budget_text(size: int, budget_mb: float) -> str:

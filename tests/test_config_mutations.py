@@ -7,7 +7,7 @@ each of :func:`mutations`: a wrong type (text for a number, a number for text), 
 scalar, a mapping or a scalar for a list, a scalar or a list for a mapping, a negative and a huge
 number where a number is, NaN, a mapping with an unknown key added, and the empty values None,
 ``""``, ``[]`` and ``{}``. The one check of the workflow,
-:func:`hubbeam.pipeline.plan.checked_configuration`, runs on each mutant (with the configuration's
+:func:`hubbeam.check.check_configuration`, runs on each mutant (with the configuration's
 own file, which locates its ``file:`` tables).
 
 The rule: the check returns no problem (the mutant is a valid configuration), or problems that
@@ -60,9 +60,6 @@ the check rereads for repeated keys are read once. So the whole takes about 35 s
 three configurations with the most keys (:data:`LARGEST`, about 25 s) are ``slow``
 (tests/conftest.py), out of ``make test-fast``.
 
-Crashes outside the checks this suite may change are listed in :data:`KNOWN_CRASHES` and left out of
-the rule; the strict xfail test :func:`test_known_crash_outside_the_checks` fails as soon as they are
-fixed.
 """
 
 from __future__ import annotations
@@ -79,10 +76,20 @@ import pytest
 
 import hubbeam.configuration.load as load
 import hubbeam.control.cases as control_cases
+from hubbeam.check import check_configuration
 from hubbeam.configuration.grids import GRIDS_VALIDATOR, grid_cases
-from hubbeam.configuration.load import read_config_file
+from hubbeam.configuration.load import ConfigError, read_config_file
 from hubbeam.configuration.schema import key_path
-from hubbeam.pipeline.plan import checked_configuration
+from hubbeam.reporting.products import PAPER, PAPER_PRODUCTS, product_cases
+
+
+def checked_configuration(config, files):
+    """The one check as ``(completed configuration, settings or None, problems)``."""
+    try:
+        checked = check_configuration(config, files)
+    except ConfigError as error:
+        return getattr(error, "config", config), None, list(error.problems)
+    return checked.config, checked.settings, []
 
 REPO = Path(__file__).resolve().parents[1]
 CONFIG_FILES = ["config/config.yaml", *sorted(str(p.relative_to(REPO)) for p in (REPO / "studies").glob("*.yaml"))]
@@ -92,8 +99,6 @@ LARGEST = ["config/config.yaml", "studies/quanser_rotflex.yaml", "studies/shapin
 COLLECTIONS = (("cases",), ("case_grids",), ("readings",), ("sweeps", "maps"), ("validation", "cases"))
 #: the sections that list names of cases
 REFERENCES = ("study.comparisons", "control.sample_time.cases", "control.robustness.cases")
-#: the mutations of an unhashable value for a maneuver's or a reference's ``kind``
-UNHASHABLE = ("list_for_scalar", "empty_list", "empty_mapping")
 
 
 def mutations(value: Any) -> list[tuple[str, Any]]:
@@ -232,6 +237,8 @@ def reduced(cfg: dict, parts: tuple) -> dict:
     lists = _reference_lists(cfg)
     related = _related_lists(cfg, parts)
     named = {name for where in related for name in lists[where] if isinstance(name, str)}
+    if isinstance(cfg.get("products"), list) and PAPER in cfg["products"]:  # the cases the paper's products read
+        named |= set(product_cases(PAPER_PRODUCTS))
     # the collection whose entries the key's checks read: its entry's, or that of its section
     active = entry[:-1] if entry else next((c for c in COLLECTIONS if c[0] == parts[0]), None)
     for collection in COLLECTIONS:
@@ -344,13 +351,6 @@ def _related(path: str, key: str) -> bool:
     return longer.startswith(shorter) and longer[len(shorter)] in ".["
 
 
-def known_crash(path: str, parts: tuple, mutation: str) -> bool:
-    """A crash of :data:`KNOWN_CRASHES`: an unhashable ``kind`` of a case's maneuver or of its
-    reference, which ``hubbeam.configuration.tabular.resolve_files`` looks up before the schema."""
-    return (parts[:1] == ("cases",) and parts[2:] in (("maneuver", "kind"), ("maneuver", "reference", "kind"))
-            and mutation in UNHASHABLE)
-
-
 @functools.cache
 def configuration(path: str) -> dict:
     return unshared(read_config_file(REPO / path))
@@ -361,23 +361,6 @@ def mutants(path: str) -> Iterator[tuple[tuple, str, Any]]:
     for parts, value in nodes(configuration(path)):
         for name, new in mutations(value):
             yield parts, name, new
-
-
-def _crash_site(parts: tuple) -> str:
-    return key_path(["cases", "<name>", *parts[2:]])
-
-
-#: crashes of the check outside the files this suite's fixes may touch, every mutant :func:`known_crash`
-#: selects, by key (``cases.<name>.maneuver.kind``, ``cases.<name>.maneuver.reference.kind``) and
-#: mutation: (file, key parts). Each crashes with a TypeError in
-#: ``hubbeam.configuration.tabular.resolve_files`` (``maneuver.get("kind") in PROFILE_COLUMNS`` with a list or
-#: a mapping), before the schema. Each group is a strict xfail: fixing it makes the test fail, to drop
-#: it from here.
-KNOWN_CRASHES: dict[tuple[str, str], list[tuple[str, tuple]]] = {}
-for _path in CONFIG_FILES:
-    for _parts, _name, _ in mutants(_path):
-        if known_crash(_path, _parts, _name):
-            KNOWN_CRASHES.setdefault((_crash_site(_parts), _name), []).append((_path, _parts))
 
 
 @pytest.fixture(scope="module")
@@ -434,8 +417,6 @@ def check_every_mutation(path: str, memoised_checks) -> None:
     bases: dict = {}
     failures, count = [], 0
     for parts, name, new in mutants(path):
-        if known_crash(path, parts, name):
-            continue
         key = reduction(configuration(path), parts)
         if key not in bases:
             bases[key] = base_of(reduced(configuration(path), parts))
@@ -456,26 +437,3 @@ def check_every_mutation(path: str, memoised_checks) -> None:
             failures.append(f"{key_path(list(parts))} <- {name} ({new!r}): problems naming other keys: {stray}")
     assert count > 0
     assert not failures, f"{path}: {len(failures)} of {count} mutants failed:\n" + "\n".join(failures[:200])
-
-
-@pytest.mark.parametrize("site, name", [pytest.param(*group, marks=pytest.mark.xfail(strict=True, raises=TypeError),
-                                                     id=f"{group[0]}:{group[1]}") for group in KNOWN_CRASHES])
-def test_known_crash_outside_the_checks(site, name, memoised_checks):
-    """Every mutant of :data:`KNOWN_CRASHES` at ``site`` by ``name`` still crashes (a TypeError:
-    xfail). Fails (XPASS, strict) once ``hubbeam.configuration.tabular.resolve_files`` leaves an
-    unhashable ``kind`` to the schema and they are refused by name: then drop :func:`known_crash`
-    and :data:`KNOWN_CRASHES`; fails too when only some of them still crash."""
-    crashed = []
-    cases = KNOWN_CRASHES[site, name]
-    for path, parts in cases:
-        base = base_of(reduced(configuration(path), parts))
-        with mutated(base.cfg, parts, dict(mutations(_at(base.cfg, parts)))[name]) as mutant:
-            try:
-                checked, _, problems = memoised_checks(mutant, [str(REPO / path)])
-            except TypeError as error:
-                crashed.append(f"{path}: {key_path(list(parts))}: {error}")
-                continue
-        assert problems and all(attributed(problem, parts, candidates(parts, base, checked)) for problem in problems)
-    assert len(crashed) in (0, len(cases)), f"only {len(crashed)} of {len(cases)} still crash: {crashed}"
-    if crashed:
-        raise TypeError(f"{len(crashed)} mutants crash, e.g. {crashed[0]}")

@@ -124,11 +124,11 @@ def test_half_sine_pulse_has_the_analytic_impulse(cfg, settings):
 
 
 def test_a_bad_reading_names_the_key(cfg):
-    with pytest.raises(ReadingError, match=r"readings\.bad\.change = 'scale'"):
+    with pytest.raises(ReadingError, match=r"readings\.bad\.change: got 'scale'"):
         check_reading(Reading("bad", change="scale", value=2.0, claims=("table3_tau50",)))
     with pytest.raises(ReadingError, match=r"readings\.bad\.claims"):
         check_reading(Reading.from_dict("bad", {"change": {"case": {"modes": 1}}, "claims": ["no_such_claim"]}))
-    with pytest.raises(ReadingError, match=r"readings\.bad\.change\.maneuver = 'wiggle'"):
+    with pytest.raises(ReadingError, match=r"readings\.bad\.change\.maneuver: got 'wiggle'"):
         check_reading(Reading.from_dict("bad", {"change": {"maneuver": "wiggle"}, "claims": ["table3_tau50"]}))
 
 

@@ -98,6 +98,8 @@ def check_configuration(config: Mapping, config_files: Sequence[os.PathLike | st
             except ConfigError as error:
                 problems += error.problems
     if problems:
-        raise ConfigError(problems, files)
+        error = ConfigError(problems, files)
+        error.config = cfg  # the configuration as far as the check completed it, to say where a problem is
+        raise error
     return CheckedConfiguration(config=cfg, settings=settings, products=products, readings=FrozenMap(readings),
                                 files=files)

@@ -118,14 +118,21 @@ def resolve_files(cfg: Any, base_dir: os.PathLike | str) -> dict:
         if not isinstance(maneuver, dict):
             continue
         where = f"cases.{name}.maneuver"
-        if maneuver.get("kind") in PROFILE_COLUMNS:
+        if _tabulated(maneuver):
             problems += _inline_profile(maneuver, where, base_dir)
         reference = maneuver.get("reference")
-        if isinstance(reference, dict) and reference.get("kind") in PROFILE_COLUMNS:
+        if isinstance(reference, dict) and _tabulated(reference):
             problems += _inline_profile(reference, f"{where}.reference", base_dir)
     if problems:
         raise ConfigError(problems)
     return resolved
+
+
+def _tabulated(entry: dict) -> bool:
+    """Whether a maneuver or reference is of a tabulated kind (a kind that is not text is the schema's
+    to refuse)."""
+    kind = entry.get("kind")
+    return isinstance(kind, str) and kind in PROFILE_COLUMNS
 
 
 def _inline_profile(entry: dict, where: str, base_dir) -> list[Problem]:

@@ -28,6 +28,8 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
+from hubbeam.configuration.load import ConfigError
+from hubbeam.configuration.schema import Problem
 from hubbeam.configuration.sections import Reading
 from hubbeam.configuration.settings import Case, Eigen, Numerics, Settings, simulation_settings
 from hubbeam.model.beam import CONFIG_FIELDS
@@ -131,17 +133,19 @@ def check_reading(reading: Reading) -> None:
     """Raise :class:`ReadingError` unless ``reading`` has one known change and known claims."""
     where = f"readings.{reading.name}"
     if reading.change not in CHANGE_KINDS:
-        raise ReadingError(f"{where}.change = {reading.change!r}; allowed: a mapping with exactly one of "
+        raise ReadingError(f"{where}.change: got {reading.change!r}; allowed: a mapping with exactly one of "
                            f"{', '.join(CHANGE_KINDS)}")
     known = {claim.id for claim in claim_defs.claims()}
-    unknown = [cid for cid in reading.claims if cid not in known]
-    if unknown or not reading.claims:
-        raise ReadingError(f"{where}.claims = {list(reading.claims)!r}; allowed: a non-empty list "
-                           "of claim ids of claims.csv")
+    if not reading.claims:
+        raise ReadingError(f"{where}.claims: got []; allowed: a non-empty list of claim ids of claims.csv")
+    unknown = [k for k, cid in enumerate(reading.claims) if cid not in known]
+    if unknown:
+        raise ReadingError(f"{where}.claims[{unknown[0]}]: got {reading.claims[unknown[0]]!r}; allowed: a claim id of "
+                           "claims.csv")
     kind, value = change_of(reading)
     named = {"maneuver": MANEUVER_READINGS, "measure": MEASURES}.get(kind)
     if named is not None and value not in named:
-        raise ReadingError(f"{where}.change.{kind} = {value!r}; allowed: {', '.join(named)}")
+        raise ReadingError(f"{where}.change.{kind}: got {value!r}; allowed: {', '.join(named)}")
     if kind == "measure":
         missing = [cid for cid in reading.claims if cid not in MEASURES[value]]
         if missing:
@@ -189,7 +193,13 @@ def reading_case(reading: Reading, base: Case, settings: Settings) -> Case | Non
     if new == plain and kind != "beam":
         return None
     new["name"] = generated_name(reading.name, base.name)
-    return simulation_settings(new, settings.numerics, settings.beam.L)[0]
+    try:
+        return simulation_settings(new, settings.numerics, settings.beam.L)[0]
+    except ConfigError as error:  # a generated case's problem is the reading's change's
+        generated = f"cases.{new['name']}"
+        change = f"readings.{reading.name}.change.{kind}"
+        raise ConfigError([Problem(problem.path.replace(generated, change, 1), problem.text)
+                           if isinstance(problem, Problem) else problem for problem in error.problems]) from None
 
 
 def _tip(change: Mapping, mass: float, position: float) -> dict:

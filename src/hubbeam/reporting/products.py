@@ -176,16 +176,24 @@ class Product:
         return " ".join(parts)
 
 
+def _cases(cfg: Mapping) -> dict:
+    """The cases of ``cfg`` that are mappings (none where ``cases`` is not one: the check says so)."""
+    cases = cfg.get("cases")
+    if not isinstance(cases, Mapping):
+        return {}
+    return {name: case for name, case in cases.items() if isinstance(case, Mapping)}
+
+
 def designed_cases(cfg: Mapping) -> list[str]:
     """The cases of ``cfg`` whose state feedback is designed by LQR (``maneuver.design``), sorted."""
-    return sorted(name for name, case in cfg.get("cases", {}).items()
-                  if isinstance(case, Mapping) and "design" in case.get("maneuver", {}))
+    return sorted(name for name, case in _cases(cfg).items()
+                  if isinstance(case.get("maneuver"), Mapping) and "design" in case["maneuver"])
 
 
 def shaped_cases(cfg: Mapping, kind: str | None = None, ratios: bool = False) -> list[str]:
     """The cases of ``cfg`` whose command is shaped (``shaper``), of the shaper ``kind`` if given,
     only those designed at a ``frequency_ratio`` with ``ratios``; sorted."""
-    return sorted(name for name, case in cfg.get("cases", {}).items()
+    return sorted(name for name, case in _cases(cfg).items()
                   if isinstance(case, Mapping) and isinstance(case.get("shaper"), Mapping)
                   and kind in (None, case["shaper"].get("kind"))
                   and (not ratios or "frequency_ratio" in case["shaper"]))
@@ -496,8 +504,10 @@ PRODUCT_SETS: Mapping[str, Mapping[str, Product]] = MappingProxyType({PAPER: PAP
 
 def product_sets(cfg: Mapping) -> list[str]:
     """The product sets the configuration asks for (``products``), each checked to exist."""
-    names = list(cfg.get("products", []))
-    unknown = [name for name in names if name not in PRODUCT_SETS]
+    names = cfg.get("products", [])
+    if not isinstance(names, list):
+        raise ProductError(f"products: got {names!r}; allowed: a list of {', '.join(PRODUCT_SETS)}")
+    unknown = [name for name in names if not isinstance(name, str) or name not in PRODUCT_SETS]
     if unknown:
         raise ProductError(f"products: got {', '.join(map(repr, unknown))}; allowed: "
                            f"{', '.join(PRODUCT_SETS)}")

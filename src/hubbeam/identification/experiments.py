@@ -375,7 +375,7 @@ def read_modal_test(path: os.PathLike | str, name: str | None = None, hub: str =
     check_range(table, "mode", 1.0, math.inf, "mode numbers 1, 2, ... (1: the lowest bending mode)")
     whole = np.flatnonzero(values["mode"] != np.round(values["mode"]))
     if whole.size:
-        raise ExperimentError(f"{table.where('mode', int(whole[0]))}: {values['mode'][whole[0]]!r}; allowed: "
+        raise ExperimentError(f"{table.where('mode', int(whole[0]))}: {float(values['mode'][whole[0]])!r}; allowed: "
                               "a whole mode number")
     check_range(table, "frequency", 0.0, math.inf, "a frequency > 0 Hz", include_low=False)
     check_increasing(table, "frequency")

@@ -91,7 +91,10 @@ def read_columns(path: os.PathLike | str, columns: Sequence[ColumnSpec], minimum
     path = str(path)
     where = f"file {shown(path)}"
     specs = {spec.name: spec for spec in columns}
-    rows = read_rows(path, f"a readable CSV file of {what} with {_allowed_header(columns)}")
+    try:
+        rows = read_rows(path, f"a readable CSV file of {what} with {_allowed_header(columns)}")
+    except TableError as error:
+        raise ExperimentError(str(error)) from None
     if not rows:
         raise ExperimentError(f"{where}: empty; allowed: {_allowed_header(columns)}, then rows of numbers")
     header_line, cells = rows[0]
@@ -121,15 +124,18 @@ def read_columns(path: os.PathLike | str, columns: Sequence[ColumnSpec], minimum
         raise ExperimentError(f"{where}, line {header_line}: no column {', '.join(missing)}; allowed: "
                               f"{_allowed_header(columns)}")
     data = rows[1:]
-    if len(data) < minimum_rows:
-        raise ExperimentError(f"{where}: {len(data)} rows of values; allowed: at least {minimum_rows} rows of {what}")
     values = np.empty((len(data), len(names)))
     for k, (line, row) in enumerate(data):
         if len(row) != len(names):
             raise ExperimentError(f"{where}, line {line}: {len(row)} values; allowed: {len(names)} "
                                   f"({', '.join(names)})" + separator_hint(row, len(names)))
         for j, (name, cell) in enumerate(zip(names, row)):
-            values[k, j] = parse_number(cell, f"{where}, line {line}, column {name}")
+            try:
+                values[k, j] = parse_number(cell, f"{where}, line {line}, column {name}")
+            except TableError as error:
+                raise ExperimentError(str(error)) from None
+    if len(data) < minimum_rows:
+        raise ExperimentError(f"{where}: {len(data)} rows of values; allowed: at least {minimum_rows} rows of {what}")
     return Table(path=path, values={name: values[:, j] for j, name in enumerate(names)}, units=units,
                  lines=np.array([line for line, _ in data]), header_line=header_line)
 
@@ -141,8 +147,8 @@ def check_increasing(table: Table, column: str) -> None:
     bad = np.flatnonzero(~(steps > 0.0))
     if bad.size:
         k = int(bad[0]) + 1
-        raise ExperimentError(f"{table.where(column, k)}: {values[k]!r} after {values[k - 1]!r}; allowed: "
-                              f"values increasing strictly down the file")
+        raise ExperimentError(f"{table.where(column, k)}: {float(values[k])!r} after {float(values[k - 1])!r}; "
+                              "allowed: values increasing strictly down the file")
 
 
 def check_range(table: Table, column: str, low: float, high: float, allowed: str, include_low: bool = True,
@@ -155,7 +161,7 @@ def check_range(table: Table, column: str, low: float, high: float, allowed: str
     bad = np.flatnonzero(below | above)
     if bad.size:
         k = int(bad[0])
-        raise ExperimentError(f"{table.where(column, k)}: {values[k]!r}; allowed: {allowed}")
+        raise ExperimentError(f"{table.where(column, k)}: {float(values[k])!r}; allowed: {allowed}")
 
 
 def write_columns(path: os.PathLike | str, columns: Mapping[str, tuple[str, np.ndarray]],
@@ -182,11 +188,11 @@ def uniform_step(table: Table, column: str, tolerance: float = 1e-3) -> float:
     """The step of ``column``, whose values must be equally spaced (a logger's sample times) to
     ``tolerance`` of the step; an :class:`ExperimentError` at the first row off the grid."""
     values = table.values[column]
-    step = (values[-1] - values[0]) / (values.size - 1)
+    step = float(np.median(np.diff(values)))
     off = np.abs(values - (values[0] + step * np.arange(values.size))) > tolerance * step
     bad = np.flatnonzero(off)
     if bad.size or not (math.isfinite(step) and step > 0.0):
         k = int(bad[0]) if bad.size else 0
-        raise ExperimentError(f"{table.where(column, k)}: {values[k]!r} is off the grid of step {step:.6g}; "
+        raise ExperimentError(f"{table.where(column, k)}: {float(values[k])!r} is off the grid of step {step:.6g}; "
                               "allowed: equally spaced sample times")
     return float(step)

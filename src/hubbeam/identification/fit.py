@@ -20,10 +20,13 @@ At the minimum ``x*`` (Seber and Wild, *Nonlinear Regression*, 1989, Sec. 2.1 an
 * identifiability, a result and not a failure: a parameter is *not identifiable* when it ends at
   a bound (within :data:`AT_BOUND` of the range), when the Jacobian is near singular (the ratio of
   its smallest to its largest singular value below :data:`SINGULAR`; the parameter with the
-  largest share of the weakest direction is set aside and the test repeated), or when its
-  correlation with another parameter exceeds :data:`CORRELATED` in magnitude. The intervals of the
-  others are computed with those set aside held at their fitted values (a bound or a singular
-  direction has no interval: NaN); correlated pairs keep their (wide) intervals.
+  largest share of the weakest direction is set aside and the test repeated), when its
+  correlation with another parameter exceeds :data:`CORRELATED` in magnitude, or when the data do
+  not narrow it: its 95 % interval is wider than its bounds (the Jacobian is near singular on the
+  scale of the noise, though not of the rounding: the damping of a clamp seen only through the
+  frequencies it barely moves). The intervals of the others are computed with those set aside
+  held at their fitted values (a bound or a singular direction has no interval: NaN); correlated
+  and unnarrowed parameters keep their (wide) intervals.
 
 :func:`validate` predicts a held-out experiment with the fitted values and reports its errors.
 """
@@ -171,7 +174,8 @@ def _identifiability(J: np.ndarray, x: np.ndarray, keys: Sequence[str]):
             reasons[i] = f"at its {'lower' if xi <= 0.5 else 'upper'} bound"
     kept = [i for i in range(x.size) if not reasons[i]]
     while kept:
-        sigma, vt = np.linalg.svd(J[:, kept], full_matrices=False)[1:]
+        sigma, vt = np.linalg.svd(J[:, kept], full_matrices=True)[1:]
+        sigma = np.concatenate([sigma, np.zeros(len(kept) - sigma.size)])  # fewer residuals than parameters
         if sigma[0] > 0.0 and sigma[-1] >= SINGULAR * sigma[0]:
             break
         weakest = kept[int(np.argmax(np.abs(vt[-1])))]
@@ -230,6 +234,10 @@ def fit(plant: CasePlant, experiments: Sequence[Experiment], parameters: Sequenc
                     reasons[i] = reasons[i] or f"correlation {rho:+.4f} with {keys[j]} (|rho| > {CORRELATED:g})"
     value = np.array([parameter.unscaled(xi) for parameter, xi in zip(parameters, x)])
     quantile = scipy.stats.t.ppf(0.5 + CONFIDENCE / 2.0, dof) if dof > 0 else math.nan
+    for i in kept:
+        if 2.0 * quantile * se[i] > span[i]:
+            reasons[i] = reasons[i] or (f"the data do not narrow it: its {CONFIDENCE:.0%} interval, "
+                                        f"{2.0 * quantile * se[i]:.3g} wide, is wider than its bounds ({span[i]:.3g})")
     values = problem.values(x)
     fitted = {experiment.name: _validation(experiment, prediction)
               for experiment, prediction in zip(problem.experiments, problem.predictions(x))}

@@ -237,15 +237,16 @@ def _scaled_beam(beam, factor: float):
 
 def _damping(damping: ModalDamping | None, values: Mapping[str, float]) -> ModalDamping:
     damping = damping or ModalDamping(axial=0.0, transverse=0.0)
-    transverse = values.get("damping.transverse", damping.transverse)
+    damping = ModalDamping(axial=float(values.get("damping.axial", damping.axial)),
+                           transverse=float(values.get("damping.transverse", damping.transverse)),
+                           transverse_modes=damping.transverse_modes)
     modes = {int(MODE_RATIO.match(key).group(1)): value for key, value in values.items() if MODE_RATIO.match(key)}
-    listed = damping.transverse_modes
-    if modes:
-        count = max(max(modes), len(listed or ()))
-        ratios = damping.transverse_ratios(count) if listed else np.full(count, damping.transverse)
-        listed = tuple(float(modes.get(k + 1, ratios[k])) for k in range(count))
-    return ModalDamping(axial=float(values.get("damping.axial", damping.axial)), transverse=float(transverse),
-                        transverse_modes=listed)
+    if not modes:
+        return damping
+    count = max(max(modes), len(damping.transverse_modes or ()))
+    ratios = damping.transverse_ratios(count)
+    return dataclasses.replace(damping, transverse_modes=tuple(float(modes.get(k + 1, ratios[k]))
+                                                               for k in range(count)))
 
 
 def apply(case: Case, beam, values: Mapping[str, float]):

@@ -145,7 +145,8 @@ def free_decay(time, signal, floor: float = 0.05, prominence: float | None = Non
                lowpass: float | None = None) -> Decay:
     """The :class:`Decay` of a free oscillation sampled at equally spaced ``time`` (module
     docstring): half cycles down to ``floor`` of the first peak-to-peak amplitude; extrema of at
-    least ``prominence`` (default a tenth of ``floor`` times the signal's range). ``lowpass``
+    least ``prominence`` (default half of ``floor`` times the signal's range, above the noise of a
+    sensor that resolves the oscillation). ``lowpass``
     (Hz): first remove the higher modes with a fourth-order Butterworth filter run forward and
     backward (no phase shift, and a constant gain at the mode's frequency, which leaves its decay
     rate as it was), its cut-off between the first mode and the second."""
@@ -158,7 +159,7 @@ def free_decay(time, signal, floor: float = 0.05, prominence: float | None = Non
         if not 0.0 < lowpass < nyquist:
             raise ValueError(f"lowpass = {lowpass!r}; allowed: a cut-off in (0, {nyquist:g}) Hz")
         y = scipy.signal.sosfiltfilt(scipy.signal.butter(4, lowpass, fs=2.0 * nyquist, output="sos"), y - y.mean())
-    prominence = 0.1 * floor * np.ptp(y) if prominence is None else prominence
+    prominence = 0.5 * floor * np.ptp(y) if prominence is None else prominence
     times, values = _extrema(t, y, prominence)
     amplitude = np.abs(np.diff(values))
     above = amplitude >= floor * amplitude[0] if amplitude.size else amplitude.astype(bool)

@@ -57,6 +57,8 @@ SLOW_TESTS = {
     "test_sampled::test_noise_moves_the_estimate_off_the_state_and_is_the_seed_s",
     "test_maneuvers::test_pd_hub_with_a_stiff_beam_follows_the_rigid_closed_loop",
     "test_config_mutations::test_every_mutation_of_every_key_of_the_largest_configurations",
+    "test_identification_fit::test_the_fits_dataset_round_trips_and_every_figure_draws_from_it",
+    "test_identification_fit::test_the_95_percent_intervals_cover_the_truth_over_50_seeds",
 }
 
 

@@ -118,7 +118,8 @@ def test_zero_damping_is_no_damping(setup):
      "damping.stiffness_coefficient", ["got inf", "allowed: a finite number"]),
     ({"kind": "viscous"}, "damping.kind", ["got 'viscous'", "allowed: one of modal, rayleigh"]),
     ({"kind": "modal", "axial": 0.1, "transverse": 0.1, "bending": 0.1},
-     "damping.bending", ["got 0.1", "not allowed when kind is 'modal' (allowed keys: kind, axial, transverse)"]),
+     "damping.bending", ["got 0.1", "not allowed when kind is 'modal' (allowed keys: kind, axial, transverse, "
+                                                           "transverse_modes)"]),
 ])
 def test_a_bad_damping_gives_one_clear_error(setup, damping, key, fragments):
     """The API's bare case is checked by the configuration's one pass: one problem, at the key."""

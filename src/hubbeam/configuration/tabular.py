@@ -49,39 +49,48 @@ def read_table(path: os.PathLike | str, columns: tuple[str, ...]) -> dict[str, l
     CRLF line ends are accepted. Values separated by ``;`` or written with a decimal comma (the
     "CSV" of several locales) are reported as such, with the line.
     """
-    path = Path(path)
-    where = f"file {_shown(str(path))}"
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as error:
-        raise TableError(f"{where}: cannot be read ({error.strerror or error}); allowed: a "
-                         f"readable CSV file with the header {','.join(columns)}") from None
-    except UnicodeDecodeError as error:
-        raise TableError(f"{where}: not UTF-8 text (byte {error.start}); allowed: a CSV file saved "
-                         "as UTF-8 (a spreadsheet's \"CSV UTF-8\")") from None
-    rows = [(number, row) for number, row in enumerate(csv.reader(text.splitlines()), start=1)
-            if row and not row[0].lstrip().startswith("#") and any(cell.strip() for cell in row)]
+    where = f"file {shown(str(path))}"
+    rows = read_rows(path, f"a readable CSV file with the header {','.join(columns)}")
     if not rows:
         raise TableError(f"{where}: empty; allowed: the header {','.join(columns)} and rows of numbers")
     line, header = rows[0]
     header = [cell.strip() for cell in header]
     if sorted(header) != sorted(columns):
-        raise TableError(f"{where}, line {line}: header {_shown(','.join(header))}; allowed: the "
+        raise TableError(f"{where}, line {line}: header {shown(','.join(header))}; allowed: the "
                          f"columns {','.join(columns)} (any order), each once"
-                         + _separator_hint(header, len(columns)))
+                         + separator_hint(header, len(columns)))
     table: dict[str, list[float]] = {name: [] for name in header}
     for line, row in rows[1:]:
         if len(row) != len(header):
             raise TableError(f"{where}, line {line}: {len(row)} values; allowed: "
-                             f"{len(header)} ({','.join(header)})" + _separator_hint(row, len(header)))
+                             f"{len(header)} ({','.join(header)})" + separator_hint(row, len(header)))
         for name, cell in zip(header, row):
-            table[name].append(_number(cell, f"{where}, line {line}, column {name}"))
+            table[name].append(parse_number(cell, f"{where}, line {line}, column {name}"))
     if not rows[1:]:
         raise TableError(f"{where}: no rows after the header; allowed: at least one row of numbers")
     return {name: table[name] for name in columns}
 
 
-def _separator_hint(cells: list[str], expected: int) -> str:
+def read_rows(path: os.PathLike | str, allowed: str) -> list[tuple[int, list[str]]]:
+    """The lines of the CSV file ``path`` that hold values, each as ``(line number, cells)``, the
+    header first: blank lines and lines starting with ``#`` skipped, a byte-order mark and CRLF
+    line ends accepted. A file that cannot be read or is not UTF-8 is a :class:`TableError`
+    naming it (``allowed``: what the file should be). The one reading of every table, so that
+    other readers (``hubbeam.identification.files``) accept and report files as :func:`read_table` does."""
+    path = Path(path)
+    where = f"file {shown(str(path))}"
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except OSError as error:
+        raise TableError(f"{where}: cannot be read ({error.strerror or error}); allowed: {allowed}") from None
+    except UnicodeDecodeError as error:
+        raise TableError(f"{where}: not UTF-8 text (byte {error.start}); allowed: a CSV file saved "
+                         "as UTF-8 (a spreadsheet's \"CSV UTF-8\")") from None
+    return [(number, row) for number, row in enumerate(csv.reader(text.splitlines()), start=1)
+            if row and not row[0].lstrip().startswith("#") and any(cell.strip() for cell in row)]
+
+
+def separator_hint(cells: list[str], expected: int) -> str:
     """Why a line of ``cells`` may not split into ``expected`` values: ``;`` separators, or
     decimal commas that split numbers in two."""
     if any(";" in cell for cell in cells):
@@ -93,7 +102,7 @@ def _separator_hint(cells: list[str], expected: int) -> str:
     return ""
 
 
-def _shown(text: str) -> str:
+def shown(text: str) -> str:
     """``text`` with every character that would not show (a byte-order mark, a non-breaking space,
     a control character) escaped as Python writes it (``\\ufeff``)."""
     return "".join(char if char.isprintable() else ascii(char)[1:-1] for char in text)
@@ -182,15 +191,17 @@ def _is_number(cell: str) -> bool:
     return True
 
 
-def _number(cell: str, where: str) -> float:
-    shown = _shown(cell.strip())
+def parse_number(cell: str, where: str) -> float:
+    """``cell`` as a finite float; a :class:`TableError` naming ``where`` (file, line, column), the cell and a
+    decimal comma when one is the cause."""
+    text = shown(cell.strip())
     try:
         value = float(cell)
     except ValueError:
         comma = (" (a decimal comma: write '.' as the decimal point, 1.2 not 1,2)"
                  if _is_number(cell.replace(",", ".", 1)) else "")
-        raise TableError(f"{where}: '{shown}' is not a number{comma}; allowed: a decimal "
+        raise TableError(f"{where}: '{text}' is not a number{comma}; allowed: a decimal "
                          "number such as 1.2e+4") from None
     if not math.isfinite(value):
-        raise TableError(f"{where}: '{shown}'; allowed: a finite number")
+        raise TableError(f"{where}: '{text}'; allowed: a finite number")
     return value

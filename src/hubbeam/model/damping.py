@@ -8,6 +8,9 @@ damping forces ``-C1 q1'`` and ``-C2 q2'`` join the elastic rows of Eq. (24):
   ``0 <= zeta < 1``: ``C = M Phi diag(2 zeta omega_i) Phi^T M`` with the eigenpairs
   ``K phi_i = omega_i^2 M phi_i`` of the non-rotating block, ``Phi^T M Phi = I`` (so that
   ``Phi^T C Phi = diag(2 zeta omega_i)``, valid for a non-diagonal ``M`` with a tip mass too);
+  optionally ``transverse_modes: [zeta2_1, zeta2_2, ...]``, the ratios of the first transverse
+  modes in ascending order of frequency (a rig's measured ratios differ from mode to mode), the
+  modes beyond the list keeping ``transverse`` and entries beyond the case's modes unused;
 * ``{kind: rayleigh, mass_coefficient: alpha, stiffness_coefficient: beta}`` (s-1, s; >= 0):
   ``C = alpha M + beta K`` per block.
 
@@ -30,8 +33,9 @@ from scipy.linalg import eigh
 from hubbeam.core.system_matrices import transverse_mass
 
 
-def modal_damping(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
-    """``M Phi diag(2 ratio omega_i) Phi^T M`` from the mass-normalised eigenpairs of ``(K, M)``."""
+def modal_damping(M: np.ndarray, K: np.ndarray, ratio) -> np.ndarray:
+    """``M Phi diag(2 ratio omega_i) Phi^T M`` from the mass-normalised eigenpairs of ``(K, M)``
+    (``ratio`` one number, or one per eigenpair in ascending order of ``omega_i``)."""
     omega2, phi = eigh(K, M)
     mphi = M @ phi
     return (mphi * (2.0 * ratio * np.sqrt(np.clip(omega2, 0.0, None)))) @ mphi.T
@@ -39,14 +43,24 @@ def modal_damping(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class ModalDamping:
-    """The damping ratio of every axial (``q1``) and every transverse (``q2``) mode."""
+    """The damping ratio of every axial (``q1``) and every transverse (``q2``) mode; with
+    ``transverse_modes``, the ratios of the first transverse modes by ascending frequency (module
+    docstring)."""
 
     kind: ClassVar[str] = "modal"
     axial: float
     transverse: float
+    transverse_modes: tuple[float, ...] | None = None
 
     def block(self, b: int, M: np.ndarray, K: np.ndarray) -> np.ndarray:
-        return modal_damping(M, K, (self.axial, self.transverse)[b])
+        if b == 0 or self.transverse_modes is None:
+            return modal_damping(M, K, (self.axial, self.transverse)[b])
+        return modal_damping(M, K, self.transverse_ratios(M.shape[0]))
+
+    def transverse_ratios(self, n: int) -> np.ndarray:
+        """The ratios of ``n`` transverse modes by ascending frequency."""
+        given = np.asarray(self.transverse_modes or (), dtype=float)[:n]
+        return np.concatenate([given, np.full(n - given.size, self.transverse)])
 
 
 @dataclass(frozen=True)
@@ -70,12 +84,17 @@ def damping_from_dict(entry: Mapping | ModalDamping | RayleighDamping | None):
     if entry is None or isinstance(entry, ModalDamping | RayleighDamping):
         return entry
     record = DAMPINGS[entry["kind"]]
-    return record(**{key: float(value) for key, value in entry.items() if key != "kind"})
+    return record(**{key: tuple(map(float, value)) if isinstance(value, list | tuple) else float(value)
+                     for key, value in entry.items() if key != "kind"})
 
 
 def damping_to_dict(damping: ModalDamping | RayleighDamping | None) -> dict:
-    """``{"kind": ..., key: value}`` as written in a configuration (empty: undamped)."""
-    return {} if damping is None else {"kind": damping.kind} | asdict(damping)
+    """``{"kind": ..., key: value}`` as written in a configuration (empty: undamped; keys not given
+    left out, lists for tuples)."""
+    if damping is None:
+        return {}
+    return {"kind": damping.kind} | {key: list(value) if isinstance(value, tuple) else value
+                                     for key, value in asdict(damping).items() if value is not None}
 
 
 def damping_matrices(damping: ModalDamping | RayleighDamping | Mapping | None, sm) -> np.ndarray:

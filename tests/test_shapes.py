@@ -17,7 +17,7 @@ from hubbeam.model.matrices import assemble
 from hubbeam.model.modes import transverse_modes
 from hubbeam.model.parameters import TipMass
 from hubbeam.model.shapes import SPAN_POINTS, beam_dataset, span
-from hubbeam.plotting import beam_properties, mode_shapes
+from hubbeam.plotting import beam_properties
 from hubbeam.plotting.style import styled
 from hubbeam.study.report import beam_summary, study_markdown
 
@@ -126,11 +126,3 @@ def test_the_beam_properties_figure_marks_stations_and_tip_masses():
         curve, stations, tip = ax.lines[:3]
         np.testing.assert_array_equal(stations.get_ydata(), ds[f"station_{name}"].values)
         assert list(tip.get_xdata()) == [6.0, 6.0]  # the loaded case's tip mass, at 6 m
-
-
-def test_the_mode_shapes_figure_has_a_curve_per_existing_mode():
-    _, ds = dataset()
-    with styled():
-        axes = mode_shapes.plot(ds).axes
-    assert [len(ax.get_legend().get_texts()) for ax in axes] == [2 * 3, 2 * 3]  # tip masses x modes
-    assert "0.604 Hz" in axes[0].get_legend().get_texts()[0].get_text()  # the first frequency, 3.80 rad/s

@@ -1,6 +1,7 @@
 """The beam of a study as data: its sectional properties along the span, the tip masses of its
-cases, and its first transverse mode shapes at rest and at speed (:func:`beam_dataset`; drawn by
-:mod:`hubbeam.plotting.beam_properties` and :mod:`hubbeam.plotting.mode_shapes`).
+cases, and its first transverse mode shapes at rest and at speed (:func:`beam_dataset`; its
+properties drawn by :mod:`hubbeam.plotting.beam_properties`, the plants' damped shapes by
+:mod:`hubbeam.plotting.linear_mode_shapes`).
 
 At a constant hub speed ``Omega`` the free transverse vibrations obey ``K22(Omega) v = omega^2 M2 v``
 (Eq. 31, :mod:`hubbeam.model.eigen`; ``M2`` with a tip body's rotary inertia); mode ``i`` has the

@@ -21,24 +21,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from checking import checked_configuration
 
-from hubbeam.check import check_configuration
 from hubbeam.configuration import checks
-from hubbeam.configuration.load import ConfigError, read_config_file
+from hubbeam.configuration.load import read_config_file
 from hubbeam.core.inputs import IDENTITY_SHAPER
 from hubbeam.linear import lumped
 from hubbeam.model.limits import MEMORY_BUDGET_MB
 from hubbeam.results import variables
 from hubbeam.simulation.sampled import SampledLoop, Sensor, held_table, loop_arrays
-
-
-def checked_configuration(config, files):
-    """The one check as ``(completed configuration, settings or None, problems)``."""
-    try:
-        checked = check_configuration(config, files)
-    except ConfigError as error:
-        return getattr(error, "config", config), None, list(error.problems)
-    return checked.config, checked.settings, []
 
 REPO = Path(__file__).resolve().parents[1]
 TRUST = REPO / "studies" / "controller_trust.yaml"

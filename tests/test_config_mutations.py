@@ -73,23 +73,14 @@ from pathlib import Path
 from typing import Any, NamedTuple
 
 import pytest
+from checking import checked_configuration
 
 import hubbeam.configuration.load as load
 import hubbeam.control.cases as control_cases
-from hubbeam.check import check_configuration
 from hubbeam.configuration.grids import GRIDS_VALIDATOR, grid_cases
-from hubbeam.configuration.load import ConfigError, read_config_file
+from hubbeam.configuration.load import read_config_file
 from hubbeam.configuration.schema import key_path
 from hubbeam.reporting.products import PAPER, PAPER_PRODUCTS, product_cases
-
-
-def checked_configuration(config, files):
-    """The one check as ``(completed configuration, settings or None, problems)``."""
-    try:
-        checked = check_configuration(config, files)
-    except ConfigError as error:
-        return getattr(error, "config", config), None, list(error.problems)
-    return checked.config, checked.settings, []
 
 REPO = Path(__file__).resolve().parents[1]
 CONFIG_FILES = ["config/config.yaml", *sorted(str(p.relative_to(REPO)) for p in (REPO / "studies").glob("*.yaml"))]

@@ -158,14 +158,21 @@ def critical_speed_of(sm, model, search_max, root_spring: RootSpring | None = No
         K = joint_second_order(sm, root_spring, traits, float(speed), damping)[3][:-1, :-1]
         return np.linalg.eigvalsh(0.5 * (K + K.T))[0]
 
+    return _first_zero(lowest, search_max, 1e-14)
+
+
+def _first_zero(lowest, search_max: float, tolerance: float) -> float:
+    """The lowest speed in ``[0, search_max]`` at which ``lowest(speed)``, the smallest eigenvalue
+    of a stiffness, reaches zero: the first sign change on a grid of 400 steps, refined by Brent's
+    method to ``tolerance``; 0 if it is not positive at rest, NaN if it stays positive."""
     grid = np.linspace(0.0, search_max, 401)
     values = np.array([lowest(speed) for speed in grid])
     negative = np.flatnonzero(values <= 0.0)
     if negative.size == 0:
         return float("nan")
     k = negative[0]
-    return float(grid[0]) if k == 0 else float(scipy.optimize.brentq(lowest, grid[k - 1], grid[k], xtol=1e-14,
-                                                                    rtol=1e-14))
+    return float(grid[0]) if k == 0 else float(scipy.optimize.brentq(lowest, grid[k - 1], grid[k], xtol=tolerance,
+                                                                    rtol=tolerance))
 
 
 def critical_speed_by_root_search(model, params, tip, n_modes, search_max, n_quad=64):
@@ -178,13 +185,7 @@ def critical_speed_by_root_search(model, params, tip, n_modes, search_max, n_qua
     def lowest(speed):
         return np.linalg.eigvalsh(K22(sm, model, speed))[0]
 
-    grid = np.linspace(0.0, search_max, 401)
-    values = np.array([lowest(speed) for speed in grid])
-    negative = np.flatnonzero(values <= 0.0)
-    if negative.size == 0:
-        return float("nan")
-    k = negative[0]
-    return scipy.optimize.brentq(lowest, grid[k - 1], grid[k], xtol=1e-15, rtol=1e-15)
+    return _first_zero(lowest, search_max, 1e-15)
 
 
 def tip_mass_frequency_roots(mu, count):

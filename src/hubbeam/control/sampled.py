@@ -46,8 +46,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubbeam.control.sampling import Sensor, measurement_rows
-from hubbeam.linear.export import state_units
+from hubbeam.control.sampling import measurement_rows
+from hubbeam.model.maneuvers import SensorSpec
 from hubbeam.model.models import model as model_traits
 
 #: the rate of each measured angle, for the filtered differences
@@ -112,10 +112,13 @@ def _on_layout(simulated, row: np.ndarray) -> np.ndarray:
 
 
 def sensor_rows(simulated, sensors) -> np.ndarray:
-    """``c_j`` (p, 2N): the sensors' signals as rows on the kernel's state of the simulated model
-    (its linear output rows, without the sensor gains, which the kernel applies)."""
-    unit = [Sensor(signal=sensor.signal) for sensor in sensors]
-    return np.array([_on_layout(simulated, row) for row in measurement_rows(simulated, unit)])
+    """``c_j`` (p, 2N): the sensors' signals as rows on the kernel's state of the simulated model:
+    the unit row of a state the sensor reads exactly (its signal a state of ``simulated``), else its
+    linear output row; without the sensor gains, which the kernel applies."""
+    layout = kernel_layout(simulated)
+    return np.array([np.eye(len(layout))[layout.index(sensor.signal)] if sensor.signal in simulated.states
+                     else _on_layout(simulated, measurement_rows(simulated, [SensorSpec(sensor.signal)])[0])
+                     for sensor in sensors])
 
 
 def reference_rows(rows: np.ndarray, sensors) -> np.ndarray:
@@ -159,26 +162,6 @@ def closed_loop_matrix(dm, Cm: np.ndarray, Ac, Bc, Bu, E, F, K) -> np.ndarray:
     return np.vstack([top, bottom])
 
 
-@dataclass(frozen=True)
-class StateReading:
-    """An exact sensor of the simulated model's state ``state`` (no gain, noise or quantisation), as
-    :func:`state_controller` uses them; ``signal`` is the state's name."""
-
-    state: str
-    gain: float = 1.0
-    sigma: float = 0.0
-    quantum: float = 0.0
-
-    @property
-    def signal(self) -> str:
-        return self.state
-
-    @property
-    def sensor_unit(self) -> str:
-        """The state's unit (``hubbeam.linear.export.state_units``)."""
-        return state_units(self.state)
-
-
 def _controller(design, sensors, rows, matrices, xc0, settings, names, estimate_states, poles, kind):
     Ac, Bc, Bu, E, F, K = matrices
     u_max, u_init, U_r = settings
@@ -188,7 +171,7 @@ def _controller(design, sensors, rows, matrices, xc0, settings, names, estimate_
                              design=design, poles=poles, kind=kind)
 
 
-def _exact_sensor(design, simulated, name: str) -> Sensor:
+def _exact_sensor(design, simulated, name: str) -> SensorSpec:
     """The exact sensor of the design's plant state ``name``: the output whose row in the design
     model is that state (the lumped model's ``alpha`` is the deflection angle), also an output of
     the simulated model."""
@@ -199,7 +182,7 @@ def _exact_sensor(design, simulated, name: str) -> Sensor:
         unit = np.zeros_like(row)
         unit[column] = 1.0
         if np.array_equal(row, unit) and np.all(np.asarray(lm.D)[k] == 0.0) and output in simulated.outputs:
-            return Sensor(signal=output)
+            return SensorSpec(output)
     raise ValueError(f"the design's state {name!r} is neither a state nor a signal of the simulated model "
                      f"{simulated.name}; allowed: a design whose states are the simulated model's states or "
                      "outputs of both models (hub_angle, hub_speed, deflection_angle, deflection_rate, ...)")
@@ -213,23 +196,16 @@ def state_controller(lqr, simulated, u_max: float = math.inf, u_init: float = 0.
     settings = _loop_settings(u_max, u_init, feedforward)
     dm = lqr.model
     n, size = dm.plant_states, dm.A.shape[0]
-    layout = kernel_layout(simulated)
-    readings, rows = [], []
-    for name in dm.states[:n]:
-        if name in simulated.states:
-            reading, row = StateReading(name), np.eye(len(layout))[layout.index(name)]
-        else:
-            reading = _exact_sensor(dm, simulated, name)
-            row = sensor_rows(simulated, [reading])[0]
-        readings.append(reading)
-        rows.append(row)
+    readings = [SensorSpec(name) if name in simulated.states else _exact_sensor(dm, simulated, name)
+                for name in dm.states[:n]]
+    rows = sensor_rows(simulated, readings)
     lags = size - n
     matrices = (dm.A[n:, n:], np.zeros((lags, n)), dm.B[n:, 0].copy(),
                 np.vstack([np.zeros((n, lags)), np.eye(lags)]), np.vstack([np.eye(n), np.zeros((lags, n))]), lqr.K)
     # the design's loop and, at 0, the difference between the plant's delayed commands and the
     # controller's copy of them (neither seen nor moved)
     poles = np.concatenate([np.linalg.eigvals(dm.A - np.outer(dm.B[:, 0], lqr.K)), np.zeros(lags)])
-    return _controller(dm, readings, np.array(rows), matrices, np.full(lags, settings[1]), settings, dm.states[n:],
+    return _controller(dm, readings, rows, matrices, np.full(lags, settings[1]), settings, dm.states[n:],
                        dm.states, poles, "LQR on the true state")
 
 
@@ -299,6 +275,6 @@ def filtered_difference_controller(lqr, sensors, cutoff: float, simulated, u_max
                        settings, states, names, poles, f"LQR on filtered differences (cut-off {cutoff:g} rad/s)")
 
 
-__all__ = ["REFERENCE", "SampledController", "StateReading", "closed_loop_matrix", "filtered_difference_controller",
+__all__ = ["REFERENCE", "SampledController", "closed_loop_matrix", "filtered_difference_controller",
            "kalman_controller", "kernel_layout", "reference_rows", "rigid_feedforward", "sensor_rows",
            "state_controller"]

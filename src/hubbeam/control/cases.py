@@ -31,7 +31,7 @@ import math
 from hubbeam.configuration.schema import Problem
 from hubbeam.configuration.settings import Case, Settings, simulation_settings
 from hubbeam.control.dlqr import continuous_lqr, discrete_lqr
-from hubbeam.control.feedback import FeedbackError, design_plant, feedback_law
+from hubbeam.control.feedback import FeedbackError, design_plant, feedback_law, rigid_inertia
 from hubbeam.control.kalman import kalman_filter
 from hubbeam.control.sampled import (
     SampledController,
@@ -71,9 +71,10 @@ def sampled_controller(case: Case, beam, sm) -> SampledController:
     dm = discretise(plant, sampling.sample_time, sampling.delay)
     design = discrete_lqr if sampling.gain == "discrete" else continuous_lqr
     lqr = design(dm, spec.weights, spec.input_weight)
-    simulated = linear_model(beam, sm, case.model, 0.0, "free")  # the sensors' rows: the same at any speed
+    # the sensors' rows: the same at any speed
+    simulated = linear_model(beam, sm, case.model, 0.0, "free", root_spring=case.root_spring)
     u_max = math.inf if case.drive is None else case.drive.voltage_limit
-    feedforward = rigid_feedforward(float(sm.Jh + sm.Jb + sm.Jt), case.drive) if maneuver.feedforward else None
+    feedforward = rigid_feedforward(rigid_inertia(case, sm), case.drive) if maneuver.feedforward else None
     estimator = sampling.estimator
     if estimator.kind == "exact":
         return state_controller(lqr, simulated, u_max, 0.0, feedforward)

@@ -47,8 +47,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from hubbeam.control.sampling import measurement_rows
+from hubbeam.linear.statespace import model_states
 from hubbeam.model.maneuvers import SensorSpec
 from hubbeam.model.models import model as model_traits
+from hubbeam.model.root import HUB_COORDINATE
 
 #: the rate of each measured angle, for the filtered differences
 RATE_OF = {"hub_angle": "hub_speed", "deflection_angle": "deflection_rate"}
@@ -92,10 +94,11 @@ class SampledController:
 
 
 def kernel_layout(simulated) -> tuple[str, ...]:
-    """The names of the kernel's state ``x = (y, v)``, ``y = (theta, q1_1..n, q2_1..n)``, for the
-    simulated linear model (``n`` its number of modes; SFOAM's ``q1`` slots included)."""
+    """The names of the kernel's state ``x = (y, v)``, ``y = (theta, q1_1..n, q2_1..n)`` and the hub
+    angle ``phi`` last with a root spring, for the simulated linear model (``n`` its number of
+    modes; SFOAM's ``q1`` slots included)."""
     n = sum(1 for name in simulated.states if name.startswith("q2_") and not name.endswith("_dot"))
-    return model_traits("FOAM").state_names(n)
+    return model_states(model_traits("FOAM"), n, simulated.root_spring)
 
 
 def _on_layout(simulated, row: np.ndarray) -> np.ndarray:
@@ -121,11 +124,19 @@ def sensor_rows(simulated, sensors) -> np.ndarray:
                      for sensor in sensors])
 
 
-def reference_rows(rows: np.ndarray, sensors) -> np.ndarray:
+def reference_rows(rows: np.ndarray, sensors, layout) -> np.ndarray:
     """``R_m`` (p, 3): each sensor's reading of the rigid reference motion, ``gain (c[theta],
-    c[theta'], 0)`` with ``c`` its row on the kernel's state (``theta`` first, ``theta'`` at ``N``)."""
+    c[theta'], 0)`` with ``c`` its row on the kernel's state ``layout`` (``theta`` first, ``theta'``
+    at ``N``); with a root spring the hub angle ``phi`` follows the reference like ``theta``:
+    ``gain (c[theta] + c[phi], c[theta'] + c[phi'], 0)``."""
     N = rows.shape[1] // 2
-    return np.array([[sensor.gain * row[0], sensor.gain * row[N], 0.0] for sensor, row in zip(sensors, rows)])
+    hub = layout.index(HUB_COORDINATE) if HUB_COORDINATE in layout else 0
+
+    def reading(row, i):
+        return row[i] + row[i + hub] if hub else row[i]
+
+    return np.array([[sensor.gain * reading(row, 0), sensor.gain * reading(row, N), 0.0]
+                     for sensor, row in zip(sensors, rows)])
 
 
 def rigid_feedforward(inertia: float, motor=None) -> np.ndarray:
@@ -162,10 +173,12 @@ def closed_loop_matrix(dm, Cm: np.ndarray, Ac, Bc, Bu, E, F, K) -> np.ndarray:
     return np.vstack([top, bottom])
 
 
-def _controller(design, sensors, rows, matrices, xc0, settings, names, estimate_states, poles, kind):
+def _controller(design, simulated, sensors, matrices, xc0, settings, names, estimate_states, poles, kind):
     Ac, Bc, Bu, E, F, K = matrices
     u_max, u_init, U_r = settings
-    return SampledController(Ac=Ac, Bc=Bc, Bu=Bu, E=E, F=F, K=K, R_m=reference_rows(rows, sensors), U_r=U_r,
+    rows = sensor_rows(simulated, sensors)
+    R_m = reference_rows(rows, sensors, kernel_layout(simulated))
+    return SampledController(Ac=Ac, Bc=Bc, Bu=Bu, E=E, F=F, K=K, R_m=R_m, U_r=U_r,
                              xc0=xc0, Ts=design.Ts, D=design.delay, u_max=u_max, u_init=u_init, sensors=tuple(sensors),
                              sensor_rows=rows, controller_states=tuple(names), estimate_states=tuple(estimate_states),
                              design=design, poles=poles, kind=kind)
@@ -198,14 +211,13 @@ def state_controller(lqr, simulated, u_max: float = math.inf, u_init: float = 0.
     n, size = dm.plant_states, dm.A.shape[0]
     readings = [SensorSpec(name) if name in simulated.states else _exact_sensor(dm, simulated, name)
                 for name in dm.states[:n]]
-    rows = sensor_rows(simulated, readings)
     lags = size - n
     matrices = (dm.A[n:, n:], np.zeros((lags, n)), dm.B[n:, 0].copy(),
                 np.vstack([np.zeros((n, lags)), np.eye(lags)]), np.vstack([np.eye(n), np.zeros((lags, n))]), lqr.K)
     # the design's loop and, at 0, the difference between the plant's delayed commands and the
     # controller's copy of them (neither seen nor moved)
     poles = np.concatenate([np.linalg.eigvals(dm.A - np.outer(dm.B[:, 0], lqr.K)), np.zeros(lags)])
-    return _controller(dm, readings, rows, matrices, np.full(lags, settings[1]), settings, dm.states[n:],
+    return _controller(dm, simulated, readings, matrices, np.full(lags, settings[1]), settings, dm.states[n:],
                        dm.states, poles, "LQR on the true state")
 
 
@@ -227,8 +239,8 @@ def kalman_controller(lqr, kf, simulated, u_max: float = math.inf, u_init: float
         Ac, Bc = dm.A @ E, dm.A @ kf.M
     xc0 = np.concatenate([np.zeros(n), np.full(size - n, settings[1])])
     poles = np.concatenate([np.linalg.eigvals(dm.A - np.outer(Bd, lqr.K)), np.linalg.eigvals(dm.A - kf.L @ kf.Cm)])
-    return _controller(dm, kf.sensors, sensor_rows(simulated, kf.sensors), (Ac, Bc, Bd.copy(), E, F, lqr.K), xc0,
-                       settings, dm.states, dm.states, poles, f"LQR with the {kf.form}-estimate Kalman filter")
+    return _controller(dm, simulated, kf.sensors, (Ac, Bc, Bd.copy(), E, F, lqr.K), xc0, settings, dm.states,
+                       dm.states, poles, f"LQR with the {kf.form}-estimate Kalman filter")
 
 
 def filtered_difference_controller(lqr, sensors, cutoff: float, simulated, u_max: float = math.inf,
@@ -271,8 +283,8 @@ def filtered_difference_controller(lqr, sensors, cutoff: float, simulated, u_max
     Cm = measurement_rows(dm, sensors)
     poles = np.linalg.eigvals(closed_loop_matrix(dm, Cm, Ac, Bc, np.zeros(2 * p), E, F, K))
     states = [f"{name}_previous" for name in names[:p]] + [f"{name}_filtered" for name in names[p:]]
-    return _controller(dm, sensors, sensor_rows(simulated, sensors), (Ac, Bc, np.zeros(2 * p), E, F, K), xc0,
-                       settings, states, names, poles, f"LQR on filtered differences (cut-off {cutoff:g} rad/s)")
+    return _controller(dm, simulated, sensors, (Ac, Bc, np.zeros(2 * p), E, F, K), xc0, settings, states, names,
+                       poles, f"LQR on filtered differences (cut-off {cutoff:g} rad/s)")
 
 
 __all__ = ["REFERENCE", "SampledController", "closed_loop_matrix", "filtered_difference_controller",

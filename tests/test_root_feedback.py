@@ -128,10 +128,10 @@ def _abscissa(case, beam, numerics, gains, stiffness):
 def test_a_rigid_design_loses_stability_on_a_soft_spring_where_the_linear_loop_says(paper_beam, numerics):
     """The LQR designed at rest on the clamped root, its gains by name given to the same arm on a
     spring (its ``theta`` gains then act on the root's angle, across the spring): the linear loop's
-    spectral abscissa crosses 0 at a stiffness ``k_c`` (near 230 N m rad-1; stable above). FOAM
-    runs from a bent link with the reference at rest, 25 % above and below ``k_c``: the envelope of
-    the spring's torque decays above and grows below, at the linear rate (to 25 %, the other modes'
-    share of a 60 s record)."""
+    spectral abscissa crosses 0 at a stiffness ``k_c`` (218 N m rad-1; stable above). FOAM runs from
+    a bent link with the reference at rest, 25 % above and below ``k_c``: the envelope of the
+    spring's torque decays above and grows below, at the linear rate (measured -0.02316 and 0.02816
+    s-1 against -0.02318 and 0.02816; bound 2 %, the other modes' share of a 60 s record)."""
     rigid, checked_numerics, sm = _checked(_case("FOAM", None, speed=0.0), paper_beam, numerics)
     gains = json.loads(feedback_law(rigid, sm, paper_beam)[1]["feedback_gains"])
     stiff = _abscissa(rigid, paper_beam, checked_numerics, gains, 1e4)
@@ -149,7 +149,7 @@ def test_a_rigid_design_loses_stability_on_a_soft_spring_where_the_linear_loop_s
         ds = simulate_case(case, paper_beam, run_numerics)
         measured = measures.envelope_growth_rate(ds.time.values, ds.spring_torque.values, 20.0, windows=8)
         assert (measured < 0.0) == stable
-        assert measured == pytest.approx(rate, rel=0.25)
+        assert measured == pytest.approx(rate, rel=0.02)
 
 
 def test_the_sampled_lqg_loop_runs_on_the_spring(paper_beam, numerics):

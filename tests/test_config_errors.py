@@ -28,8 +28,9 @@ from hubbeam.configuration.load import read_config_file
 from hubbeam.core.inputs import IDENTITY_SHAPER
 from hubbeam.linear import lumped
 from hubbeam.model.limits import MEMORY_BUDGET_MB
+from hubbeam.model.maneuvers import SensorSpec
 from hubbeam.results import variables
-from hubbeam.simulation.sampled import SampledLoop, Sensor, held_table, loop_arrays
+from hubbeam.simulation.sampled import SampledLoop, held_table, loop_arrays
 
 REPO = Path(__file__).resolve().parents[1]
 TRUST = REPO / "studies" / "controller_trust.yaml"
@@ -104,7 +105,7 @@ def test_the_sampled_loop_s_arrays_are_what_the_budget_counts():
     (records, noise, sample and switch times, stops, the held command's table) are
     ``variables.sampled_loop_bytes`` but for the working copies numpy's union of the stops makes."""
     N, t_end, Ts = 3, 1.0, 1.0e-3
-    loop = SampledLoop([Sensor("hub_angle", np.eye(2 * N)[0]), Sensor("hub_speed", np.eye(2 * N)[N])],
+    loop = SampledLoop([SensorSpec("hub_angle"), SensorSpec("hub_speed")], np.eye(2 * N)[[0, N]],
                        np.zeros((0, 0)), np.zeros((0, 2)), np.zeros(0), np.zeros((3, 0)), np.ones((3, 2)),
                        np.ones(3), np.zeros((2, 3)), np.zeros(3), np.zeros(0), Ts=Ts, D=0.5)
     arrays, stops, noise = loop_arrays(loop, np.arange(N), t_end, np.zeros(4), IDENTITY_SHAPER)

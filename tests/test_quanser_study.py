@@ -23,6 +23,7 @@ from hubbeam.control import sample_time as st
 from hubbeam.control.analyses import control_problems, sampled_cases
 from hubbeam.control.cases import sampled_controller
 from hubbeam.control.implementation import read_implementation
+from hubbeam.control.sampled import sensor_rows
 from hubbeam.pipeline.jobs.control import control_export
 from hubbeam.pipeline.runner import Job
 from hubbeam.simulation.simulate import case_matrices
@@ -109,7 +110,7 @@ def test_the_sampled_loop_tends_to_the_continuous_one_at_first_order_in_ts(setti
     the axial modes (> 18000 rad/s) are not asymptotic at these Ts."""
     case = settings.cases["lumped_exact"]
     sm = case_matrices(case, settings.beam, settings.numerics)
-    truth = st.truth_model(case, settings.beam, sm)
+    truth = st.truth_model(case, settings.beam, settings.numerics, sm)
     steps = (4e-4, 2e-4, 1e-4)
     errors, continuous = [], None
     for Ts in steps:
@@ -129,7 +130,8 @@ def test_the_sampled_loop_tends_to_the_continuous_one_at_first_order_in_ts(setti
     assert errors[-1] < 1e-2 * np.max(np.abs(slow))
     ratios = np.array(errors[:-1]) / np.array(errors[1:])
     assert np.all(np.abs(ratios - 2.0) < 0.2), (errors, ratios)
-    sweep = st.sample_time_sweep(case, settings.beam, sm, [1e-4, 2e-4], delays=(0.0,), gains=("continuous",))
+    sweep = st.sample_time_sweep(case, settings.beam, settings.numerics, sm, [1e-4, 2e-4], delays=(0.0,),
+                                 gains=("continuous",))
     assert math.isclose(sweep.radius[0, 0, 0], np.max(np.abs(np.exp(continuous * 1e-4))), rel_tol=1e-5)
 
 
@@ -141,8 +143,8 @@ def test_the_robustness_map_at_the_nominal_plant_is_the_designs_loop(settings):
     case = settings.cases["foam3_exact"]
     sm = case_matrices(case, settings.beam, settings.numerics)
     controller = sampled_controller(case, settings.beam, sm)
-    truth = st.truth_model(case, settings.beam, sm)
-    A, _ = st.loop_matrix(truth, controller, rb.truth_rows(truth, controller))
+    truth = st.truth_model(case, settings.beam, settings.numerics, sm)
+    A, _ = st.loop_matrix(truth, controller, sensor_rows(truth, controller.sensors))
     loop = np.linalg.eigvals(A)
     assert loop.size == controller.poles.size
     assert max(np.min(np.abs(loop - pole)) for pole in controller.poles) < 1e-10

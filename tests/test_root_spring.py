@@ -41,14 +41,14 @@ from hubbeam.linear.statespace import linear_model
 from hubbeam.model import eigen
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.drive import QUANSER_SRV02
-from hubbeam.model.maneuvers import FeedbackLaw, maneuver_from_dict
+from hubbeam.model.maneuvers import FeedbackLaw, SensorSpec, maneuver_from_dict
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import MODELS
 from hubbeam.model.modes import clamped_free_roots
 from hubbeam.model.parameters import BeamParameters, BeamProducts, TipMass
 from hubbeam.model.root import RootSpring, joint_inputs, joint_second_order
 from hubbeam.simulation.errors import SimulationError
-from hubbeam.simulation.sampled import SampledLoop, Sensor
+from hubbeam.simulation.sampled import SampledLoop
 from hubbeam.simulation.simulate import Resolved, case_matrices, run, simulate
 from hubbeam.validation import root_spring as closed
 from hubbeam.validation.tip_body import body_frequency_roots
@@ -546,16 +546,13 @@ def test_what_is_not_a_spring_is_refused(_study_config, paper_beam):
         eigen.root_frequencies(sm, RootSpring(1.0), hub="loose")
 
 
-def test_a_state_feedback_on_the_spring_is_refused(_study_config, paper_beam):
-    """The configuration refuses a state feedback with a root spring (its laws and designs are the
-    rigid root's), naming the key; a law of the rigid root's ``2 N`` gains handed to a run on the
-    spring directly (``simulate.run``: ``2 (N + 1)`` states) is named before the integration."""
+def test_a_rigid_law_on_the_spring_is_refused(_study_config, paper_beam):
+    """A law of the rigid root's ``2 N`` gains handed to a run on the spring directly
+    (``simulate.run``: ``2 (N + 1)`` states) is named before the integration."""
     n = 2
     maneuver = {"kind": "state_feedback", "reference": {"kind": "prescribed", "wf": 1.0, "tf": 2.0},
                 "gains": {"theta": 1.0}}
     numerics = _study_config["numerics"]
-    with pytest.raises(ConfigError, match=r"cases\.root_FOAM\.root_spring: given with a state_feedback maneuver"):
-        simulate(_case("FOAM", maneuver, 0.1, modes=n, spring=RootSpring(1.0)), paper_beam, numerics)
     rigid, checked_numerics = simulation_settings(_case("FOAM", maneuver, 0.1, modes=n), numerics, paper_beam.L)
     on_spring = dataclasses.replace(rigid, root_spring=RootSpring(1.0))
     law = FeedbackLaw(np.zeros(2 * (1 + 2 * n)), np.zeros(n), 0.0)
@@ -610,8 +607,8 @@ def test_a_sampled_loop_reads_and_drives_the_hub(flexible_link):
     rate = np.zeros(2 * N)
     rate[2 * N - 1] = 1.0
     Ts = 0.01
-    loop = SampledLoop([Sensor("encoder", row), Sensor("tachometer", rate)], np.zeros((0, 0)), np.zeros((0, 2)),
-                       np.zeros(0), np.zeros((2, 0)), np.eye(2), np.array([0.05, 0.005]),
+    loop = SampledLoop([SensorSpec("encoder"), SensorSpec("tachometer")], np.array([row, rate]), np.zeros((0, 0)),
+                       np.zeros((0, 2)), np.zeros(0), np.zeros((2, 0)), np.eye(2), np.array([0.05, 0.005]),
                        np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]), np.zeros(3), np.zeros(0), Ts=Ts)
     case = {"name": "rig", "model": "FOAM", "modes": n, "t_end": 1.0, "damping": RIG_DAMPED,
             "maneuver": {"kind": "pd", "kp": 0.0, "kd": 0.0,
@@ -623,7 +620,7 @@ def test_a_sampled_loop_reads_and_drives_the_hub(flexible_link):
     assert run.status == 0 and float(np.max(np.abs(records.applied))) > 1e-3
     np.testing.assert_allclose(records.sensed[:, 0], run.out[:, columns["hub_angle"]], rtol=0, atol=1e-12)
     np.testing.assert_array_equal(run.out[:, columns["hub_torque"]], records.applied)
-    rigid_rows = dataclasses.replace(loop, sensors=[Sensor("encoder", row[:10]), Sensor("tachometer", rate[:10])])
+    rigid_rows = dataclasses.replace(loop, rows=loop.rows[:, :10])
     with pytest.raises(SimulationError, match="rows of length 10; allowed: 2 N = 12, the state .* and the root "
                                               "spring's hub angle"):
         rig_run(dict(case, root_spring={"stiffness": 0.5}), flexible_link, RIG_NUMERICS, loop=rigid_rows)

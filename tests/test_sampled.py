@@ -38,10 +38,10 @@ from hubbeam.core.sampled import hold, lowpass_weights, signal_polynomial
 from hubbeam.linear.statespace import linear_model
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.drive import QUANSER_SRV02
-from hubbeam.model.maneuvers import maneuver_from_dict
+from hubbeam.model.maneuvers import SensorSpec, maneuver_from_dict
 from hubbeam.model.plant import with_drive
 from hubbeam.simulation.errors import SimulationError
-from hubbeam.simulation.sampled import SampledLoop, Sensor, reference_array
+from hubbeam.simulation.sampled import SampledLoop, reference_array
 from hubbeam.simulation.simulate import case_matrices
 
 NUMERICS = {"rtol": 1e-10, "atol": 1e-12, "output_step": 0.01, "max_steps": 10**7, "step_warning": 10**7,
@@ -74,10 +74,15 @@ def _unit(index):
     return row
 
 
+def _sensors(*pairs):
+    """The sensors and their rows, as a loop takes them, of ``(SensorSpec, row)`` pairs."""
+    return [sensor for sensor, _ in pairs], np.array([row for _, row in pairs])
+
+
 def _feedback(sensors, K, R_m, Ts, **settings):
     """Static feedback ``u = U_r . rho - K (m - R_m rho)`` on the sensors (no controller state)."""
-    p = len(sensors)
-    return SampledLoop(sensors, np.zeros((0, 0)), np.zeros((0, p)), np.zeros(0), np.zeros((p, 0)), np.eye(p),
+    p = len(sensors[0])
+    return SampledLoop(*sensors, np.zeros((0, 0)), np.zeros((0, p)), np.zeros(0), np.zeros((p, 0)), np.eye(p),
                        np.asarray(K, float), np.asarray(R_m, float), settings.pop("U_r", np.zeros(3)),
                        np.zeros(0), Ts=Ts, **settings)
 
@@ -116,9 +121,9 @@ def test_the_lowpass_is_exact_on_a_steadily_spinning_hub(flexible_link):
     tau starting in equilibrium gives ``W (t - tau (1 - exp(-t / tau)))``. The steps of h = Ts =
     0.01 s make ``h / tau`` 5 for the fast filter (the weights' recurrence) and 0.2 for the slow
     one (their series); the first steps, growing from 1e-6 s, take the series for both."""
-    sensors = [Sensor("fast", _unit(0), lowpass=0.002), Sensor("slow", _unit(0), lowpass=0.05),
-               Sensor("raw", _unit(0))]
-    loop = SampledLoop(sensors, *(np.zeros(shape) for shape in ((0, 0), (0, 3), 0, (0, 0), (0, 3), 0)),
+    sensors = _sensors((SensorSpec("fast", lowpass=0.002), _unit(0)), (SensorSpec("slow", lowpass=0.05), _unit(0)),
+                       (SensorSpec("raw"), _unit(0)))
+    loop = SampledLoop(*sensors, *(np.zeros(shape) for shape in ((0, 0), (0, 3), 0, (0, 0), (0, 3), 0)),
                        np.zeros((3, 3)), np.zeros(3), np.zeros(0), Ts=0.01)
     run = rig_run(_case(STEADY, t_end=1.0, initial={"hub_speed": SPEED}), flexible_link, NUMERICS,
                        loop=loop)
@@ -209,7 +214,7 @@ def test_about_a_steady_spin_the_sampled_run_follows_the_discrete_linear_loop(fl
     lin, plant = _linear_plant(flexible_link, case, motor)
     bias = 0.0 if motor is None else motor.hub_damping * SPEED / motor.torque_gain
     controller = _lqg(plant, Ts, 100.0 if motor is None else 1.0, bias)
-    loop = SampledLoop([Sensor("hub_angle", lin.C[0]), Sensor("root_moment", lin.C[1])], **controller, Ts=Ts,
+    loop = SampledLoop([SensorSpec("hub_angle"), SensorSpec("root_moment")], lin.C[:2], **controller, Ts=Ts,
                        D=delay, u_init=bias)
     gaps = []
     for amplitude in (2e-4, 1e-4):
@@ -249,7 +254,7 @@ def test_a_vanishing_sample_time_recovers_the_continuous_state_feedback(flexible
     R_m[weighed == N, 1] = 1.0  # theta' against theta_r'
     errors = []
     for Ts in (0.004, 0.002, 0.001):
-        loop = _feedback([Sensor(f"x{i}", _unit(i)) for i in weighed], gains[weighed], R_m, Ts)
+        loop = _feedback(_sensors(*((SensorSpec(f"x{i}"), _unit(i)) for i in weighed)), gains[weighed], R_m, Ts)
         sampled = rig_run(case, flexible_link, NUMERICS, loop=loop)
         errors.append(np.abs(sampled.out[:, tip] - continuous.out[:, tip]).max())
     orders = np.log2(np.array(errors[:-1]) / errors[1:])
@@ -270,9 +275,9 @@ def test_an_encoder_stays_within_its_model_s_bound(flexible_link):
     below it by less than a count; over a spin-up both errors fill their intervals. The bounds
     allow the rounding of ``q * round(s / q)`` (a few ulps of the angle)."""
     quantum = 2.0 * np.pi / 4096
-    sensors = [Sensor("rounded", _unit(0), quantum=quantum), Sensor("counted", _unit(0), quantum=quantum,
-                                                                     mode="edges"),
-               Sensor("speed", _unit(N))]
+    sensors = _sensors((SensorSpec("rounded", quantum=quantum), _unit(0)),
+                       (SensorSpec("counted", quantum=quantum, mode="edges"), _unit(0)),
+                       (SensorSpec("speed"), _unit(N)))
     loop = _feedback(sensors, [2.0, 0.0, 0.3], [[1.0, 0, 0], [1.0, 0, 0], [0, 1.0, 0]], 0.002)
     records = rig_run(_spin_up(), flexible_link, NUMERICS, loop=loop).records
     slack = 8 * np.spacing(np.abs(records.sensed[:, :2]).max())
@@ -300,11 +305,11 @@ def _current_estimator(flexible_link, case, Ts, noise, seed=0, u_max=np.inf):
     RN = np.diag([1e-6, 1e-8])
     _, P, _ = ct.dlqe(Ad, np.eye(ns), Cd, 1e-6 * np.eye(ns), RN)  # P: the predicted covariance
     M = P @ Cd.T @ np.linalg.inv(Cd @ P @ Cd.T + RN)
-    sensors = [Sensor("hub_angle", lin.C[0], noise=noise[0]), Sensor("root_moment", lin.C[1], noise=noise[1])]
+    sensors = [SensorSpec("hub_angle", noise=noise[0]), SensorSpec("root_moment", noise=noise[1])]
     inertia = float(sm.Jh + sm.Jb)
     start = np.zeros(ns)
     start[[lin.states.index("q2_1"), lin.states.index("q2_2")]] = case.get("initial", {}).get("q2", (0.0, 0.0))
-    loop = SampledLoop(sensors, Ad @ (np.eye(ns) - M @ Cd), Ad @ M, Bd[:, 0], np.eye(ns) - M @ Cd, M, K[0],
+    loop = SampledLoop(sensors, lin.C[:2], Ad @ (np.eye(ns) - M @ Cd), Ad @ M, Bd[:, 0], np.eye(ns) - M @ Cd, M, K[0],
                        [[1.0, 0, 0], [0, 0, 0]], [0.0, 0.0, inertia], start, Ts=Ts, u_max=u_max, seed=seed)
     return lin, loop
 
@@ -385,7 +390,7 @@ def test_a_delay_of_d_samples_shifts_the_input_and_the_motion_by_d_ts(flexible_l
     columns = output_columns(MODES)
     runs = {}
     for D in (0.0, 0.25, 1.0, 2.5):
-        loop = _feedback([Sensor("hub_angle", _unit(0))], [0.0], [[1.0, 0.0, 0.0]], Ts, D=D,
+        loop = _feedback(_sensors((SensorSpec("hub_angle"), _unit(0))), [0.0], [[1.0, 0.0, 0.0]], Ts, D=D,
                          U_r=np.array([0.0, 0.0, inertia]))
         run = rig_run(case, flexible_link, dict(NUMERICS, output_step=step), loop=loop)
         switches = (np.arange(run.records.t.size) + D) * Ts
@@ -430,15 +435,26 @@ def test_the_held_input_switches_at_its_times_and_holds_between():
 
 # --------------------------------------------------------------------------- bad input
 def _good():
-    return {"sensors": [Sensor("a", _unit(0)), Sensor("b", _unit(N))], "Ac": np.eye(1), "Bc": np.zeros((1, 2)),
-            "Bu": np.zeros(1), "E": np.zeros((3, 1)), "F": np.zeros((3, 2)), "K": np.zeros(3),
-            "R_m": np.zeros((2, 3)), "U_r": np.zeros(3), "xc0": np.zeros(1), "Ts": 0.002}
+    return {"sensors": [SensorSpec("a"), SensorSpec("b")], "rows": np.array([_unit(0), _unit(N)]), "Ac": np.eye(1),
+            "Bc": np.zeros((1, 2)), "Bu": np.zeros(1), "E": np.zeros((3, 1)), "F": np.zeros((3, 2)),
+            "K": np.zeros(3), "R_m": np.zeros((2, 3)), "U_r": np.zeros(3), "xc0": np.zeros(1), "Ts": 0.002}
 
 
 @pytest.mark.parametrize("key, value, message", [
-    ("sensors", [], "SampledLoop.sensors = .*a non-empty list of Sensor"),
-    ("sensors", [Sensor("a", _unit(0)), Sensor("a", _unit(N))], "distinct names"),
-    ("sensors", [Sensor("a", _unit(0)), Sensor("b", np.ones(4))], "rows of one length"),
+    ("sensors", [], "SampledLoop.sensors = .*a non-empty list of SensorSpec"),
+    ("sensors", [SensorSpec("a"), SensorSpec("a")], "distinct signals"),
+    ("sensors", [SensorSpec("a"), SensorSpec("")], "sensor ''.signal = ''; allowed: a non-empty name"),
+    ("sensors", [SensorSpec("a"), SensorSpec("b", noise=-1.0)], "sensor 'b'.noise = -1.0; allowed: a finite number "
+                                                                ">= 0"),
+    ("sensors", [SensorSpec("a", lowpass=np.nan), SensorSpec("b")], "sensor 'a'.lowpass = nan"),
+    ("sensors", [SensorSpec("a", mode="floor"), SensorSpec("b")], "sensor 'a'.mode = 'floor'; allowed: one of round, "
+                                                                  "edges"),
+    ("sensors", [SensorSpec("a", gain="two"), SensorSpec("b")], "sensor 'a'.gain = 'two'; allowed: a finite, non-zero"),
+    ("sensors", [SensorSpec("a", gain=0.0), SensorSpec("b")], "sensor 'a'.gain = 0.0; allowed: a finite, non-zero"),
+    ("rows", np.ones((2, 3)), r"SampledLoop.rows: shape \(2, 3\); allowed: .*\(p, 2 N\)"),
+    ("rows", np.ones((1, 4)), r"SampledLoop.rows: shape \(1, 4\); allowed: .*p = 2"),
+    ("rows", [["x", "y"], ["z", "w"]], "SampledLoop.rows: .*finite values"),
+    ("rows", np.ones(4), r"SampledLoop.rows: shape \(4,\)"),
     ("Bc", np.zeros((2, 2)), r"SampledLoop.Bc: shape \(2, 2\); allowed: .*\(nc, p\) = \(1, 2\)"),
     ("F", np.zeros((3, 3)), r"SampledLoop.F: shape .*\(ns, p\) = \(3, 2\)"),
     ("R_m", np.full((2, 3), np.nan), "SampledLoop.R_m: .*finite"),
@@ -457,25 +473,10 @@ def test_a_bad_loop_is_refused_naming_the_argument(key, value, message):
         SampledLoop(**dict(_good(), **{key: value}))
 
 
-@pytest.mark.parametrize("settings, message", [
-    ({"name": ""}, "Sensor.name = ''"),
-    ({"row": np.ones(3)}, "Sensor 'a'.row = .*2 N of them"),
-    ({"row": ["x", "y"]}, "Sensor 'a'.row = .*2 N of them"),
-    ({"row": np.ones((2, 2))}, "Sensor 'a'.row = .*2 N of them"),
-    ({"noise": -1.0}, "Sensor 'a'.noise = -1.0; allowed: a finite number >= 0"),
-    ({"lowpass": np.nan}, "Sensor 'a'.lowpass = nan"),
-    ({"mode": "floor"}, "Sensor 'a'.mode = 'floor'; allowed: one of round, edges"),
-    ({"gain": "two"}, "Sensor 'a'.gain = 'two'; allowed: a finite number"),
-])
-def test_a_bad_sensor_is_refused_naming_the_argument(settings, message):
-    with pytest.raises(SimulationError, match=message):
-        Sensor(**dict({"name": "a", "row": _unit(0)}, **settings))
-
-
 def test_a_loop_needs_a_tracking_case_and_rows_of_its_model(flexible_link):
     loop = SampledLoop(**_good())
     torque = dict(_case(REST), maneuver={"kind": "torque", "tau_max": 1.0, "tf": 1.0})
     with pytest.raises(SimulationError, match="'torque' with a sampled loop; allowed: a maneuver that tracks"):
         rig_run(torque, flexible_link, NUMERICS, loop=loop)
-    with pytest.raises(SimulationError, match=r"rows of length 10; allowed: 2 N = 14"):
+    with pytest.raises(SimulationError, match=r"SampledLoop.rows: rows of length 10; allowed: 2 N = 14"):
         rig_run(dict(_case(REST), modes=3), flexible_link, NUMERICS, loop=loop)

@@ -36,6 +36,7 @@ from hubbeam.model import limits
 from hubbeam.model.maneuvers import MANEUVERS, REFERENCES, maneuver_from_dict
 from hubbeam.model.models import DESIGN_ONLY_MODELS, MODELS
 from hubbeam.model.modes import CLAMPED_FREE, TIP_BODY
+from hubbeam.model.root import state_names as root_state_names
 from hubbeam.reporting.products import PAPER
 from hubbeam.results import variables
 from hubbeam.results.paths import PAPER_FOLDERS
@@ -111,7 +112,7 @@ def physical_problems(cfg: Any, whole: bool = True) -> list[Problem]:
         problems += entry_problems + _initial_problems(f"cases.{name}", case, modes, check_speed=not entry_problems)
         problems += _feedback_problems(f"cases.{name}.maneuver", case, modes)
         problems += _drive_problems(f"cases.{name}", case) + _shaper_problems(f"cases.{name}.shaper", case, modes)
-        problems += _root_problems(f"cases.{name}", case) + _functions_problems(f"cases.{name}", case, beam, length)
+        problems += _functions_problems(f"cases.{name}", case, beam, length)
     problems += _beam_problems(beam, length)
     if whole:
         problems += _study_problems(cfg, eigen, cases)
@@ -205,12 +206,24 @@ def _run_parts(where: str, case: Mapping, modes: int, t_end: float) -> list[_Par
                    lambda room: f"at most {math.floor(room / variables.table_bytes(1))} rows")
              for path, count in rows.items()]
     sampled = _sampled_part(f"{where}.maneuver", maneuver, _modes(_section(maneuver, "design").get("modes", modes)),
-                            t_end)
+                            t_end, _joint(case))
     shaper = _shaper_part(f"{where}.shaper", _section(case, "shaper"), max(rows.values(), default=2))
     return parts + [part for part in (sampled, shaper) if part is not None]
 
 
-def _sampled_part(where: str, maneuver: Mapping, design_modes: int | None, t_end: float) -> _Part | None:
+def _joint(case: Mapping) -> bool:
+    """Whether the case has a compliant root (``root_spring``): its hub angle ``phi`` a state."""
+    return isinstance(case.get("root_spring"), dict)
+
+
+def _states(model, modes: int, joint: bool) -> tuple[str, ...]:
+    """The state names of ``model`` with ``modes`` modes, the hub angle ``phi`` among them with a
+    compliant root (``hubbeam.model.root.state_names``)."""
+    return root_state_names(model, modes) if joint else model.state_names(modes)
+
+
+def _sampled_part(where: str, maneuver: Mapping, design_modes: int | None, t_end: float,
+                  joint: bool) -> _Part | None:
     """The per-sample arrays of a sampled controller (``maneuver.sampling``), None without one: its
     readings are the design's states (the exact estimator) or its sensors; it estimates the design's
     states and the commands its delay holds back (filtered differences: two per sensor)."""
@@ -223,7 +236,7 @@ def _sampled_part(where: str, maneuver: Mapping, design_modes: int | None, t_end
     if design_model in DESIGN_ONLY_MODELS:
         states = len(LUMPED_STATES)
     elif design_model in MODELS and design_modes is not None:
-        states = len(MODELS[design_model].state_names(design_modes))
+        states = len(_states(MODELS[design_model], design_modes, joint))
     else:
         return None  # the schema reports the design
     lags = math.floor(delay) + (1 if delay > math.floor(delay) else 0)  # hubbeam.linear.discrete.discretise
@@ -393,15 +406,16 @@ def _feedback_problems(where: str, case: Mapping, modes: int | None) -> list[Pro
     problems = []
     model, design = MODELS.get(_name(case.get("model"))), _section(maneuver, "design")
     design_modes = _modes(design.get("modes", modes))
+    joint = _joint(case)
     names = {"gains": (_section(maneuver, "gains"),
-                       None if model is None else (f"{model.name} with {modes} modes", model.state_names(modes)))}
+                       None if model is None else (f"{model.name} with {modes} modes", _states(model, modes, joint)))}
     if _design_model(maneuver) in DESIGN_ONLY_MODELS:  # the lumped model: its states and outputs
         names["design.weights"] = (_section(design, "weights"), (f"the {design['model']} model",
                                                                  LUMPED_STATES + LUMPED_OUTPUTS))
     elif _design_model(maneuver) is not None and design_modes is not None:
         owner = MODELS[design["model"]]
-        names["design.weights"] = (_section(design, "weights"), (f"{owner.name} with {design_modes} modes",
-                                                                 owner.state_names(design_modes) + MEASURED_SIGNALS))
+        allowed = _states(owner, design_modes, joint) + MEASURED_SIGNALS
+        names["design.weights"] = (_section(design, "weights"), (f"{owner.name} with {design_modes} modes", allowed))
     for key, (values, known) in names.items():
         if known is None:
             continue  # the schema reports the model
@@ -528,17 +542,6 @@ def _process_noise_problems(where: str, estimator: Mapping) -> list[Problem]:
                     "noise, which leaves the free hub's rigid-body mode (z = 1) undisturbed, and the filter is "
                     "refused; allowed: input_noise > 0 (process noise on the input: N m, or V with a drive), or "
                     "state_noise > 0 on a state that moves that mode (such as theta_dot)")]
-
-
-def _root_problems(where: str, case: Mapping) -> list[Problem]:
-    """A compliant root takes every maneuver but a state feedback, whose laws, designs and sampled
-    controllers are built on the rigid root's states."""
-    kind = _section(case, "maneuver").get("kind")
-    if isinstance(case.get("root_spring"), dict) and kind == "state_feedback":
-        return [Problem(f"{where}.root_spring", "given with a state_feedback maneuver; allowed: a root spring under "
-                        "a prescribed, torque, table or pd maneuver (a state feedback on the flexible joint's "
-                        "states is not modelled; docs/compliant-root.md)")]
-    return []
 
 
 def _functions_problems(where: str, case: Mapping, beam: Mapping, length: float | None) -> list[Problem]:

@@ -74,8 +74,8 @@ def sample_time_analysis(settings: Settings, spec: SampleTimeAnalysis, confirm: 
     for name in spec.cases:
         case = settings.cases[name]
         sm = case_matrices(case, settings.beam, settings.numerics)
-        sweeps.append(sample_time_sweep(case, settings.beam, sm, grid, delays))
-        truth = truth or plant_modes(truth_model(case, settings.beam, sm))
+        sweeps.append(sample_time_sweep(case, settings.beam, settings.numerics, sm, grid, delays))
+        truth = truth or plant_modes(truth_model(case, settings.beam, settings.numerics, sm))
     confirmation = None
     first = sweeps[0]
     boundary = float(first.boundary[first.gains.index("continuous"), 0]) if 0.0 in delays else math.nan

@@ -24,13 +24,14 @@ configuration with all of them, ``hubbeam.check.check_configuration``). :func:`s
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 
 from hubbeam.configuration.schema import Problem
 from hubbeam.configuration.settings import Case, Settings, simulation_settings
 from hubbeam.control.dlqr import continuous_lqr, discrete_lqr
-from hubbeam.control.feedback import FeedbackError, design_plant, feedback_law
+from hubbeam.control.feedback import FeedbackError, design_plant, feedback_law, rigid_inertia
 from hubbeam.control.kalman import kalman_filter
 from hubbeam.control.sampled import (
     SampledController,
@@ -39,7 +40,7 @@ from hubbeam.control.sampled import (
     rigid_feedforward,
     state_controller,
 )
-from hubbeam.control.sampling import Sensor as DesignSensor
+from hubbeam.control.sampling import sensor_unit
 from hubbeam.control.shaping import ShapingMode, case_shaping_mode
 from hubbeam.linear.discrete import discretise
 from hubbeam.linear.export import state_units
@@ -51,7 +52,7 @@ from hubbeam.model.maneuvers import StateFeedback
 from hubbeam.model.shapers import Shaper, check_sampling, rounded
 from hubbeam.results.reader import simulation_inputs
 from hubbeam.simulation.errors import SimulationError
-from hubbeam.simulation.sampled import SampledLoop, Sensor
+from hubbeam.simulation.sampled import SampledLoop
 from hubbeam.simulation.simulate import Resolved, case_matrices, needs_resolving, simulate
 
 
@@ -70,16 +71,17 @@ def sampled_controller(case: Case, beam, sm) -> SampledController:
     dm = discretise(plant, sampling.sample_time, sampling.delay)
     design = discrete_lqr if sampling.gain == "discrete" else continuous_lqr
     lqr = design(dm, spec.weights, spec.input_weight)
-    simulated = linear_model(beam, sm, case.model, 0.0, "free")  # the sensors' rows: the same at any speed
+    # the sensors' rows: the same at any speed
+    simulated = linear_model(beam, sm, case.model, 0.0, "free", root_spring=case.root_spring)
     u_max = math.inf if case.drive is None else case.drive.voltage_limit
-    feedforward = rigid_feedforward(float(sm.Jh + sm.Jb + sm.Jt), case.drive) if maneuver.feedforward else None
+    feedforward = rigid_feedforward(rigid_inertia(case, sm), case.drive) if maneuver.feedforward else None
     estimator = sampling.estimator
     if estimator.kind == "exact":
         return state_controller(lqr, simulated, u_max, 0.0, feedforward)
-    sensors = [DesignSensor(sensor.signal, sensor.gain, sensor.noise, sensor.quantum) for sensor in sampling.sensors]
     if estimator.kind == "filtered_differences":
-        return filtered_difference_controller(lqr, sensors, estimator.cutoff, simulated, u_max, 0.0, feedforward)
-    kf = kalman_filter(dm, sensors, estimator.input_noise or 0.0, dict(estimator.state_noise or {}),
+        return filtered_difference_controller(lqr, sampling.sensors, estimator.cutoff, simulated, u_max, 0.0,
+                                              feedforward)
+    kf = kalman_filter(dm, sampling.sensors, estimator.input_noise or 0.0, dict(estimator.state_noise or {}),
                        form=estimator.form or "current")
     return kalman_controller(lqr, kf, simulated, u_max, 0.0, feedforward)
 
@@ -100,19 +102,14 @@ def estimate_unit(name: str, inputs=()) -> str:
 
 
 def sampled_loop(case: Case, controller: SampledController) -> SampledLoop:
-    """The compiled loop of ``controller`` with the sensors of ``case``: their gains, offsets,
-    noise, low-pass, quantisation and units (the exact estimator's readings without any), the
-    noise seeded by ``sampling.seed``."""
-    sampling = case.maneuver.sampling
-    specs = sampling.sensors or [None] * len(controller.sensors)
-    sensors = []
-    for reading, row, spec in zip(controller.sensors, controller.sensor_rows, specs):
-        settings = {} if spec is None else {key: getattr(spec, key)
-                                            for key in ("gain", "offset", "noise", "lowpass", "quantum", "mode")}
-        sensors.append(Sensor(reading.signal, row, unit=reading.sensor_unit, **settings))
+    """The compiled loop of ``controller`` with its sensors (the case's, with their gains, offsets,
+    noise, low-pass and quantisation; the exact estimator's readings without any), each in its
+    unit (:func:`hubbeam.control.sampling.sensor_unit`), the noise seeded by ``sampling.seed``."""
+    sensors = [dataclasses.replace(sensor, unit=sensor_unit(sensor)) for sensor in controller.sensors]
     inputs = controller.design.inputs
-    return SampledLoop(sensors, **controller.matrices, Ts=controller.Ts, D=controller.D, u_max=controller.u_max,
-                       u_init=controller.u_init, seed=sampling.seed, estimate_states=controller.estimate_states,
+    return SampledLoop(sensors, controller.sensor_rows, **controller.matrices, Ts=controller.Ts, D=controller.D,
+                       u_max=controller.u_max, u_init=controller.u_init, seed=case.maneuver.sampling.seed,
+                       estimate_states=controller.estimate_states,
                        estimate_units=tuple(estimate_unit(name, inputs) for name in controller.estimate_states))
 
 

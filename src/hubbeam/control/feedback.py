@@ -42,7 +42,7 @@ from hubbeam.configuration.schema import MEASURED_SIGNALS, Problem
 from hubbeam.configuration.settings import Case
 from hubbeam.control.sampling import weight_matrix
 from hubbeam.linear.lumped import LUMPED_SIGNALS, FlexibleLinkRig, lumped_model
-from hubbeam.linear.statespace import linear_model
+from hubbeam.linear.statespace import linear_model, model_states
 from hubbeam.linear.voltage import voltage_model
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.maneuvers import FeedbackLaw
@@ -66,9 +66,10 @@ class FeedbackError(SimulationError):
         super().__init__(str(self.problem))
 
 
-def coordinate_names(n: int) -> tuple[str, ...]:
-    """The names of ``x = (y, y')``, ``y = (theta, q1, q2)`` with ``n`` modes (the kernel's order)."""
-    return model_traits("FOAM").state_names(n)
+def coordinate_names(n: int, root_spring=None) -> tuple[str, ...]:
+    """The names of ``x = (y, y')``, ``y = (theta, q1, q2)`` with ``n`` modes, and the hub angle
+    ``phi`` last with a ``root_spring`` (the kernel's order, ``hubbeam.model.root.state_names``)."""
+    return model_states(model_traits("FOAM"), n, root_spring)
 
 
 def _where(case: Case) -> str:
@@ -129,9 +130,10 @@ def design_matrices(case: Case, beam, sm):
 
 def design_plant(case: Case, beam, sm):
     """The continuous linear model (free hub) a case's LQR is designed on: the design model with
-    its modes about its steady spin at the design speed, the case's damping, the voltage as input
-    with a drive (``hubbeam.linear.voltage``); or the courseware's lumped model
-    (:func:`lumped_rig`); the measured signals among its outputs."""
+    its modes about its steady spin at the design speed, the case's damping and root spring (the
+    hub angle ``phi`` and the root's angle ``theta`` both states), the voltage as input with a drive
+    (``hubbeam.linear.voltage``); or the courseware's lumped model (:func:`lumped_rig`, a rigid
+    root); the measured signals among its outputs."""
     spec = case.maneuver.design
     if spec.model in DESIGN_ONLY_MODELS:
         return lumped_model(lumped_rig(beam, case.drive, spec.held_frequency))
@@ -139,8 +141,9 @@ def design_plant(case: Case, beam, sm):
     steady_spin_check(f"{_where(case)}.design.speed", dsm, model_traits(spec.model), spec.speed)
     damping = damping_matrices(case.damping, dsm)
     if case.drive is not None:
-        return voltage_model(beam, dsm, spec.model, case.drive, spec.speed, damping, outputs=list(MEASURED_SIGNALS))
-    return linear_model(beam, dsm, spec.model, spec.speed, "free", damping, outputs=list(MEASURED_SIGNALS))
+        return voltage_model(beam, dsm, spec.model, case.drive, spec.speed, damping, list(MEASURED_SIGNALS),
+                             case.root_spring)
+    return linear_model(beam, dsm, spec.model, spec.speed, "free", damping, list(MEASURED_SIGNALS), case.root_spring)
 
 
 def lqr_design(case: Case, beam, sm) -> tuple[dict, dict]:
@@ -172,8 +175,9 @@ def lqr_design(case: Case, beam, sm) -> tuple[dict, dict]:
 
 def signal_gains(case: Case, beam, sm, signals) -> dict:
     """State gains of gains on measured signals: ``sum_j k_j c_j`` over the simulated model's
-    states (``c_j`` its linear output rows, which do not depend on the speed)."""
-    lin = linear_model(beam, sm, case.model, 0.0, "free", outputs=list(signals))
+    states (``c_j`` its linear output rows, which do not depend on the speed; with a root spring
+    ``hub_angle`` reads the hub, ``phi``)."""
+    lin = linear_model(beam, sm, case.model, 0.0, "free", outputs=list(signals), root_spring=case.root_spring)
     K = np.array([signals[name] for name in lin.outputs]) @ lin.C
     return dict(zip(lin.states, K.tolist(), strict=True))
 
@@ -193,25 +197,32 @@ def feedback_law(case: Case, sm, beam) -> tuple[FeedbackLaw, dict]:
         by_name = signal_gains(case, beam, sm, maneuver.output_feedback)
     else:
         by_name = dict(maneuver.gains)
-    kept = traits.state_names(n)
-    gains = np.array([float(by_name.get(name, 0.0)) if name in kept else 0.0
-                      for name in coordinate_names(n)])
+    kept = model_states(traits, n, case.root_spring)
+    names = coordinate_names(n, case.root_spring)
+    gains = np.array([float(by_name.get(name, 0.0)) if name in kept else 0.0 for name in names])
     speed = maneuver.reference.final_speed
     steady_spin_check(f"{_where(case)}.reference.wf", sm, traits, speed)
     stretch = np.linalg.solve(sm.K1 - speed**2 * sm.M1, sm.V1) if traits.keeps_axial else np.zeros(n)
     inertia, damping = feedforward(case, sm) if maneuver.feedforward else (0.0, 0.0)
     attributes["feedback_gains"] = json.dumps(
-        {name: value for name, value in zip(coordinate_names(n), gains.tolist(), strict=True)
+        {name: value for name, value in zip(names, gains.tolist(), strict=True)
          if name in kept})
     return FeedbackLaw(gains, stretch, inertia, damping), attributes
 
 
+def rigid_inertia(case: Case, sm) -> float:
+    """The whole rigid body's inertia about the hub axis (kg m2): the hub with the drive's rotor,
+    the beam, a tip body's rotary inertia, and a root spring's clamp, which turns with the link."""
+    inertia = float(sm.Jh + sm.Jb + sm.Jt)
+    return inertia if case.root_spring is None else inertia + case.root_spring.clamp_inertia
+
+
 def feedforward(case: Case, sm) -> tuple[float, float]:
     """The rigid feedforward's coefficients on the reference's acceleration and rate: the whole
-    rigid inertia ``J`` (hub with the drive's rotor, beam, a tip body's rotary inertia) and 0 for a
+    rigid inertia ``J`` (:func:`rigid_inertia`) and 0 for a
     torque; ``J / kV`` and the drive's damping ``c / kV`` for a voltage (its torque gain ``kV``,
     ``hubbeam.model.drive``; Coulomb friction is not fed forward)."""
-    inertia = float(sm.Jh + sm.Jb + sm.Jt)
+    inertia = rigid_inertia(case, sm)
     if case.drive is None:
         return inertia, 0.0
     return inertia / case.drive.torque_gain, case.drive.hub_damping / case.drive.torque_gain

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from hubbeam.control.sampled import REFERENCE
-from hubbeam.control.sampling import measurement_rows
+from hubbeam.control.sampling import measurement_rows, sensor_unit
 from hubbeam.linear.export import cell
 from hubbeam.linear.statespace import INPUT_UNITS
 from hubbeam.results.io import staged, write_text
@@ -79,7 +79,7 @@ def plant_system(controller):
 def _reading_rows(controller) -> np.ndarray:
     """The sensors' readings on the design model's states: ``gain c`` of a signal
     (``hubbeam.control.sampling.measurement_rows``), or the state itself for an exact reading of a
-    state (``hubbeam.control.sampled.StateReading``)."""
+    state (``hubbeam.control.sampled.state_controller``)."""
     dm = controller.design
     return np.array([np.eye(dm.A.shape[0])[dm.states.index(sensor.signal)] if sensor.signal in dm.states
                      else measurement_rows(dm, [sensor])[0] for sensor in controller.sensors])
@@ -101,13 +101,13 @@ def write_implementation(controller, path: os.PathLike | str) -> tuple[Path, Pat
     mat, text = base.with_suffix(".mat"), base.with_suffix(".json")
     K, P = controller_system(controller), plant_system(controller)
     command_unit = INPUT_UNITS.get(controller.design.inputs[0], "")
-    sensor_units = [sensor.sensor_unit for sensor in controller.sensors]
+    sensor_units = [sensor_unit(sensor) for sensor in controller.sensors]
     reference_units = ["rad", "rad s-1", "rad s-2"]
     document = {
         "format": FORMAT, "kind": controller.kind, "sample_time_s": controller.Ts,
         "input_delay_samples": controller.D, "u_max": controller.u_max if np.isfinite(controller.u_max) else None,
         "saturation": "ignored in these systems: clip the command to +-u_max on the rig",
-        "sensors": [{"signal": sensor.signal, "gain": sensor.gain, "unit": sensor.sensor_unit, "sigma": sensor.sigma,
+        "sensors": [{"signal": sensor.signal, "gain": sensor.gain, "unit": sensor_unit(sensor), "sigma": sensor.noise,
                      "quantum": sensor.quantum} for sensor in controller.sensors],
         "controller": _record(K, sensor_units + reference_units, [command_unit]),
         "plant": _record(P, [command_unit], sensor_units),

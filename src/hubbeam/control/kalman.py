@@ -6,7 +6,7 @@ among the states) driven by process noise and measured with noise,
     x_{k+1} = Ad x_k + Bd u_k + G w_k,     m_k = Cm x_k + v_k,     w ~ N(0, Qw),  v ~ N(0, Rv),
 
 ``Cm`` the sensors' rows ``gain c`` (:func:`hubbeam.control.sampling.measurement_rows`), ``Rv``
-their variances (``sigma^2 + quantum^2 / 12``; or a given matrix). The process noise acts
+their variances (``noise^2 + quantum^2 / 12``; or a given matrix). The process noise acts
 
 * on the input: a random input (torque or volts) held over each sample ``[t_k, t_{k+1})``, of
   variance ``input_noise`` (the input's unit squared): ``G = Gamma(Ts) = int_0^Ts exp(A s) ds B``
@@ -113,7 +113,7 @@ def measurement_noise(sensors, covariance=None) -> np.ndarray:
         Rv = np.diag([sensor.variance for sensor in sensors])
         for j, sensor in enumerate(sensors):
             if not sensor.variance > 0.0:
-                raise ValueError(f"sensors[{j}] ({sensor.signal}): noise variance sigma^2 + quantum^2 / 12 = "
+                raise ValueError(f"sensors[{j}] ({sensor.signal}): noise variance noise^2 + quantum^2 / 12 = "
                                  f"{sensor.variance!r}; allowed: > 0 (the measurement covariance must be positive "
                                  "definite)")
         return Rv
@@ -130,7 +130,7 @@ def measurement_noise(sensors, covariance=None) -> np.ndarray:
 def kalman_filter(dm, sensors, input_noise: float = 0.0, state_noise: Mapping[str, float] | None = None,
                   measurement_covariance=None, form: str = "current") -> KalmanFilter:
     """The steady-state Kalman filter of the discrete model ``dm`` measured by ``sensors``
-    (:class:`hubbeam.control.sampling.Sensor`), every argument checked first (module docstring)."""
+    (:class:`hubbeam.model.maneuvers.SensorSpec`), every argument checked first (module docstring)."""
     import control as ct
 
     if form not in FORMS:

@@ -8,8 +8,9 @@ within a stated range, the others nominal. The parameters (:data:`PARAMETERS`) a
 point mass at the link's tip, kg), the link's bending stiffness (a factor on ``EI``), the hub's
 viscous friction ``Beq`` (N m s/rad), the motor constants ``kt = km`` together (a factor: one
 physical constant in SI units) and the armature resistance ``Rm`` (a factor). The sensors read the
-moved plant through its own output rows (:func:`truth_rows`): a strain gauge reads the deflection
-of the moved link, an exact reading of a modal coordinate reads the moved model's coordinate.
+moved plant through its own output rows (:func:`hubbeam.control.sampled.sensor_rows`): a strain
+gauge reads the deflection of the moved link, an exact reading of a modal coordinate reads the
+moved model's coordinate.
 
 At every point the loop of :func:`hubbeam.control.sample_time.loop_matrix` is stable exactly when
 its spectral radius is below 1 (Franklin, Powell and Workman, *Digital Control of Dynamic Systems*,
@@ -40,7 +41,7 @@ import xarray as xr
 from hubbeam.configuration.settings import Case
 from hubbeam.control.cases import sampled_controller
 from hubbeam.control.sample_time import at_rest, loop_radius, nonlinear_rate, plant_modes, truth_model
-from hubbeam.control.sampled import StateReading, kernel_layout, sensor_rows
+from hubbeam.control.sampled import sensor_rows
 from hubbeam.model.parameters import TipMass
 from hubbeam.results.provenance import global_attributes
 from hubbeam.simulation.simulate import case_matrices
@@ -101,15 +102,6 @@ def moved_plant(case: Case, beam, numerics, name: str, value: float):
     return case, beam, case_matrices(case, beam, numerics)
 
 
-def truth_rows(truth, controller) -> np.ndarray:
-    """The rows of ``controller``'s sensors on the kernel state of ``truth``: a unit row for an exact
-    reading of a state, the truth's output row (``hubbeam.control.sampled.sensor_rows``) for a signal."""
-    layout = kernel_layout(truth)
-    identity = np.eye(len(layout))
-    return np.array([identity[layout.index(sensor.state)] if isinstance(sensor, StateReading)
-                     else sensor_rows(truth, [sensor])[0] for sensor in controller.sensors])
-
-
 @dataclass(frozen=True, eq=False)
 class RobustnessMap:
     """One case's map: per parameter its ``values`` grid, the loop's spectral ``radius`` there and the
@@ -128,8 +120,8 @@ class RobustnessMap:
 
 def _radius_at(case, beam, numerics, controller, name, value):
     moved_case, moved_beam, sm = moved_plant(case, beam, numerics, name, value)
-    truth = truth_model(moved_case, moved_beam, sm)
-    return loop_radius(truth, controller, plant_modes(truth), truth_rows(truth, controller))
+    truth = truth_model(moved_case, moved_beam, numerics, sm)
+    return loop_radius(truth, controller, plant_modes(truth), sensor_rows(truth, controller.sensors))
 
 
 def stability_margin(case: Case, beam, numerics, controller, name: str, values: np.ndarray, radius: np.ndarray,
@@ -172,7 +164,7 @@ def robustness_map(case: Case, beam, numerics, ranges: Mapping[str, Sequence[flo
         radius[name] = np.array([point.radius for point in found])
         mode[name] = np.array([point.mode for point in found], dtype=object)
         margins[name] = stability_margin(case, beam, numerics, controller, name, grid, radius[name], nominal[name])
-    at_nominal = loop_radius(truth_model(case, beam, case_matrices(case, beam, numerics)), controller).radius
+    at_nominal = loop_radius(truth_model(case, beam, numerics, case_matrices(case, beam, numerics)), controller).radius
     return RobustnessMap(case=case.label, values=values, radius=radius, mode=mode, nominal=nominal,
                          margins=margins, nominal_radius=at_nominal)
 
@@ -213,8 +205,8 @@ def confirm_margins(case: Case, beam, numerics, found: RobustnessMap, deflection
             linear = {}
             for where, value in points.items():
                 moved_case, moved_beam, sm = moved_plant(case, beam, numerics, name, value)
-                truth = truth_model(moved_case, moved_beam, sm)
-                rows = truth_rows(truth, controller)
+                truth = truth_model(moved_case, moved_beam, numerics, sm)
+                rows = sensor_rows(truth, controller.sensors)
                 radius = loop_radius(truth, controller, plant_modes(truth), rows).radius
                 linear[where] = (moved_case, moved_beam, sm, dataclasses.replace(controller, sensor_rows=rows), radius)
             slowest = min(abs(math.log(item[4])) for item in linear.values()) / controller.Ts
@@ -262,4 +254,4 @@ def robustness_dataset(maps: Sequence[RobustnessMap], confirmations: Sequence[Ma
 
 
 __all__ = ["PARAMETERS", "MarginRun", "RobustnessMap", "confirm_margins", "moved_plant", "nominal_value",
-           "robustness_dataset", "robustness_map", "stability_margin", "truth_rows"]
+           "robustness_dataset", "robustness_map", "stability_margin"]

@@ -45,17 +45,15 @@ import scipy.optimize
 import xarray as xr
 
 from hubbeam.configuration.schema import MEASURED_SIGNALS
-from hubbeam.configuration.settings import Case, InitialState
+from hubbeam.configuration.settings import Case, InitialState, case_plant
 from hubbeam.control.cases import sampled_loop
 from hubbeam.control.dlqr import continuous_lqr, discrete_lqr
 from hubbeam.control.feedback import design_plant
 from hubbeam.control.sampled import closed_loop_matrix, kernel_layout, state_controller
 from hubbeam.control.sampling import zero_tolerance
 from hubbeam.linear.discrete import discretise
+from hubbeam.linear.plant_models import plant_linear
 from hubbeam.linear.reduction import reduce_for_sampling
-from hubbeam.linear.statespace import linear_model
-from hubbeam.linear.voltage import voltage_model
-from hubbeam.model.damping import damping_matrices
 from hubbeam.model.maneuvers import AngleTable, Estimator
 from hubbeam.results import measures
 from hubbeam.results.provenance import global_attributes
@@ -75,16 +73,14 @@ NO_DESIGN = "no design at any sample time"
 BOUNDARY_XTOL = 1e-6
 
 
-def truth_model(case: Case, beam, sm):
-    """The truth's continuous linear model of the sampled ``case`` (module docstring): its model with
-    the matrices ``sm`` about its design speed, free hub, its damping and root spring, the voltage of
-    its drive as the input (or the hub torque without one), the measured signals as outputs."""
-    speed = case.maneuver.design.speed
-    damping = damping_matrices(case.damping, sm)
-    if case.drive is not None:
-        return voltage_model(beam, sm, case.model, case.drive, speed, damping, list(MEASURED_SIGNALS),
-                             case.root_spring)
-    return linear_model(beam, sm, case.model, speed, "free", damping, list(MEASURED_SIGNALS), case.root_spring)
+def truth_model(case: Case, beam, numerics, sm):
+    """The truth's continuous linear model of the sampled ``case`` (module docstring): the linear
+    model of its plant (``beam``, ``numerics``: :func:`hubbeam.configuration.settings.case_plant`)
+    and its model on the matrices ``sm`` about its design speed, free hub, its damping and root
+    spring, the voltage of its drive as the input (or the hub torque without one), the measured
+    signals as outputs (:func:`hubbeam.linear.plant_models.plant_linear`)."""
+    return plant_linear(case_plant(case, beam, numerics), case.model, case.maneuver.design.speed, "free",
+                        list(MEASURED_SIGNALS), sm=sm)
 
 
 @dataclass(frozen=True, eq=False)
@@ -177,7 +173,7 @@ def loop_matrix(truth, controller, rows: np.ndarray | None = None) -> tuple[np.n
     at its ``Ts`` and delay (state: the truth's, its delayed commands, the controller's), and the
     number of the truth's own states (the plant part of the loop's eigenvectors). ``rows``: the
     sensors' rows on the truth's kernel state (default the controller's own, of the model it was
-    built for; :func:`hubbeam.control.robustness.truth_rows` for another truth)."""
+    built for; :func:`hubbeam.control.sampled.sensor_rows` on another truth)."""
     dm = discretise(truth, controller.Ts, controller.D)
     layout = kernel_layout(truth)
     columns = [layout.index(name) for name in truth.states]
@@ -262,14 +258,14 @@ class SampleTimeSweep:
     design_frequencies: np.ndarray
 
 
-def sample_time_sweep(case: Case, beam, sm, sample_times: Sequence[float], delays: Sequence[float] = (0.0, 1.0),
-                      gains: Sequence[str] = GAINS) -> SampleTimeSweep:
+def sample_time_sweep(case: Case, beam, numerics, sm, sample_times: Sequence[float],
+                      delays: Sequence[float] = (0.0, 1.0), gains: Sequence[str] = GAINS) -> SampleTimeSweep:
     """The :class:`SampleTimeSweep` of the sampled ``case`` on the matrices ``sm`` of its own model
-    (module docstring)."""
+    (``numerics``: its plant's, :func:`truth_model`; module docstring)."""
     sample_times = np.asarray(sample_times, dtype=float)
     if sample_times.ndim != 1 or sample_times.size < 2 or np.any(np.diff(sample_times) <= 0.0) or sample_times[0] <= 0:
         raise ValueError(f"sample_times = {sample_times!r}; allowed: at least two increasing sample times > 0 s")
-    truth = truth_model(case, beam, sm)
+    truth = truth_model(case, beam, numerics, sm)
     modes = plant_modes(truth)
     shape = (len(gains), len(delays), sample_times.size)
     radius, pole, mode = np.full(shape, np.nan), np.full(shape, np.nan, complex), np.full(shape, "", dtype=object)
@@ -351,7 +347,7 @@ def confirm_boundary(case: Case, beam, numerics, sm, boundary: float, delay: flo
         raise ValueError(f"margin = {margin!r}; allowed: a fraction in (0, 0.5)")
     if not (math.isfinite(boundary) and boundary > 0.0):
         raise ValueError(f"boundary = {boundary!r}; allowed: a sample time > 0 s")
-    truth = truth_model(case, beam, sm)
+    truth = truth_model(case, beam, numerics, sm)
     t_end = 150.0 * boundary if t_end is None else float(t_end)
     runs = []
     for Ts in ((1.0 - margin) * boundary, (1.0 + margin) * boundary):

@@ -46,9 +46,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hubbeam.control.sampling import Sensor, measurement_rows
-from hubbeam.linear.export import state_units
+from hubbeam.control.sampling import measurement_rows
+from hubbeam.linear.statespace import model_states
+from hubbeam.model.maneuvers import SensorSpec
 from hubbeam.model.models import model as model_traits
+from hubbeam.model.root import HUB_COORDINATE
 
 #: the rate of each measured angle, for the filtered differences
 RATE_OF = {"hub_angle": "hub_speed", "deflection_angle": "deflection_rate"}
@@ -92,10 +94,11 @@ class SampledController:
 
 
 def kernel_layout(simulated) -> tuple[str, ...]:
-    """The names of the kernel's state ``x = (y, v)``, ``y = (theta, q1_1..n, q2_1..n)``, for the
-    simulated linear model (``n`` its number of modes; SFOAM's ``q1`` slots included)."""
+    """The names of the kernel's state ``x = (y, v)``, ``y = (theta, q1_1..n, q2_1..n)`` and the hub
+    angle ``phi`` last with a root spring, for the simulated linear model (``n`` its number of
+    modes; SFOAM's ``q1`` slots included)."""
     n = sum(1 for name in simulated.states if name.startswith("q2_") and not name.endswith("_dot"))
-    return model_traits("FOAM").state_names(n)
+    return model_states(model_traits("FOAM"), n, simulated.root_spring)
 
 
 def _on_layout(simulated, row: np.ndarray) -> np.ndarray:
@@ -112,17 +115,28 @@ def _on_layout(simulated, row: np.ndarray) -> np.ndarray:
 
 
 def sensor_rows(simulated, sensors) -> np.ndarray:
-    """``c_j`` (p, 2N): the sensors' signals as rows on the kernel's state of the simulated model
-    (its linear output rows, without the sensor gains, which the kernel applies)."""
-    unit = [Sensor(signal=sensor.signal) for sensor in sensors]
-    return np.array([_on_layout(simulated, row) for row in measurement_rows(simulated, unit)])
+    """``c_j`` (p, 2N): the sensors' signals as rows on the kernel's state of the simulated model:
+    the unit row of a state the sensor reads exactly (its signal a state of ``simulated``), else its
+    linear output row; without the sensor gains, which the kernel applies."""
+    layout = kernel_layout(simulated)
+    return np.array([np.eye(len(layout))[layout.index(sensor.signal)] if sensor.signal in simulated.states
+                     else _on_layout(simulated, measurement_rows(simulated, [SensorSpec(sensor.signal)])[0])
+                     for sensor in sensors])
 
 
-def reference_rows(rows: np.ndarray, sensors) -> np.ndarray:
+def reference_rows(rows: np.ndarray, sensors, layout) -> np.ndarray:
     """``R_m`` (p, 3): each sensor's reading of the rigid reference motion, ``gain (c[theta],
-    c[theta'], 0)`` with ``c`` its row on the kernel's state (``theta`` first, ``theta'`` at ``N``)."""
+    c[theta'], 0)`` with ``c`` its row on the kernel's state ``layout`` (``theta`` first, ``theta'``
+    at ``N``); with a root spring the hub angle ``phi`` follows the reference like ``theta``:
+    ``gain (c[theta] + c[phi], c[theta'] + c[phi'], 0)``."""
     N = rows.shape[1] // 2
-    return np.array([[sensor.gain * row[0], sensor.gain * row[N], 0.0] for sensor, row in zip(sensors, rows)])
+    hub = layout.index(HUB_COORDINATE) if HUB_COORDINATE in layout else 0
+
+    def reading(row, i):
+        return row[i] + row[i + hub] if hub else row[i]
+
+    return np.array([[sensor.gain * reading(row, 0), sensor.gain * reading(row, N), 0.0]
+                     for sensor, row in zip(sensors, rows)])
 
 
 def rigid_feedforward(inertia: float, motor=None) -> np.ndarray:
@@ -159,36 +173,18 @@ def closed_loop_matrix(dm, Cm: np.ndarray, Ac, Bc, Bu, E, F, K) -> np.ndarray:
     return np.vstack([top, bottom])
 
 
-@dataclass(frozen=True)
-class StateReading:
-    """An exact sensor of the simulated model's state ``state`` (no gain, noise or quantisation), as
-    :func:`state_controller` uses them; ``signal`` is the state's name."""
-
-    state: str
-    gain: float = 1.0
-    sigma: float = 0.0
-    quantum: float = 0.0
-
-    @property
-    def signal(self) -> str:
-        return self.state
-
-    @property
-    def sensor_unit(self) -> str:
-        """The state's unit (``hubbeam.linear.export.state_units``)."""
-        return state_units(self.state)
-
-
-def _controller(design, sensors, rows, matrices, xc0, settings, names, estimate_states, poles, kind):
+def _controller(design, simulated, sensors, matrices, xc0, settings, names, estimate_states, poles, kind):
     Ac, Bc, Bu, E, F, K = matrices
     u_max, u_init, U_r = settings
-    return SampledController(Ac=Ac, Bc=Bc, Bu=Bu, E=E, F=F, K=K, R_m=reference_rows(rows, sensors), U_r=U_r,
+    rows = sensor_rows(simulated, sensors)
+    R_m = reference_rows(rows, sensors, kernel_layout(simulated))
+    return SampledController(Ac=Ac, Bc=Bc, Bu=Bu, E=E, F=F, K=K, R_m=R_m, U_r=U_r,
                              xc0=xc0, Ts=design.Ts, D=design.delay, u_max=u_max, u_init=u_init, sensors=tuple(sensors),
                              sensor_rows=rows, controller_states=tuple(names), estimate_states=tuple(estimate_states),
                              design=design, poles=poles, kind=kind)
 
 
-def _exact_sensor(design, simulated, name: str) -> Sensor:
+def _exact_sensor(design, simulated, name: str) -> SensorSpec:
     """The exact sensor of the design's plant state ``name``: the output whose row in the design
     model is that state (the lumped model's ``alpha`` is the deflection angle), also an output of
     the simulated model."""
@@ -199,7 +195,7 @@ def _exact_sensor(design, simulated, name: str) -> Sensor:
         unit = np.zeros_like(row)
         unit[column] = 1.0
         if np.array_equal(row, unit) and np.all(np.asarray(lm.D)[k] == 0.0) and output in simulated.outputs:
-            return Sensor(signal=output)
+            return SensorSpec(output)
     raise ValueError(f"the design's state {name!r} is neither a state nor a signal of the simulated model "
                      f"{simulated.name}; allowed: a design whose states are the simulated model's states or "
                      "outputs of both models (hub_angle, hub_speed, deflection_angle, deflection_rate, ...)")
@@ -213,23 +209,15 @@ def state_controller(lqr, simulated, u_max: float = math.inf, u_init: float = 0.
     settings = _loop_settings(u_max, u_init, feedforward)
     dm = lqr.model
     n, size = dm.plant_states, dm.A.shape[0]
-    layout = kernel_layout(simulated)
-    readings, rows = [], []
-    for name in dm.states[:n]:
-        if name in simulated.states:
-            reading, row = StateReading(name), np.eye(len(layout))[layout.index(name)]
-        else:
-            reading = _exact_sensor(dm, simulated, name)
-            row = sensor_rows(simulated, [reading])[0]
-        readings.append(reading)
-        rows.append(row)
+    readings = [SensorSpec(name) if name in simulated.states else _exact_sensor(dm, simulated, name)
+                for name in dm.states[:n]]
     lags = size - n
     matrices = (dm.A[n:, n:], np.zeros((lags, n)), dm.B[n:, 0].copy(),
                 np.vstack([np.zeros((n, lags)), np.eye(lags)]), np.vstack([np.eye(n), np.zeros((lags, n))]), lqr.K)
     # the design's loop and, at 0, the difference between the plant's delayed commands and the
     # controller's copy of them (neither seen nor moved)
     poles = np.concatenate([np.linalg.eigvals(dm.A - np.outer(dm.B[:, 0], lqr.K)), np.zeros(lags)])
-    return _controller(dm, readings, np.array(rows), matrices, np.full(lags, settings[1]), settings, dm.states[n:],
+    return _controller(dm, simulated, readings, matrices, np.full(lags, settings[1]), settings, dm.states[n:],
                        dm.states, poles, "LQR on the true state")
 
 
@@ -251,8 +239,8 @@ def kalman_controller(lqr, kf, simulated, u_max: float = math.inf, u_init: float
         Ac, Bc = dm.A @ E, dm.A @ kf.M
     xc0 = np.concatenate([np.zeros(n), np.full(size - n, settings[1])])
     poles = np.concatenate([np.linalg.eigvals(dm.A - np.outer(Bd, lqr.K)), np.linalg.eigvals(dm.A - kf.L @ kf.Cm)])
-    return _controller(dm, kf.sensors, sensor_rows(simulated, kf.sensors), (Ac, Bc, Bd.copy(), E, F, lqr.K), xc0,
-                       settings, dm.states, dm.states, poles, f"LQR with the {kf.form}-estimate Kalman filter")
+    return _controller(dm, simulated, kf.sensors, (Ac, Bc, Bd.copy(), E, F, lqr.K), xc0, settings, dm.states,
+                       dm.states, poles, f"LQR with the {kf.form}-estimate Kalman filter")
 
 
 def filtered_difference_controller(lqr, sensors, cutoff: float, simulated, u_max: float = math.inf,
@@ -295,10 +283,10 @@ def filtered_difference_controller(lqr, sensors, cutoff: float, simulated, u_max
     Cm = measurement_rows(dm, sensors)
     poles = np.linalg.eigvals(closed_loop_matrix(dm, Cm, Ac, Bc, np.zeros(2 * p), E, F, K))
     states = [f"{name}_previous" for name in names[:p]] + [f"{name}_filtered" for name in names[p:]]
-    return _controller(dm, sensors, sensor_rows(simulated, sensors), (Ac, Bc, np.zeros(2 * p), E, F, K), xc0,
-                       settings, states, names, poles, f"LQR on filtered differences (cut-off {cutoff:g} rad/s)")
+    return _controller(dm, simulated, sensors, (Ac, Bc, np.zeros(2 * p), E, F, K), xc0, settings, states, names,
+                       poles, f"LQR on filtered differences (cut-off {cutoff:g} rad/s)")
 
 
-__all__ = ["REFERENCE", "SampledController", "StateReading", "closed_loop_matrix", "filtered_difference_controller",
+__all__ = ["REFERENCE", "SampledController", "closed_loop_matrix", "filtered_difference_controller",
            "kalman_controller", "kernel_layout", "reference_rows", "rigid_feedforward", "sensor_rows",
            "state_controller"]

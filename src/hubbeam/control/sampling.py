@@ -1,8 +1,9 @@
 """What the sampled designs share: sensors, weights, mode names and the checks on modes.
 
-* :class:`Sensor`: a measured signal (an output of the linear models, ``statespace.OUTPUTS``) with
-  its gain (sensor units per signal unit), noise and quantisation step; :func:`measurement_rows`
-  its rows ``gain c`` on a model's states (outputs with a feedthrough are refused).
+* a sensor (:class:`hubbeam.model.maneuvers.SensorSpec`) measures an output of the linear models
+  (``statespace.OUTPUTS``) with its gain (sensor units per signal unit), noise and quantisation
+  step; :func:`measurement_rows` gives its rows ``gain c`` on a model's states (outputs with a
+  feedthrough are refused), :func:`sensor_unit` its unit.
 * :func:`weight_matrix`: ``Q`` from weights on named states or outputs, as
   ``hubbeam.control.feedback`` builds it (``w`` on a state's diagonal, ``w c^T c`` for an output).
 * :func:`describe_modes`: a name for each eigenvalue of a continuous model (the rigid-body mode,
@@ -33,13 +34,14 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
 
+from hubbeam.linear.export import state_units
 from hubbeam.linear.statespace import OUTPUTS
 from hubbeam.linear.tracking import ZERO_TOLERANCE
+from hubbeam.model.maneuvers import SensorSpec
 
 #: eigenvalues of a discrete model closer than this form one cluster: well above the split of a
 #: defective pair by rounding (about ``sqrt(eps) = 1.5e-8``), so that the rigid-body pair stays one
@@ -57,48 +59,26 @@ INVISIBLE = 1e-9
 NYQUIST_MARGIN = 1e-9
 
 
-@dataclass(frozen=True)
-class Sensor:
-    """A measured signal: ``signal`` an output name of the linear models, ``gain`` sensor units per
-    signal unit, ``sigma`` the standard deviation of its noise and ``quantum`` its quantisation
-    step (both in sensor units; the quantisation error counts as noise of variance
-    ``quantum^2 / 12``), ``unit`` the sensor's unit (the signal's when empty)."""
-
-    signal: str
-    gain: float = 1.0
-    sigma: float = 0.0
-    quantum: float = 0.0
-    unit: str = ""
-
-    def __post_init__(self) -> None:
-        if self.signal not in OUTPUTS or self.signal == "tip_acceleration":
-            allowed = ", ".join(name for name in OUTPUTS if name != "tip_acceleration")
-            raise ValueError(f"signal = {self.signal!r}; allowed: one of {allowed} (an output without "
-                             "feedthrough)")
-        if not (math.isfinite(self.gain) and self.gain != 0.0):
-            raise ValueError(f"{self.signal}: gain = {self.gain!r}; allowed: a finite, non-zero gain")
-        for name in ("sigma", "quantum"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value >= 0.0):
-                raise ValueError(f"{self.signal}: {name} = {value!r}; allowed: a finite number >= 0")
-
-    @property
-    def variance(self) -> float:
-        """``sigma^2 + quantum^2 / 12``: the noise variance the estimator assumes, sensor units^2."""
-        return self.sigma**2 + self.quantum**2 / 12.0
-
-    @property
-    def sensor_unit(self) -> str:
-        """The sensor's unit: ``unit``, else the signal's (``statespace.OUTPUTS``)."""
-        return self.unit or OUTPUTS[self.signal][0]
+def sensor_unit(sensor: SensorSpec) -> str:
+    """A sensor's unit: its own, else its signal's (``statespace.OUTPUTS``, or
+    ``hubbeam.linear.export.state_units`` for a state read exactly)."""
+    if sensor.unit:
+        return sensor.unit
+    return OUTPUTS[sensor.signal][0] if sensor.signal in OUTPUTS else state_units(sensor.signal)
 
 
 def measurement_rows(model, sensors) -> np.ndarray:
-    """``gain_j c_j`` (p, states): the rows of the ``sensors``' signals on ``model``'s states
-    (``model.C``, ``model.outputs``); ``ValueError`` for a signal the model lacks or one with a
+    """``gain_j c_j`` (p, states): the rows of the ``sensors``' signals
+    (:class:`~hubbeam.model.maneuvers.SensorSpec`) on ``model``'s states (``model.C``,
+    ``model.outputs``); ``ValueError`` for a sensor no loop may hold
+    (:meth:`~hubbeam.model.maneuvers.SensorSpec.problem`), a signal the model lacks or one with a
     feedthrough from the input."""
     rows = []
     for j, sensor in enumerate(sensors):
+        problem = sensor.problem()
+        if problem is not None:
+            key, value, allowed = problem
+            raise ValueError(f"sensors[{j}].{key} = {value!r}; allowed: {allowed}")
         if sensor.signal not in model.outputs:
             raise ValueError(f"sensors[{j}].signal = {sensor.signal!r}: not an output of {model.name}; allowed: "
                              f"{', '.join(model.outputs)}")
@@ -292,6 +272,6 @@ def stability_check(dm, poles: np.ndarray, what: str) -> None:
                              "that does (the hub angle for the rigid-body mode)")
 
 
-__all__ = ["INVISIBLE", "NYQUIST_MARGIN", "PARALLEL", "SAME_EIGENVALUE", "Sensor", "describe_modes",
-           "measurement_rows", "nyquist_check", "observability_check", "positive_weight", "reachability_check",
+__all__ = ["INVISIBLE", "NYQUIST_MARGIN", "PARALLEL", "SAME_EIGENVALUE", "describe_modes", "measurement_rows",
+           "nyquist_check", "observability_check", "positive_weight", "reachability_check", "sensor_unit",
            "stability_check", "weight_matrix", "zero_tolerance"]

@@ -45,6 +45,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from hubbeam.core import maneuver as kernels
+from hubbeam.core import sampled as sampled_kernels
 from hubbeam.model.frozen import FrozenMap, freeze, thaw
 
 #: hub conditions: the motion given (the torque an output), or the torque given (the motion free)
@@ -426,13 +427,20 @@ class LqrDesign:
                         if item.name not in plain and getattr(self, item.name) is not None}
 
 
+#: quantisation modes of a sensor: the kernel's codes (``hubbeam.core.sampled``)
+QUANTISATION_MODES = {"round": sampled_kernels.ROUND, "edges": sampled_kernels.EDGES}
+
+
 @dataclass(frozen=True)
 class SensorSpec:
-    """A sensor of a sampled controller (schema ``sensor``): the measured ``signal`` (a linear
-    output without feedthrough) times ``gain`` plus ``offset``, an analog first-order low-pass of
-    time constant ``lowpass`` (s; 0: none), white noise of standard deviation ``noise`` and a
-    quantisation step ``quantum`` (0: none; ``mode`` ``round`` or ``edges``), all in the sensor's
-    unit (``hubbeam.simulation.sampled.Sensor``)."""
+    """A sensor (schema ``sensor``), the one record the configuration, the sampled designs and the
+    simulated loop share: the reading ``s = gain y + offset`` of the measured ``signal`` ``y`` (a
+    linear model's output without feedthrough, or a state the controller reads exactly), passed
+    through an analog first-order low-pass of time constant ``lowpass`` (s; 0: none), with white
+    noise of standard deviation ``noise`` and the quantisation step ``quantum`` (0: none), ``mode``
+    ``round`` (to the nearest step) or ``edges`` (an incremental encoder counting edges: the step
+    below), both in the sensor's unit ``unit`` (UDUNITS; empty: the signal's). The kernel reads
+    the sensors of a loop packed as arrays (``hubbeam.simulation.sampled.loop_arrays``)."""
 
     signal: str
     gain: float = 1.0
@@ -441,13 +449,39 @@ class SensorSpec:
     lowpass: float = 0.0
     quantum: float = 0.0
     mode: str = "round"
+    unit: str = ""
 
     @classmethod
     def from_dict(cls, entry) -> SensorSpec:
-        return cls(**{key: value if key in ("signal", "mode") else float(value) for key, value in entry.items()})
+        text = ("signal", "mode", "unit")
+        return cls(**{key: value if key in text else float(value) for key, value in entry.items()})
 
     def to_dict(self) -> dict:
-        return {item.name: getattr(self, item.name) for item in fields(self)}
+        """The sensor's keys, ``unit`` only when given (a configuration's sensor has none)."""
+        return {item.name: getattr(self, item.name) for item in fields(self) if item.name != "unit" or self.unit}
+
+    @property
+    def variance(self) -> float:
+        """``noise^2 + quantum^2 / 12``: the noise variance an estimator assumes (the quantisation
+        error uniform over one step), sensor units^2."""
+        return self.noise**2 + self.quantum**2 / 12.0
+
+    def problem(self) -> tuple[str, object, str] | None:
+        """The first field that no sensor may hold, as ``(field, value, allowed)``, or None: a
+        non-empty ``signal``, a finite non-zero ``gain``, a finite ``offset``, ``noise``, ``lowpass``
+        and ``quantum`` finite and >= 0, ``mode`` one of :data:`QUANTISATION_MODES`."""
+        if not (isinstance(self.signal, str) and self.signal):
+            return "signal", self.signal, "a non-empty name"
+        for key in ("gain", "offset", "noise", "lowpass", "quantum"):
+            value = getattr(self, key)
+            number = isinstance(value, (int, float, np.floating, np.integer)) and not isinstance(value, bool)
+            if not (number and math.isfinite(value)) or (key == "gain" and value == 0.0) or (
+                    key not in ("gain", "offset") and value < 0.0):
+                return key, value, ("a finite, non-zero number" if key == "gain" else "a finite number"
+                                    if key == "offset" else "a finite number >= 0 (0: none)")
+        if self.mode not in QUANTISATION_MODES:
+            return "mode", self.mode, f"one of {', '.join(QUANTISATION_MODES)}"
+        return None
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,7 @@
 """A sampled digital controller on the hub, as the compiled loop runs it (``docs/sampled-control.md``).
 
-A :class:`SampledLoop` (its :class:`Sensor` rows, the controller's matrices, the sample time ``Ts``,
+A :class:`SampledLoop` (its sensors, :class:`~hubbeam.model.maneuvers.SensorSpec`, and their rows on the
+simulated model's state, the controller's matrices, the sample time ``Ts``,
 the delay ``D``, the saturation ``u_max``, the input ``u_init`` before the first command and the
 seed of the sensor noise) replaces the law of a tracking maneuver (``pd`` or ``state_feedback``) and
 keeps its reference motion; :mod:`hubbeam.core.sampled` runs it and
@@ -24,14 +25,11 @@ from hubbeam.core.inputs import (
     LoopTiming,
     SampleRecords,
 )
-from hubbeam.core.sampled import EDGES, ROUND
-from hubbeam.model.maneuvers import Tracking
+from hubbeam.model.maneuvers import QUANTISATION_MODES, SensorSpec, Tracking
 from hubbeam.simulation.errors import SimulationError
 
 LOG = logging.getLogger(__name__)
 
-#: quantisation modes of a sensor: the kernel's codes (``hubbeam.core.sampled``)
-QUANTISATION_MODES = {"round": ROUND, "edges": EDGES}
 #: a fractional delay must keep its switches this fraction of a sample time away from the samples
 #: (closer, the integrator would take slivers of steps between them)
 MIN_DELAY_FRACTION = 1e-6
@@ -64,52 +62,6 @@ def _not_negative(x: float) -> bool:
     return 0.0 <= x < math.inf
 
 
-@dataclass(frozen=True, eq=False)
-class Sensor:
-    """A sensor of a sampled loop: ``s = gain (row . x) + offset`` on the state ``x = (y, y')`` of
-    the simulated model (``row``: length ``2 N``, ``N = 1 + 2 n``, coordinates ``theta, q1, q2``
-    then their rates; a linear output row such as those of ``hubbeam.linear.statespace``), the
-    analog first-order low-pass of time constant ``lowpass`` (s; 0: none), white noise of standard
-    deviation ``noise`` (in the sensor's unit) and the quantisation step ``quantum`` (0: none),
-    ``mode`` ``"round"`` (to the nearest step) or ``"edges"`` (an incremental encoder counting
-    edges: the step below). ``unit`` names the sensor's unit (UDUNITS; ``1`` when not said)."""
-
-    name: str
-    row: np.ndarray
-    gain: float = 1.0
-    offset: float = 0.0
-    noise: float = 0.0
-    lowpass: float = 0.0
-    quantum: float = 0.0
-    mode: str = "round"
-    unit: str = "1"
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise SimulationError(f"Sensor.name = {self.name!r}; allowed: a non-empty string")
-        where = f"Sensor {self.name!r}"
-        row = _array(self.row)
-        if row.ndim != 1 or row.size < 2 or row.size % 2 or not np.all(np.isfinite(row)):
-            raise SimulationError(f"{where}.row = {np.asarray(self.row).tolist()!r}; allowed: finite values on "
-                                  "the state (y, y'), 2 N of them")
-        object.__setattr__(self, "row", row)
-        object.__setattr__(self, "gain", _number(f"{where}.gain", self.gain, _finite, "a finite number"))
-        object.__setattr__(self, "offset", _number(f"{where}.offset", self.offset, _finite,
-                                                   "a finite number"))
-        for key in ("noise", "lowpass", "quantum"):
-            object.__setattr__(self, key, _number(f"{where}.{key}", getattr(self, key), _not_negative,
-                                                  "a finite number >= 0 (0: none)"))
-        if self.mode not in QUANTISATION_MODES:
-            raise SimulationError(f"{where}.mode = {self.mode!r}; allowed: one of "
-                                  f"{', '.join(QUANTISATION_MODES)}")
-
-    def to_dict(self) -> dict:
-        """The sensor as plain values (for a dataset's attributes)."""
-        return {"name": self.name, "row": self.row.tolist(), "gain": self.gain, "offset": self.offset,
-                "noise": self.noise, "lowpass": self.lowpass, "quantum": self.quantum, "mode": self.mode,
-                "unit": self.unit}
-
-
 #: the controller's matrices and their shapes in the sizes ``nc`` (controller states), ``ns``
 #: (estimated states) and ``p`` (sensors): the convention of ``docs/sampled-control.md``
 MATRIX_SHAPES = {"Ac": ("nc", "nc"), "Bc": ("nc", "p"), "Bu": ("nc",), "E": ("ns", "nc"), "F": ("ns", "p"),
@@ -118,17 +70,22 @@ MATRIX_SHAPES = {"Ac": ("nc", "nc"), "Bc": ("nc", "p"), "Bu": ("nc",), "E": ("ns
 
 @dataclass(frozen=True, eq=False)
 class SampledLoop:
-    """A sampled digital controller on the hub (``docs/sampled-control.md``): at ``t_k = k Ts``
-    the sensors give ``m_k``, ``e_k = m_k - R_m rho_k`` (``rho_k``: the reference's angle, rate and
-    acceleration), ``xhat_k = E xc_k + F e_k``, ``u_k = clip(U_r . rho_k - K . xhat_k, -u_max,
-    u_max)``, ``xc_{k+1} = Ac xc_k + Bc e_k + Bu (u_k - U_r . rho_k)``, and ``u_k`` acts from ``t_k
-    + D Ts`` to ``t_(k+1) + D Ts`` (``u_init`` before the first command arrives). ``u`` is the
-    hub's input: volts with a drive, N m without. ``seed`` draws the sensors' noise
-    (``numpy.random.default_rng``). ``estimate_states`` and ``estimate_units`` name the estimate's
-    components and their units (default ``x_1``, ..., unit ``1``). Every value is checked when the
-    loop is made."""
+    """A sampled digital controller on the hub (``docs/sampled-control.md``): at ``t_k = k Ts`` the
+    ``sensors`` (:class:`~hubbeam.model.maneuvers.SensorSpec`, each named by its signal) read ``s_j
+    = gain_j (rows_j . x) + offset_j`` on the state ``x = (y, y')`` of the simulated model
+    (``rows``: p x 2 N, ``N = 1 + 2 n``, one more with a root spring: coordinates ``theta, q1, q2``,
+    the root spring's hub angle last when there is one, then their rates; linear output rows such as
+    those of ``hubbeam.linear.statespace``), low-passed, noisy and quantised, and give ``m_k``,
+    ``e_k = m_k - R_m rho_k`` (``rho_k``: the reference's angle, rate and acceleration), ``xhat_k =
+    E xc_k + F e_k``, ``u_k = clip(U_r . rho_k - K . xhat_k, -u_max, u_max)``, ``xc_{k+1} = Ac xc_k
+    + Bc e_k + Bu (u_k - U_r . rho_k)``, and ``u_k`` acts from ``t_k + D Ts`` to ``t_(k+1) + D Ts``
+    (``u_init`` before the first command arrives). ``u`` is the hub's input: volts with a drive, N m
+    without. ``seed`` draws the sensors' noise (``numpy.random.default_rng``). ``estimate_states``
+    and ``estimate_units`` name the estimate's components and their units (default ``x_1``, ...,
+    unit ``1``). Every value is checked when the loop is made."""
 
-    sensors: tuple[Sensor, ...]
+    sensors: tuple[SensorSpec, ...]
+    rows: np.ndarray
     Ac: np.ndarray
     Bc: np.ndarray
     Bu: np.ndarray
@@ -149,16 +106,23 @@ class SampledLoop:
 
     def __post_init__(self) -> None:
         sensors = tuple(self.sensors) if isinstance(self.sensors, (list, tuple)) else ()
-        if not sensors or not all(isinstance(sensor, Sensor) for sensor in sensors):
+        if not sensors or not all(isinstance(sensor, SensorSpec) for sensor in sensors):
             raise SimulationError(f"SampledLoop.sensors = {self.sensors!r}; allowed: a non-empty list "
-                                  "of Sensor")
-        names = [sensor.name for sensor in sensors]
+                                  "of SensorSpec")
+        for sensor in sensors:
+            problem = sensor.problem()
+            if problem is not None:
+                key, value, allowed = problem
+                raise SimulationError(f"sensor {sensor.signal!r}.{key} = {value!r}; allowed: {allowed}")
+        names = [sensor.signal for sensor in sensors]
         if len(set(names)) < len(names):
-            raise SimulationError(f"SampledLoop.sensors: names {names}; allowed: distinct names")
-        lengths = {sensor.row.size for sensor in sensors}
-        if len(lengths) > 1:
-            raise SimulationError(f"SampledLoop.sensors: rows of lengths {sorted(lengths)}; allowed: "
-                                  "rows of one length, 2 N of the simulated model")
+            raise SimulationError(f"SampledLoop.sensors: signals {names}; allowed: distinct signals")
+        rows = _array(self.rows)
+        if rows.ndim != 2 or rows.shape[0] != len(sensors) or rows.shape[1] < 2 or rows.shape[1] % 2 or \
+                not np.all(np.isfinite(rows)):
+            raise SimulationError(f"SampledLoop.rows: shape {np.shape(self.rows)}; allowed: finite values of shape "
+                                  f"(p, 2 N), a row per sensor (p = {len(sensors)}) on the state (y, y')")
+        object.__setattr__(self, "rows", np.ascontiguousarray(rows))
         object.__setattr__(self, "sensors", sensors)
         matrices = {name: _array(getattr(self, name)) for name in MATRIX_SHAPES}
         if matrices["Ac"].ndim != 2 or matrices["K"].ndim != 1:
@@ -220,8 +184,20 @@ class SampledLoop:
         """The loop as a dataset's attributes: settings, sensors and matrices (JSON)."""
         return {"sample_time_s": self.Ts, "delay_samples": self.D, "input_limit": self.u_max,
                 "initial_input": self.u_init, "noise_seed": int(self.seed),
-                "sensors": json.dumps([sensor.to_dict() for sensor in self.sensors]),
+                "sensors": json.dumps([sensor_record(sensor, row) for sensor, row in zip(self.sensors, self.rows)]),
                 "controller": json.dumps({name: getattr(self, name).tolist() for name in MATRIX_SHAPES})}
+
+
+def sensor_unit(sensor: SensorSpec) -> str:
+    """A loop's sensor's unit: its own, ``1`` when not said."""
+    return sensor.unit or "1"
+
+
+def sensor_record(sensor: SensorSpec, row: np.ndarray) -> dict:
+    """A loop's sensor with its row as plain values (a dataset's attributes)."""
+    return {"name": sensor.signal, "row": row.tolist(), "gain": sensor.gain, "offset": sensor.offset,
+            "noise": sensor.noise, "lowpass": sensor.lowpass, "quantum": sensor.quantum, "mode": sensor.mode,
+            "unit": sensor_unit(sensor)}
 
 
 def reference_array(maneuver: Tracking) -> np.ndarray:
@@ -237,14 +213,14 @@ def loop_arrays(loop: SampledLoop, free: np.ndarray, t_end: float, reference: np
     packed ``reference`` (:func:`reference_array`) and the ``shaper`` array of its command shaper,
     with NaN records; the stops of the integration (every sample and switch time in ``(0,
     t_end]``); the noise drawn."""
-    N = loop.sensors[0].row.size // 2
+    N = loop.rows.shape[1] // 2
     columns = np.concatenate([free, N + free])
     samples = loop.sample_times(t_end)
     n, p, ns = samples.size, loop.sizes["p"], loop.sizes["ns"]
     noise = loop.noise(n)
     sensors = LoopSensors(
-        np.ascontiguousarray([sensor.row[columns] for sensor in loop.sensors]),
-        *(np.array([getattr(sensor, key) for sensor in loop.sensors], dtype=float)
+        np.ascontiguousarray(loop.rows[:, columns]),
+        *(np.array([float(getattr(sensor, key)) for sensor in loop.sensors])
           for key in ("gain", "offset", "noise", "lowpass", "quantum")),
         np.array([QUANTISATION_MODES[sensor.mode] for sensor in loop.sensors], dtype=np.int64), noise)
     switches = loop.switch_times(n)

@@ -51,7 +51,7 @@ from hubbeam.model.limits import (
     MIN_QUADRATURE_POINTS,
     MIN_RTOL,
 )
-from hubbeam.model.maneuvers import FeedbackLaw, Maneuver, PdControl, SpinUp, Tracking
+from hubbeam.model.maneuvers import FeedbackLaw, Maneuver, PdControl, SensorSpec, SpinUp, Tracking
 from hubbeam.model.matrices import SystemMatrices
 from hubbeam.model.models import FAMILIES, family_model, model
 from hubbeam.model.parameters import BeamParameters, TipMass
@@ -67,7 +67,7 @@ from hubbeam.results.variables import (
     output_count,
 )
 from hubbeam.simulation.errors import SimulationError
-from hubbeam.simulation.sampled import SampledLoop, Sensor, held_table, loop_arrays, reference_array
+from hubbeam.simulation.sampled import SampledLoop, held_table, loop_arrays, reference_array, sensor_unit
 
 LOG = logging.getLogger(__name__)
 
@@ -259,8 +259,8 @@ def run(case: Case, params: BeamParameters, numerics: Numerics, sm: SystemMatric
         if not isinstance(case.maneuver, Tracking):
             raise SimulationError(f"cases.{case.label}.maneuver.kind = {case.maneuver.kind!r} with a sampled loop; "
                                   "allowed: a maneuver that tracks a reference (the loop replaces its law)")
-        if loop.sensors[0].row.size != 2 * N:
-            raise SimulationError(f"SampledLoop.sensors: rows of length {loop.sensors[0].row.size}; allowed: "
+        if loop.rows.shape[1] != 2 * N:
+            raise SimulationError(f"SampledLoop.rows: rows of length {loop.rows.shape[1]}; allowed: "
                                   f"2 N = {2 * N}, the state (y, y') of {case.model} with {n} modes"
                                   + (" and the root spring's hub angle" if joint else ""))
         inputs = SimulationInputs(traits, kernel_maneuvers.HELD, held_table(0, loop.u_init), damping, link, drive,
@@ -423,7 +423,7 @@ def build_dataset(case: Case, params: BeamParameters, numerics: Numerics, sm: Sy
         attributes |= loop.attributes()
         data_vars |= sample_variables(result.records, loop)
         coords |= {"sample_time": ("sample", result.records.t, {"units": "s", "long_name": "sample time t_k"}),
-                   "sensor": ("sensor", [sensor.name for sensor in loop.sensors], {"long_name": "sensor"}),
+                   "sensor": ("sensor", [sensor.signal for sensor in loop.sensors], {"long_name": "sensor"}),
                    "estimate_state": ("estimate_state", list(loop.estimate_states),
                                       {"long_name": "state of the design model the controller estimates"})}
     maneuver = json.dumps(recorded["maneuver"], sort_keys=True)  # as in case_config
@@ -436,8 +436,8 @@ def sample_variables(records: SampleRecords, loop: SampledLoop) -> dict:
     """The records of a sampled controller as the dataset's variables of the ``sample`` dimension
     (:data:`hubbeam.results.variables.SAMPLE_VARIABLES`), with the units of its sensors, states and
     command."""
-    units = {"measured": ("sensor_units", [sensor.unit for sensor in loop.sensors]),
-             "sensed": ("sensor_units", [sensor.unit for sensor in loop.sensors]),
+    units = {"measured": ("sensor_units", [sensor_unit(sensor) for sensor in loop.sensors]),
+             "sensed": ("sensor_units", [sensor_unit(sensor) for sensor in loop.sensors]),
              "estimate": ("state_units", list(loop.estimate_units))}
     found = {}
     for name, (dims, unit, long_name) in SAMPLE_VARIABLES.items():
@@ -473,7 +473,7 @@ def compile_kernels(family: str | None = None, sampled: bool = False) -> float:
             continue
         tracking = dataclasses.replace(case, maneuver=PdControl(kp=1.0, kd=1.0, reference=case.maneuver))
         N = 1 + 2 * case.modes
-        loop = SampledLoop([Sensor("hub_angle", np.eye(2 * N)[0])], np.zeros((0, 0)), np.zeros((0, 1)),
+        loop = SampledLoop([SensorSpec("hub_angle")], np.eye(2 * N)[:1], np.zeros((0, 0)), np.zeros((0, 1)),
                            np.zeros(0), np.zeros((1, 0)), np.ones((1, 1)), np.ones(1), np.zeros((1, 3)),
                            np.zeros(3), np.zeros(0), Ts=0.02)
         run(tracking, params, numerics, sm, Resolved(loop=loop))

@@ -50,10 +50,11 @@ from hubbeam.core.sampled import quantised
 from hubbeam.linear.statespace import linear_model
 from hubbeam.model.damping import damping_matrices
 from hubbeam.model.drive import QUANSER_SRV02
+from hubbeam.model.maneuvers import SensorSpec
 from hubbeam.model.matrices import assemble
 from hubbeam.model.models import model
 from hubbeam.model.parameters import FLEXIBLE_LINK
-from hubbeam.simulation.sampled import QUANTISATION_MODES, SampledLoop, Sensor, reference_array
+from hubbeam.simulation.sampled import QUANTISATION_MODES, SampledLoop, reference_array
 from hubbeam.simulation.simulate import Resolved, case_matrices, initial_state, run
 
 MODEL, MODES = "CFOAM", 5
@@ -125,10 +126,11 @@ def sampled_loop(Ts: float, quantised_sensors: bool = True, seed: int = 1) -> Sa
     encoder[0] = 1.0
     gauge = np.zeros(2 * N)
     gauge[1 + n:N] = assemble(FLEXIBLE_LINK, None, MODES, QUADRATURE).f2L / FLEXIBLE_LINK.L
-    sensors = [Sensor("encoder", encoder, quantum=ENCODER if quantised_sensors else 0.0, mode="edges"),
-               Sensor("gauge", gauge, noise=GAUGE_NOISE, quantum=GAUGE_QUANTUM if quantised_sensors else 0.0)]
+    sensors = (SensorSpec("hub_angle", quantum=ENCODER if quantised_sensors else 0.0, mode="edges"),
+               SensorSpec("deflection_angle", noise=GAUGE_NOISE, quantum=GAUGE_QUANTUM if quantised_sensors else 0.0))
     ns = sysd.A.shape[0]
-    return SampledLoop(sensors, sysd.A - L @ sysd.C, L, sysd.B[:, 0], np.eye(ns), np.zeros((ns, 2)), K,
+    return SampledLoop(sensors, np.array([encoder, gauge]), sysd.A - L @ sysd.C, L, sysd.B[:, 0], np.eye(ns),
+                       np.zeros((ns, 2)), K,
                        [[1.0, 0.0, 0.0], [0.0, 0.0, 0.0]], np.zeros(3), np.zeros(ns), Ts=Ts, D=DELAY,
                        u_max=QUANSER_SRV02.voltage_limit, seed=seed)
 
@@ -148,7 +150,7 @@ def python_loop(loop: SampledLoop) -> dict:
     start = initial_state(case, sm)
     z = np.concatenate([start.y[free], start.v[free]])
     N = 1 + 2 * MODES
-    rows = np.array([sensor.row[np.concatenate([free, N + free])] for sensor in loop.sensors])
+    rows = loop.rows[:, np.concatenate([free, N + free])]
     gains = np.array([sensor.gain for sensor in loop.sensors])
     offsets = np.array([sensor.offset for sensor in loop.sensors])
     sigma = np.array([sensor.noise for sensor in loop.sensors])

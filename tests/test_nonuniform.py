@@ -11,11 +11,12 @@ from hubbeam.model.beam import (
     beam_attributes,
     beam_from_attributes,
     beam_from_config,
+    scaled_bending_stiffness,
 )
 from hubbeam.model.eigen import tip_mass_frequency_roots
 from hubbeam.model.matrices import assemble
 from hubbeam.model.modes import clamped_free_roots
-from hubbeam.model.parameters import BeamParameters, TipMass
+from hubbeam.model.parameters import BeamParameters, BeamProducts, TipMass
 from hubbeam.model.printed import TABLE1
 from hubbeam.model.quadrature import beam_rule, segment_points
 from hubbeam.validation import fe_beam
@@ -252,3 +253,19 @@ def test_every_model_simulates_a_non_uniform_beam_and_reruns_from_its_attributes
     assert np.abs(ds["tip_transverse"]).max() > 0.0
     rerun = simulate(**simulation_inputs(ds.attrs))
     np.testing.assert_array_equal(rerun["tip_transverse"], ds["tip_transverse"])
+
+
+@pytest.mark.parametrize("form", ["factors", "products", "sections"])
+def test_a_factor_on_the_bending_stiffness_scales_K2_alone_for_every_form_of_beam(form):
+    """K2 = int EI f2''^T f2'' dx (Eq. 17) is linear in EI; the mass and axial matrices do not hold
+    it. The robustness maps and the identification move EI this way, the tabulated beam included."""
+    base = BeamParameters(**TABLE1)
+    beam = {"factors": base,
+            "products": BeamProducts(L=base.L, rhoA=base.rho * base.A, EI=base.E * base.I, EA=base.E * base.A,
+                                     Jh=base.Jh, rA=base.rA),
+            "sections": tapered_beam(base)}[form]
+    factor = 1.7
+    nominal, scaled = (assemble(b, n_modes=3, n_quad=32) for b in (beam, scaled_bending_stiffness(beam, factor)))
+    np.testing.assert_allclose(scaled.K2, factor * nominal.K2, rtol=1e-12, atol=1e-13 * np.abs(scaled.K2).max())
+    for name in ("M1", "M2", "K1"):
+        np.testing.assert_array_equal(getattr(scaled, name), getattr(nominal, name))

@@ -42,6 +42,7 @@ from hubbeam.configuration.settings import Case
 from hubbeam.control.cases import sampled_controller
 from hubbeam.control.sample_time import at_rest, loop_radius, nonlinear_rate, plant_modes, truth_model
 from hubbeam.control.sampled import sensor_rows
+from hubbeam.model.beam import scaled_bending_stiffness
 from hubbeam.model.parameters import TipMass
 from hubbeam.results.provenance import global_attributes
 from hubbeam.simulation.simulate import case_matrices
@@ -89,9 +90,7 @@ def moved_plant(case: Case, beam, numerics, name: str, value: float):
     if name == "tip_mass":
         case = dataclasses.replace(case, tip_mass=TipMass(mass=float(value), position=float(beam.L)))
     elif name == "EI_factor":
-        if not hasattr(beam, "EI"):
-            raise ValueError(f"parameter = 'EI_factor' for a beam of {type(beam).__name__}; allowed: a uniform beam")
-        beam = dataclasses.replace(beam, EI=float(beam.EI) * value)
+        beam = scaled_bending_stiffness(beam, value)
     else:
         drive = case.drive
         changes = {"viscous_friction": {"viscous_friction": value},

@@ -41,7 +41,7 @@ import numpy as np
 
 from hubbeam.configuration.settings import Case, tip_mass_to_dict
 from hubbeam.identification.experiments import SIGNALS
-from hubbeam.model.beam import BeamSections
+from hubbeam.model.beam import scaled_bending_stiffness
 from hubbeam.model.damping import ModalDamping, RayleighDamping, damping_to_dict
 from hubbeam.model.limits import MAX_MODES
 from hubbeam.model.parameters import BeamParameters, BeamProducts, TipMass
@@ -223,18 +223,6 @@ def free_parameters(entries: Mapping[str, Mapping], case: Case, beam, where: str
     return tuple(found)
 
 
-def _scaled_beam(beam, factor: float):
-    """``beam`` with its bending stiffness times ``factor`` in the key its form has."""
-    if isinstance(beam, BeamProducts):
-        return dataclasses.replace(beam, EI=beam.EI * factor)
-    if isinstance(beam, BeamParameters):
-        return dataclasses.replace(beam, I=beam.I * factor)
-    if isinstance(beam, BeamSections):
-        return dataclasses.replace(beam, EI=tuple(value * factor for value in beam.EI))
-    raise ParameterError(f"beam.EI_factor for a beam of {type(beam).__name__}; allowed: BeamProducts, "
-                         "BeamParameters or BeamSections")
-
-
 def _damping(damping: ModalDamping | None, values: Mapping[str, float]) -> ModalDamping:
     damping = damping or ModalDamping(axial=0.0, transverse=0.0)
     damping = ModalDamping(axial=float(values.get("damping.axial", damping.axial)),
@@ -259,7 +247,7 @@ def apply(case: Case, beam, values: Mapping[str, float]):
             raise ParameterError(f"{key} = {value!r}; allowed: {kind.allowed()}")
     changes = {}
     if "beam.EI_factor" in plant:
-        beam = _scaled_beam(beam, plant["beam.EI_factor"])
+        beam = scaled_bending_stiffness(beam, plant["beam.EI_factor"])
     if "beam.hub_inertia" in plant:
         beam = dataclasses.replace(beam, Jh=plant["beam.hub_inertia"])
     root = {key.partition(".")[2]: value for key, value in plant.items() if key.startswith("root_spring.")}

@@ -20,6 +20,7 @@ A uniform beam is a :class:`hubbeam.model.parameters.UniformBeam`: by the factor
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -163,6 +164,16 @@ class BeamSections:
         half = 0.5 * (np.asarray(b) - np.asarray(a))
         s = (np.asarray(a) + half)[..., None] + half[..., None] * _GAUSS2
         return half * np.sum(self.rhoA_at(s) * (self.rA + s), axis=-1)
+
+
+def scaled_bending_stiffness(beam: UniformBeam | BeamSections, factor: float) -> UniformBeam | BeamSections:
+    """``beam`` with its bending stiffness ``E I`` (at every station) times ``factor``, in the field its
+    form has: ``EI`` of the products or of the sections, ``I`` of the factors of Table 1."""
+    if isinstance(beam, BeamParameters):
+        return dataclasses.replace(beam, I=beam.I * factor)
+    if isinstance(beam, BeamSections):
+        return dataclasses.replace(beam, EI=tuple(value * factor for value in beam.EI))
+    return dataclasses.replace(beam, EI=beam.EI * factor)
 
 
 def beam_from_config(beam: Mapping) -> UniformBeam | BeamSections:

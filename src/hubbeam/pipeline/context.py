@@ -33,6 +33,7 @@ from hubbeam.reporting.products import (
     TABLE,
     TABLE2_CSV,
     Product,
+    shaped_cases,
 )
 from hubbeam.reporting.sourcedeps import script_dependencies
 from hubbeam.results.paths import FIGURE_FORMATS, SHARED, StudyPaths
@@ -176,8 +177,8 @@ class PlanContext:
     def shaping_data(self) -> dict[str, str]:
         """The numbers of a study that shapes commands (``hubbeam.study.shaping``), written with its
         report: ``{"shaping": report/shaping.nc}``, or nothing."""
-        cases = self.settings.cases.values()
-        shaped = self.settings.study is not None and any(case.shaper is not None for case in cases)
+        config = self.checked.config
+        shaped = self.settings.study is not None and bool(shaped_cases(config) or shaped_cases(config, ratios=True))
         return {"shaping": self.paths.shaping()} if shaped else {}
 
     # --- the sampled controllers ----------------------------------------------------------------

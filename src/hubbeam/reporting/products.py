@@ -62,6 +62,9 @@ DESIGNS_SECTION = "designs"
 EIGEN_SECTION = "eigen"
 LINEAR_SECTION = "linear"
 SHAPING_SECTION = "shaping"
+#: the model the studies of command shapers and of controllers take for the truth, the most complete
+#: of the four (``hubbeam.study.shaping``, ``hubbeam.study.trust``)
+REFERENCE_MODEL = "CFOAM"
 PLANTS_SECTION = "plants"
 SECTIONS = (PAPER_SECTION, BEAM_SECTION, CASES_SECTION, COMPARISONS_SECTION, DESIGNS_SECTION, EIGEN_SECTION,
             LINEAR_SECTION, SHAPING_SECTION, PLANTS_SECTION)
@@ -185,18 +188,34 @@ def _cases(cfg: Mapping) -> dict:
 
 
 def designed_cases(cfg: Mapping) -> list[str]:
-    """The cases of ``cfg`` whose state feedback is designed by LQR (``maneuver.design``), sorted."""
+    """The cases of ``cfg`` the figure of the designs measures (``hubbeam.study.trust``): a state
+    feedback designed by LQR (``maneuver.design``) run on the reference model (CFOAM) or on its own
+    design model; sorted. A study with none has no figure of its designs (a design run on a third
+    model is neither the truth nor its prediction)."""
+    def measured(case: Mapping) -> bool:
+        design = case["maneuver"]["design"]
+        return case.get("model") in (REFERENCE_MODEL, design.get("model") if isinstance(design, Mapping) else None)
+
     return sorted(name for name, case in _cases(cfg).items()
-                  if isinstance(case.get("maneuver"), Mapping) and "design" in case["maneuver"])
+                  if isinstance(case.get("maneuver"), Mapping) and "design" in case["maneuver"] and measured(case))
 
 
 def shaped_cases(cfg: Mapping, kind: str | None = None, ratios: bool = False) -> list[str]:
-    """The cases of ``cfg`` whose command is shaped (``shaper``), of the shaper ``kind`` if given,
-    only those designed at a ``frequency_ratio`` with ``ratios``; sorted."""
+    """The cases of ``cfg`` the command-shaping study measures (``hubbeam.study.shaping``): run on its
+    reference model (CFOAM) towards a final speed (a spin-up, or a controller's spin-up reference),
+    their command shaped (``shaper``) by a shaper tuned on a model's linearisation (not on given
+    frequencies); of the shaper ``kind`` if given; with ``ratios`` only those designed at a
+    ``frequency_ratio``, without it only those designed at the tuned frequency itself; sorted. A
+    study with none has no shaping figures (a shaper on another model still shapes its case)."""
+    def spin_up(maneuver) -> bool:
+        reference = maneuver.get("reference")
+        return "wf" in maneuver or (isinstance(reference, Mapping) and "wf" in reference)
+
     return sorted(name for name, case in _cases(cfg).items()
-                  if isinstance(case, Mapping) and isinstance(case.get("shaper"), Mapping)
-                  and kind in (None, case["shaper"].get("kind"))
-                  and (not ratios or "frequency_ratio" in case["shaper"]))
+                  if isinstance(case.get("shaper"), Mapping) and case.get("model") == REFERENCE_MODEL
+                  and isinstance(case.get("maneuver"), Mapping) and spin_up(case["maneuver"])
+                  and "frequencies" not in case["shaper"] and kind in (None, case["shaper"].get("kind"))
+                  and ratios == ("frequency_ratio" in case["shaper"]))
 
 
 def _has(cfg, keys: list[str]) -> bool:

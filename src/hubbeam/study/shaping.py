@@ -34,11 +34,10 @@ import numpy as np
 import xarray as xr
 
 from hubbeam.model.shapers import Shaper, multi_mode, residual_vibration
+from hubbeam.reporting.products import REFERENCE_MODEL
 from hubbeam.results import measures
 from hubbeam.results.reader import case_config, maneuver, maneuver_end, model, shaper, times, variable
 
-#: the model the shapers are tried on (the most complete of the four)
-REFERENCE_MODEL = "CFOAM"
 #: the tuning of a shaper tuned on the linearisation at rest (speed 0)
 AT_REST = "rest"
 #: the tuning models of the shapers, in the order of the tables (at rest last)

@@ -27,12 +27,11 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
+from hubbeam.reporting.products import REFERENCE_MODEL
 from hubbeam.results import measures
 from hubbeam.results.reader import attr, maneuver, model, times, variable
 from hubbeam.study.summary import residual
 
-#: the model the designs are tried on (the most complete of the four)
-REFERENCE_MODEL = "CFOAM"
 #: the settling band of v(L), a fraction of its peak
 SETTLING_BAND = 0.05
 #: the largest relative gap between prediction and reference that is still good enough

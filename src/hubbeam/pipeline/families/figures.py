@@ -17,6 +17,7 @@ from hubbeam.reporting.products import (
     SIMULATION_FIGURE,
     TABLE,
     Product,
+    designed_cases,
 )
 from hubbeam.results.paths import FIGURE_FORMATS, TABLE_FORMATS
 
@@ -77,15 +78,10 @@ def figure_step(ctx: PlanContext, key: str, product: Product) -> Step:
                         params={**common, "options": dict(product.options)},
                         wildcards=[{"plant": plant} for plant in ctx.settings.plants], **flags)
     name = ctx.settings.study.name if ctx.settings.study is not None else key
-    cases = list(ctx.cases) if product.kind == SHAPING_FIGURE else designed_cases(ctx)
+    cases = list(ctx.cases) if product.kind == SHAPING_FIGURE else designed_cases(ctx.checked.config)
     return ctx.step(f"{FIGURES}:study_figure", output=ctx.figure(key), log=log,
                     input={"simulations": ctx.simulations(cases)},
                     params={**common, "per_case": False, "cases": cases, "name": name}, **flags)
-
-
-def designed_cases(ctx: PlanContext) -> list[str]:
-    """The cases whose state feedback is designed by LQR (``maneuver.design``), sorted."""
-    return sorted(name for name, case in ctx.settings.cases.items() if getattr(case.maneuver, "design", None))
 
 
 def table_steps(ctx: PlanContext) -> dict[str, Step]:

@@ -5,6 +5,8 @@
 #                    each test file on one of them (its module fixtures built once)
 #   make test-fast   the same without the tests that run Snakemake or kill processes, or are slow
 #                    (-m "not workflow and not slow", see tests/conftest.py), on two workers (pytest-xdist)
+#   make test-studies  the generated studies (tests/test_generated_studies.py) over HUBBEAM_STUDIES seeds
+#                    (default 24: seeds 0-23; or a list, HUBBEAM_STUDIES=4,17), each study's whole workflow
 #   make test-slurm  bring up the one-node SLURM cluster (profiles/slurm/local-cluster.sh, as root),
 #                    run the workflow on it (pytest -m slurm, tests/test_slurm.py), bring it down
 #   make benchmark   set up .venv (if needed) and time hubbeam against scipy (benchmarks/, results/benchmarks)
@@ -19,7 +21,7 @@ VENV_PYTHON := $(VENV)/bin/python
 EXTRAS := test,validation
 STAMP := $(VENV)/.hubbeam-installed-$(EXTRAS)
 
-.PHONY: reproduce test test-fast test-slurm benchmark setup lock
+.PHONY: reproduce test test-fast test-studies test-slurm benchmark setup lock
 
 reproduce: $(STAMP)
 	PATH="$(CURDIR)/$(VENV)/bin:$$PATH" $(VENV)/bin/snakemake
@@ -29,6 +31,10 @@ test: $(STAMP)
 
 test-fast: $(STAMP)
 	$(VENV_PYTHON) -m pytest -q -n 2 -m "not workflow and not slow"
+
+HUBBEAM_STUDIES ?= 24
+test-studies: $(STAMP)
+	HUBBEAM_STUDIES=$(HUBBEAM_STUDIES) $(VENV_PYTHON) -m pytest -q tests/test_generated_studies.py
 
 # The cluster comes down (by the PIDs `up` recorded) even when the tests fail.
 test-slurm: $(STAMP)

@@ -34,6 +34,7 @@ import xarray as xr
 import yaml
 from generated_studies import generate_study
 from synthetic_results import REPO
+from test_rules import dry_run_jobs
 
 from hubbeam.api import load
 from hubbeam.check import check_configuration
@@ -106,17 +107,6 @@ def test_the_generator_is_seeded_and_spans_the_schema():
 def snakemake(workdir: Path, config: Path, *args: str) -> subprocess.CompletedProcess:
     command = [*SNAKEMAKE, "--directory", str(workdir), "--cores", "2", "--configfile", str(config), *args]
     return subprocess.run(command, cwd=workdir, capture_output=True, text=True, timeout=1200, check=False)
-
-
-def dry_run_jobs(output: str) -> set[tuple[str, frozenset]]:
-    """(rule, its outputs) of every job a dry run lists."""
-    jobs = set()
-    for block in re.split(r"\n(?=(?:local)?rule \S+:\n)", output):
-        rule = re.match(r"(?:local)?rule (\S+):\n", block)
-        if rule:
-            found = re.search(r"^    output: (.*)$", block, re.M)
-            jobs.add((rule.group(1), frozenset(found.group(1).split(", ") if found else ())))
-    return jobs
 
 
 @pytest.fixture(scope="module", params=STUDY_SEEDS, ids=lambda seed: f"seed{seed}")

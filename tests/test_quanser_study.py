@@ -10,6 +10,7 @@ exported controller of the study's job against the loop it was designed to close
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 
 import control as ct
@@ -21,7 +22,7 @@ from hubbeam.configuration.settings import from_config
 from hubbeam.control import robustness as rb
 from hubbeam.control import sample_time as st
 from hubbeam.control.analyses import control_problems, sampled_cases
-from hubbeam.control.cases import sampled_controller
+from hubbeam.control.cases import sampled_controller, sampled_loop
 from hubbeam.control.implementation import read_implementation
 from hubbeam.control.sampled import sensor_rows
 from hubbeam.pipeline.jobs.control import control_export
@@ -152,6 +153,23 @@ def test_the_robustness_map_at_the_nominal_plant_is_the_designs_loop(settings):
     assert math.isclose(found.radius["tip_mass"][0], np.max(np.abs(controller.poles)), rel_tol=1e-12)
     assert math.isclose(found.nominal_radius, np.max(np.abs(controller.poles)), rel_tol=1e-12)
     assert found.nominal["tip_mass"] == 0.0
+
+
+def test_a_run_reads_the_controller_s_signals_through_its_own_case_s_sensors(settings):
+    """A margin's confirmation runs the Kalman design with its sensors quiet (no noise, no
+    quantisation), so that the envelope's growth is the loop's, not the noise's: the compiled loop
+    carries the run's sensors, the design keeps the noise it was designed for."""
+    case = settings.cases["foam3_kalman"]
+    controller = sampled_controller(case, settings.beam, case_matrices(case, settings.beam, settings.numerics))
+    sampling = case.maneuver.sampling
+    assert any(sensor.noise > 0.0 or sensor.quantum > 0.0 for sensor in sampling.sensors)
+    quiet = tuple(dataclasses.replace(sensor, noise=0.0, quantum=0.0) for sensor in sampling.sensors)
+    run = dataclasses.replace(case, maneuver=dataclasses.replace(
+        case.maneuver, sampling=dataclasses.replace(sampling, sensors=quiet)))
+    assert [(s.noise, s.quantum) for s in sampled_loop(run, controller).sensors] == [(0.0, 0.0)] * len(quiet)
+    assert ([(s.noise, s.quantum) for s in sampled_loop(case, controller).sensors]
+            == [(s.noise, s.quantum) for s in sampling.sensors])
+    assert [(s.noise, s.quantum) for s in controller.sensors] == [(s.noise, s.quantum) for s in sampling.sensors]
 
 
 def test_the_exported_controller_closes_the_designed_loop(settings, tmp_path):

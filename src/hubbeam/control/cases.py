@@ -102,10 +102,16 @@ def estimate_unit(name: str, inputs=()) -> str:
 
 
 def sampled_loop(case: Case, controller: SampledController) -> SampledLoop:
-    """The compiled loop of ``controller`` with its sensors (the case's, with their gains, offsets,
-    noise, low-pass and quantisation; the exact estimator's readings without any), each in its
-    unit (:func:`hubbeam.control.sampling.sensor_unit`), the noise seeded by ``sampling.seed``."""
-    sensors = [dataclasses.replace(sensor, unit=sensor_unit(sensor)) for sensor in controller.sensors]
+    """The compiled loop of ``controller`` with the sensors of ``case`` (their gains, offsets, noise,
+    low-pass and quantisation: a run may read the controller's signals otherwise than its design
+    assumed, e.g. without noise; the exact estimator's readings, which a case does not list, without
+    any), each in its unit (:func:`hubbeam.control.sampling.sensor_unit`), the noise seeded by
+    ``sampling.seed``."""
+    sensors = case.maneuver.sampling.sensors or controller.sensors
+    if [sensor.signal for sensor in sensors] != [sensor.signal for sensor in controller.sensors]:
+        raise ValueError(f"case {case.label!r} reads {[sensor.signal for sensor in sensors]}; allowed: the "
+                         f"controller's signals in its order, {[sensor.signal for sensor in controller.sensors]}")
+    sensors = [dataclasses.replace(sensor, unit=sensor_unit(sensor)) for sensor in sensors]
     inputs = controller.design.inputs
     return SampledLoop(sensors, controller.sensor_rows, **controller.matrices, Ts=controller.Ts, D=controller.D,
                        u_max=controller.u_max, u_init=controller.u_init, seed=case.maneuver.sampling.seed,

@@ -46,9 +46,11 @@ from hubbeam.pipeline.steps import file_paths
 matplotlib.use("Agg")
 from matplotlib.figure import Figure  # noqa: E402
 
-#: the seeds of ``make test`` (chosen for spread: a sampled LQR with the control section, a root
-#: spring with an inward tip body on a light hub, a tabulated beam with a voltage-driven grid)
-SEEDS = (8, 22, 11)
+#: the seeds of ``make test``, chosen for spread within the suite's time: a voltage-driven arm on a
+#: root spring under a sampled LQG (Kalman filter, encoder and strain gauge) with its robustness
+#: map beside a state feedback on SFOAM; a payload body inward of the tip on a root spring with
+#: Rayleigh damping under a torque table
+SEEDS = (18, 22)
 
 
 def study_seeds(text: str | None) -> tuple[int, ...]:

@@ -46,11 +46,10 @@ from hubbeam.pipeline.steps import file_paths
 matplotlib.use("Agg")
 from matplotlib.figure import Figure  # noqa: E402
 
-#: the seeds of ``make test``, chosen for spread within the suite's time: a voltage-driven arm on a
-#: root spring under a sampled LQG (Kalman filter, encoder and strain gauge) with its robustness
-#: map beside a state feedback on SFOAM; a payload body inward of the tip on a root spring with
-#: Rayleigh damping under a torque table
-SEEDS = (18, 22)
+#: the seeds of ``make test``, chosen for spread within the suite's time: a voltage-driven CFOAM arm
+#: on a root spring, a payload body inward of the tip, under a sampled LQR; a FOAM arm with a body
+#: inward of the tip on a root spring, Rayleigh damping and a torque table
+SEEDS = (246, 22)
 
 
 def study_seeds(text: str | None) -> tuple[int, ...]:

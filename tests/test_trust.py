@@ -4,10 +4,14 @@ synthetic runs whose numbers are known in closed form."""
 import json
 import math
 
+import matplotlib
 import numpy as np
 import xarray as xr
 
+from hubbeam.plotting import controller_trust
 from hubbeam.study.trust import SETTLING_BAND, closed_loop_measures, design_table, performance, verdicts
+
+matplotlib.use("Agg")
 
 TF = 2.0
 
@@ -74,3 +78,18 @@ def test_designs_within_the_tie_share_the_least_residual():
     found = performance(design_table(runs))
     assert found["FOAM"].startswith("the least residual") and found["SFOAM"].startswith("the least residual")
     assert found["TLAM"].startswith("more than another design at 1 rad/s")
+
+
+def test_a_design_run_only_on_the_truth_is_not_judged_and_its_figure_draws_only_that_run():
+    """One design, run on CFOAM but not on its own model: there is no prediction to compare, so no
+    gap (no 'nan %') and no verdict 'not good enough'; the figure has one legend entry, for the run
+    that exists, and an axis from rest rather than a sliver around the one design speed."""
+    runs = {"only": _run("FOAM", "CFOAM", 1.5, 0.3)}
+    (row,) = design_table(runs)
+    assert row["own"] is None and row["good"] is None
+    verdict = verdicts([row])["FOAM"]
+    assert "not judged" in verdict and "nan" not in verdict.lower() and "not good enough" not in verdict
+    figure = controller_trust.plot("one design", runs)
+    labels = [text.get_text() for text in figure.get_axes()[0].get_legend().get_texts()]
+    assert labels == ["designed on FOAM, run on CFOAM"]
+    assert all(ax.get_xlim()[0] == 0.0 and ax.get_xlim()[1] > 1.5 for ax in figure.get_axes())

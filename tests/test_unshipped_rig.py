@@ -22,7 +22,7 @@ from hubbeam.control.sample_time import NO_DESIGN, stability_boundary
 from hubbeam.linear import datasets
 from hubbeam.linear.axes import plant_axis
 from hubbeam.linear.frequency import frequency_response
-from hubbeam.linear.plant_dataset import CONVERGED, plant_dataset
+from hubbeam.linear.plant_dataset import CONVERGED, free_frequencies, plant_dataset
 from hubbeam.linear.plant_models import plant_linear
 from hubbeam.model.parameters import BeamProducts, TipMass
 from hubbeam.model.plant import Plant
@@ -95,6 +95,22 @@ def test_rounding_is_not_drawn_as_damping():
     assert damping_axes
     drawn = [line.get_ydata() for ax in damping_axes for line in ax.get_lines()]
     assert drawn and all(np.all((np.asarray(y) == 0.0) | np.isnan(y)) for y in drawn)
+
+
+def test_on_the_light_hub_the_free_hub_has_one_rigid_mode_and_every_other_mode_is_flexible():
+    """The hub (0.002 kg m^2) is light against the link (0.015 kg m^2 about the axis), so the first
+    flexible mode of the free hub moves the hub most; it is still a flexible mode, 'bending 1', at
+    the first frequency of the undamped free arm, and the one rigid-body mode ('hub') is at 0 Hz."""
+    plant = Plant(ARM, 3, 64, PAYLOAD, root_spring=BRACKET)
+    assert ARM.Jh < ARM.rhoA * ARM.L**3 / 3.0
+    free = datasets.campbell(plant_axis(plant), [0.0]).sel(hub="free").isel(plant=0, speed=0)
+    first = free_frequencies(plant)[0]
+    for model in free["model"].values:
+        one = free.sel(model=model)
+        labels = [str(label) for label in one["mode_label"].values]
+        frequency = one["frequency"].values
+        assert labels.count("hub") == 1 and frequency[labels.index("hub")] == 0.0, (model, labels)
+        assert frequency[labels.index("bending 1")] == pytest.approx(first, rel=1e-9), (model, labels)
 
 
 def test_the_top_mode_of_few_assumed_functions_is_marked_not_converged():

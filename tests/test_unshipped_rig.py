@@ -146,3 +146,20 @@ def test_a_sweep_without_any_design_has_no_stability_boundary():
     boundary, mode = stability_boundary(None, None, None, None, [0.001, 0.002, 0.004], [math.nan] * 3, 0.0,
                                         "discrete", modes=object())
     assert math.isnan(boundary) and mode == NO_DESIGN
+
+
+def test_a_held_run_without_an_oscillation_is_said_in_its_row_not_raised():
+    """The held hub's ring-down of a run that never left rest: the table of held frequencies says
+    there is no oscillation to fit, and the report is built."""
+    import json
+
+    import xarray as xr
+
+    from hubbeam.study.controllers import held_frequency_rows
+
+    t = np.arange(0.0, 3.0, 0.002)
+    still = xr.Dataset({"tip_transverse": ("time", np.zeros(t.size))}, coords={"time": t},
+                       attrs={"model": "CFOAM", "case_config": json.dumps(
+                           {"maneuver": {"kind": "speed_table", "time": [0, 3], "speed": [0, 0]}})})
+    (row,) = held_frequency_rows({"still": still})
+    assert "no oscillation" in row["source"] and math.isnan(row["frequency_hz"])

@@ -182,11 +182,13 @@ def _decaying_basis(s, sigma, omega):
 
 
 def _prony_pole(y, dt) -> complex:
-    """The pole of the two-term linear prediction of ``y`` (upper half plane)."""
+    """The pole of the two-term linear prediction of ``y`` (upper half plane); ValueError where the
+    prediction has no oscillating pole (real or zero roots)."""
     (a1, a2), *_ = np.linalg.lstsq(np.column_stack([y[1:-1], y[:-2]]), y[2:], rcond=None)
     z = np.roots([1.0, -a1, -a2]).astype(complex)
-    pole = np.log(z[np.argmax(z.imag)]) / dt
-    if pole.imag <= 0.0:
+    with np.errstate(divide="ignore", invalid="ignore"):  # a zero root (a signal of zeros): no pole
+        pole = np.log(z[np.argmax(z.imag)]) / dt
+    if not (np.isfinite(pole) and pole.imag > 0.0):
         raise ValueError("fit_decaying_sinusoid found no oscillation in the signal (real poles)")
     return pole
 

@@ -260,8 +260,10 @@ def generate_study(seed: int) -> dict:
     if sampled and rng.random() < 0.6:
         control: dict = {}
         sample_time = cases[sampled[0]]["maneuver"]["sampling"]["sample_time"]
-        if rng.random() < 0.7:
-            control["sample_time"] = {"cases": sampled, "sample_times": {
+        # the sweep reads a design's states exactly: not those of a design reduced to what it resolves
+        swept = [name for name in sampled if not cases[name]["maneuver"]["sampling"].get("reduce")]
+        if swept and rng.random() < 0.7:
+            control["sample_time"] = {"cases": swept, "sample_times": {
                 "start": _round(sample_time / 2), "stop": _round(sample_time * 8), "num": 4}, "delays": [0, 1]}
         if not control or rng.random() < 0.5:
             ranges = {"tip_mass": [0.0, _round(0.3 * s.rhoA * s.length)], "EI_factor": [0.5, 2.0]}

@@ -16,9 +16,12 @@ import math
 import matplotlib
 import numpy as np
 import pytest
+import yaml
 
+from hubbeam.check import check_configuration
+from hubbeam.configuration.load import ConfigError
 from hubbeam.configuration.settings import tip_mass_to_dict
-from hubbeam.control.sample_time import NO_DESIGN, stability_boundary
+from hubbeam.control.sample_time import NO_DESIGN, sample_time_sweep, stability_boundary
 from hubbeam.linear import datasets
 from hubbeam.linear.axes import plant_axis
 from hubbeam.linear.frequency import frequency_response
@@ -163,3 +166,44 @@ def test_a_held_run_without_an_oscillation_is_said_in_its_row_not_raised():
                            {"maneuver": {"kind": "speed_table", "time": [0, 3], "speed": [0, 0]}})})
     (row,) = held_frequency_rows({"still": still})
     assert "no oscillation" in row["source"] and math.isnan(row["frequency_hz"])
+
+
+SRV02 = {"resistance": 2.6, "torque_constant": 7.68e-3, "back_emf_constant": 7.68e-3, "gear_ratio": 70.0,
+         "motor_efficiency": 0.69, "gearbox_efficiency": 0.9, "viscous_friction": 0.015, "voltage_limit": 10.0}
+
+
+def lqg_study() -> dict:
+    """The rig under an LQG at 1 ms through its drive, the design reduced to the modes it resolves."""
+    sampling = {"sample_time": 0.001, "gain": "discrete", "reduce": True,
+                "estimator": {"kind": "kalman", "input_noise": 0.1},
+                "sensors": [{"signal": "hub_angle", "quantum": 2 * math.pi / 4096, "mode": "edges"},
+                            {"signal": "tip_deflection", "noise": 1e-4}]}
+    maneuver = {"kind": "state_feedback", "reference": {"kind": "angle_table", "time": [0.0, 0.5], "angle": [0.0, 0.5]},
+                "design": {"model": "FOAM", "speed": 0.0, "voltage_weight": 1.0,
+                           "weights": {"hub_angle": 100.0, "tip_deflection": 1000.0}},
+                "sampling": sampling}
+    return {"study": {"name": "rig"},
+            "beam": {"length": ARM.L, "rhoA": ARM.rhoA, "EI": ARM.EI, "EA": ARM.EA, "hub_inertia": ARM.Jh,
+                     "hub_radius": 0.0},
+            "numerics": {"modes": 3, "quadrature_points": 32, "rtol": 1e-8, "atol": 1e-10, "output_step": 0.002,
+                         "max_steps": 200000, "step_warning": 100000},
+            "cases": {"lqg": {"model": "CFOAM", "drive": SRV02, "t_end": 2.0, "tip_mass": tip_mass_to_dict(PAYLOAD),
+                              "root_spring": BRACKET.to_dict(),
+                              "damping": {"kind": "modal", "axial": 0.0, "transverse": 0.01}, "maneuver": maneuver}},
+            "control": {"sample_time": {"cases": ["lqg"], "sample_times": {"start": 0.001, "stop": 0.01, "num": 4}}}}
+
+
+def test_a_sweep_of_a_reduced_design_is_refused_by_its_key_before_any_job(tmp_path):
+    """The sample-time sweep reads a design's states exactly; a design reduced to the modes its
+    sample time resolves has modal states the truth does not have. The one check refuses it at
+    its key (it once passed, and the sweep's job came out all NaN)."""
+    study = lqg_study()
+    path = tmp_path / "rig.yaml"
+    path.write_text(yaml.safe_dump(study))
+    with pytest.raises(ConfigError, match=r"control\.sample_time\.cases\[0\].*reduce"):
+        check_configuration(study, [path])
+    del study["control"]
+    checked = check_configuration(study, [path])  # the case itself runs: only the sweep cannot read it
+    case = checked.settings.cases["lqg"]
+    with pytest.raises(ValueError, match="sampling.reduce"):
+        sample_time_sweep(case, checked.settings.beam, checked.settings.numerics, None, [0.001, 0.002])

@@ -18,6 +18,7 @@ from hubbeam.configuration.settings import Settings
 from hubbeam.control.cases import sampling_of
 from hubbeam.control.robustness import PARAMETERS, confirm_margins, robustness_dataset, robustness_map
 from hubbeam.control.sample_time import (
+    REDUCED,
     confirm_boundary,
     plant_modes,
     sample_time_sweep,
@@ -47,6 +48,8 @@ def control_problems(settings: Settings) -> list[Problem]:
             if name not in sampled:
                 problems.append(Problem(f"control.{part}.cases[{k}]", f"got {name!r}; allowed: a case with "
                                         f"maneuver.sampling ({', '.join(sorted(sampled)) or 'none in cases'})"))
+            elif part == "sample_time" and sampling_of(settings.cases[name]).reduce:
+                problems.append(Problem(f"control.sample_time.cases[{k}]", f"{name!r} {REDUCED}"))
             elif part == "robustness" and settings.cases[name].drive is None:
                 moved = [key for key in spec.ranges if key in DRIVE_PARAMETERS]
                 if moved:

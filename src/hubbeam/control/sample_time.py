@@ -53,7 +53,6 @@ from hubbeam.control.sampled import closed_loop_matrix, kernel_layout, state_con
 from hubbeam.control.sampling import zero_tolerance
 from hubbeam.linear.discrete import discretise
 from hubbeam.linear.plant_models import plant_linear
-from hubbeam.linear.reduction import reduce_for_sampling
 from hubbeam.model.maneuvers import AngleTable, Estimator
 from hubbeam.results import measures
 from hubbeam.results.provenance import global_attributes
@@ -69,6 +68,11 @@ CONTROLLER_MODE = "controller"
 CONTROLLER_SHARE = 1e-6
 #: the boundary's mode of a sweep in which no sample time has a design
 NO_DESIGN = "no design at any sample time"
+#: why a design reduced to the modes its sample time resolves (``sampling.reduce``) has no sweep: the
+#: sweep reads the design's states exactly, and a reduced model's states (modal coordinates of the
+#: truncated model) are not the truth's
+REDUCED = ("reduces its design to the modes each sample time resolves (sampling.reduce: true), whose modal "
+           "states the sweep's exact readings cannot read; allowed: a case with sampling.reduce false")
 #: relative tolerance of Brent's method on a stability boundary's sample time
 BOUNDARY_XTOL = 1e-6
 
@@ -156,10 +160,7 @@ def state_feedback(case: Case, beam, sm, truth, Ts: float, delay: float, gain: s
     if gain not in GAINS:
         raise ValueError(f"gain = {gain!r}; allowed: one of {', '.join(GAINS)}")
     spec = case.maneuver.design
-    plant = design_plant(case, beam, sm)
-    if case.maneuver.sampling.reduce:  # the modes the sample time resolves, as the case's own controller
-        plant, _ = reduce_for_sampling(plant, Ts)
-    dm = discretise(plant, Ts, delay)
+    dm = discretise(design_plant(case, beam, sm), Ts, delay)
     if gain == "discrete":
         lqr = discrete_lqr(dm, spec.weights, spec.input_weight)
     else:
@@ -262,6 +263,8 @@ def sample_time_sweep(case: Case, beam, numerics, sm, sample_times: Sequence[flo
                       delays: Sequence[float] = (0.0, 1.0), gains: Sequence[str] = GAINS) -> SampleTimeSweep:
     """The :class:`SampleTimeSweep` of the sampled ``case`` on the matrices ``sm`` of its own model
     (``numerics``: its plant's, :func:`truth_model`; module docstring)."""
+    if case.maneuver.sampling.reduce:
+        raise ValueError(f"case {case.label!r} {REDUCED}")
     sample_times = np.asarray(sample_times, dtype=float)
     if sample_times.ndim != 1 or sample_times.size < 2 or np.any(np.diff(sample_times) <= 0.0) or sample_times[0] <= 0:
         raise ValueError(f"sample_times = {sample_times!r}; allowed: at least two increasing sample times > 0 s")

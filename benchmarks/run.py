@@ -43,7 +43,9 @@ cold and warm, and the cold compile time of each kernel), ``scaling.csv`` (``sim
 the number of modes and the simulated time), ``eigen.csv`` (``K22`` eigen-analyses per second),
 ``linear_modes.csv`` (a tracked, damped Campbell diagram over 200 speeds with 10 + 10 modes,
 :mod:`benchmarks.linear_modes`), ``rig.csv`` (a sampled LQG loop on a servo rig against a Python
-loop over the samples and against continuous feedback, :mod:`benchmarks.rig`),
+loop over the samples and against continuous feedback, :mod:`benchmarks.rig`), ``identification.csv``
+(a frequency-response fit of five parameters to 500 frequencies against scipy's least_squares around
+python-control, :mod:`benchmarks.identification`),
 ``sweeps.csv`` (throughput and accuracy of the parameter-sweep kernel) and ``machine.json``.
 """
 
@@ -63,6 +65,7 @@ import pandas as pd
 from benchmarks.cases import HUBBEAM, HUBBEAM_FULL, prepare_case, run_hubbeam
 from benchmarks.compilation import compilation_rows
 from benchmarks.extras import eigen_rows, scaling_rows, sweep_rows
+from benchmarks.identification import identification_rows
 from benchmarks.linear import linear_rows
 from benchmarks.linear_modes import campbell_rows
 from benchmarks.machine import load_average, machine_info
@@ -140,6 +143,7 @@ def run(config_files: Sequence[str], benchmark_file: os.PathLike | str, output: 
         written["linear_modes"] = _write_csv(campbell_rows(cfg, params, repeats, budget),
                                              output / "linear_modes.csv")
         written["rig"] = _write_csv(rig_rows(repeats, budget, log), output / "rig.csv")
+        written["identification"] = _write_csv(identification_rows(repeats, budget), output / "identification.csv")
         if "sweeps" in cfg:
             check = settings["sweep_check"]
             written["sweeps"] = _write_csv(sweep_rows(cfg, params, check["points"], check["rtol"]),
@@ -182,7 +186,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--skip-compilation", action="store_true",
                         help="do not time cold and warm compilation in fresh processes")
     parser.add_argument("--skip-extras", action="store_true",
-                        help="skip the scaling, eigen, linear-modes, rig and sweep tables")
+                        help="skip the scaling, eigen, linear-modes, rig, identification and sweep tables")
     args = parser.parse_args(argv)
     if args.repeats < 1 or args.run_cap <= 0 or args.timing_budget <= 0:
         parser.error(f"--repeats = {args.repeats}, --run-cap = {args.run_cap}, --timing-budget "

@@ -198,3 +198,16 @@ def test_campbell_rows_time_every_model_and_the_dataset(study_config, monkeypatc
     assert [row["model"] for row in rows] == ["TLAM", "FOAM", "SFOAM", "CFOAM", "all"]
     assert [row.get("states") for row in rows[:4]] == [10, 10, 6, 10]
     assert all(row["wall_s"] > 0 for row in rows)
+
+
+def test_the_identification_routes_fit_the_same_problem_to_the_truth():
+    """Both routes of the identification benchmark fit the same five parameters to the same 500
+    frequencies and recover the truth the response was computed at (a timing of two different
+    problems would say nothing)."""
+    from benchmarks.identification import identification_rows
+
+    rows = identification_rows(1, 0.0)
+    assert [row["route"] for row in rows] == ["hubbeam fit (batched solve)", "scipy least_squares + python-control"]
+    for row in rows:
+        assert row["max_relative_error"] < 1e-6 and row["parameters"] == 5 and row["frequencies"] == 500
+    assert rows[0]["ratio_to_hubbeam"] == 1.0 and rows[1]["ratio_to_hubbeam"] > 0.0

@@ -107,12 +107,7 @@ class Case:
     def to_dict(self) -> dict:
         """The resolved case as a plain mapping, as a dataset records it (``case_config``)."""
         settings = {} if self.name is None else {"name": self.name}
-        maneuver = self.maneuver.to_dict()
-        if "sampling" in maneuver and not maneuver["sampling"].get("sensors"):
-            # no sensors (the exact estimator reads the design's states): recorded without the key,
-            # which takes no empty list, so that the record reads back as the case
-            maneuver["sampling"] = {key: value for key, value in maneuver["sampling"].items() if key != "sensors"}
-        settings |= {"model": self.model, "maneuver": maneuver,
+        settings |= {"model": self.model, "maneuver": self.maneuver.to_dict(),
                      "t_end": self.t_end, "modes": self.modes,
                      "tip_mass": tip_mass_to_dict(self.tip_mass)}
         if self.damping is not None:

@@ -546,9 +546,13 @@ class Sampling:
         return cls(**values)
 
     def to_dict(self) -> dict:
-        return {"sample_time": self.sample_time, "delay": self.delay, "gain": self.gain, "reduce": self.reduce,
-                "estimator": self.estimator.to_dict(), "sensors": [sensor.to_dict() for sensor in self.sensors],
-                "seed": self.seed}
+        """The settings as a configuration writes them; ``sensors`` only when there are any (the exact
+        estimator reads the design's states, and the schema takes no empty list)."""
+        plain = {"sample_time": self.sample_time, "delay": self.delay, "gain": self.gain, "reduce": self.reduce,
+                 "estimator": self.estimator.to_dict()}
+        if self.sensors:
+            plain["sensors"] = [sensor.to_dict() for sensor in self.sensors]
+        return plain | {"seed": self.seed}
 
 
 @dataclass(frozen=True)

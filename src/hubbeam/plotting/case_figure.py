@@ -72,8 +72,10 @@ def plot(case: str, ds: xr.Dataset):
             axes[index].plot(t, variable(case, ds, "hub_speed").values, **style, label=r"hub $\dot\phi$")
             axes[index].plot(t, variable(case, ds, name).values, color="0.3", linestyle=":",
                              label=r"beam root $\dot\theta$")
-            axes[index].legend(loc="best")
-            label = axis_label("hub and root speed", "rad s-1")
+            # above the panel, not over the oscillation that fills it
+            axes[index].legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, fontsize=7, frameon=False,
+                               borderaxespad=0.1)
+            label = axis_label("speed", "rad s-1")
         else:
             axes[index].plot(t, variable(case, ds, name).values, **style)
         axes[index].set_ylabel(label)

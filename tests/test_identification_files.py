@@ -236,17 +236,23 @@ def test_the_identify_section_is_checked_under_its_keys(tmp_path):
 
 
 def test_the_shipped_rig_data_are_valid_small_and_say_they_are_synthetic(repo_root):
+    """The shipped study identifies the nominal rig its data were made from (the beam, the numerics
+    and every section of the case but the run itself), its section passes the check, and the data
+    are small and say they are synthetic."""
     import json
 
-    import yaml
-
     from hubbeam.api import load
-    from hubbeam.identification.synthetic import TRUTH
+    from hubbeam.identification.synthetic import RIG_BEAM, RIG_CASE, RIG_NUMERICS, TRUTH
 
     folder = repo_root / "studies" / "identification_rig"
-    section = yaml.safe_load((folder / "identify.yaml").read_text())["identify"]
-    configuration = load(folder / "rig.yaml")
-    assert identify_problems(section, configuration.case_names, folder) == []
+    configuration = load(folder / "study.yaml", identified=False)
+    assert identify_problems(configuration.config["identify"], configuration.case_names, folder) == []
+    config = configuration.config
+    assert {key: config["beam"][key] for key in RIG_BEAM} == RIG_BEAM
+    assert {key: config["numerics"][key] for key in RIG_NUMERICS} == RIG_NUMERICS
+    rig = config["cases"]["rig"]
+    assert {key: rig[key] for key in RIG_CASE if key not in ("maneuver", "t_end")} == {
+        key: value for key, value in RIG_CASE.items() if key not in ("maneuver", "t_end")}
     assert sum(path.stat().st_size for path in folder.iterdir()) < 300_000
     assert json.loads((folder / "synthetic.json").read_text())["truth"] == TRUTH
     readme = (folder / "README.md").read_text()

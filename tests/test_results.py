@@ -125,4 +125,5 @@ def test_only_drawing_modules_import_the_plotting_package():
                      else [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
             if any(name.startswith("hubbeam.plotting") for name in names):
                 importers.add(path.relative_to(package).as_posix())
-    assert importers == {"validation/figures.py", "pipeline/jobs/figures.py", "pipeline/jobs/comparisons.py"}
+    assert importers == {"validation/figures.py", "pipeline/jobs/figures.py", "pipeline/jobs/comparisons.py",
+                         "pipeline/jobs/identification.py"}

@@ -16,38 +16,62 @@ workflow's jobs compute from them::
 
 Paths are read relative to the working directory, as Snakemake reads them: run from the
 repository's root (a file without a ``study`` section is merged onto ``config/config.yaml``).
+
+A study with an ``identify`` section (docs/identification.md) loads as the workflow plans it: the
+cases of ``identify.apply_to`` run on the fitted plant, the fit read from the study's
+``identification/fit.nc`` when it was made from the same inputs, else run and written there
+(:func:`hubbeam.calibration.calibrated`); ``load(path, identified=False)`` gives the rig as drawn,
+and :meth:`Configuration.identify` runs the fit itself and returns it::
+
+    rig = load("studies/identification_rig/study.yaml", identified=False)
+    result, fit = rig.identify()                  # FitResult, and the fit as an xarray Dataset
+    print(result.values, fit.lower_95.values, fit.upper_95.values)
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+import xarray as xr
+
+from hubbeam.calibration import calibrated
 from hubbeam.check import check_configuration
 from hubbeam.configuration.load import ConfigError, merge_configs, read_config_file
+from hubbeam.configuration.schema import Problem
 from hubbeam.configuration.settings import Case, Settings
 from hubbeam.control.cases import resolve, sampled_controller, sampling_of, simulate_case
 from hubbeam.control.feedback import design_plant
 from hubbeam.control.implementation import write_implementation
+from hubbeam.identification.dataset import fit_dataset
+from hubbeam.identification.fit import FitResult
+from hubbeam.identification.plant import CasePlant
+from hubbeam.identification.section import identify
 from hubbeam.linear.plant_models import plant_frequencies, plant_linear
+from hubbeam.model.frozen import FrozenMap
 from hubbeam.model.plant import Plant, plant_matrices
+from hubbeam.results.paths import study_paths
 from hubbeam.study import base_config_files
 
 
-def load(paths: os.PathLike | str | Iterable[os.PathLike | str]) -> Configuration:
+def load(paths: os.PathLike | str | Iterable[os.PathLike | str], identified: bool = True) -> Configuration:
     """The checked :class:`Configuration` of one config file or several (later ones override
     earlier ones), merged onto ``config/config.yaml`` unless they hold a ``study`` section, as
     ``snakemake --configfile ...`` reads them; a :class:`~hubbeam.configuration.load.ConfigError`
-    listing every problem otherwise."""
+    listing every problem otherwise. With an ``identify`` section and ``identified``, the cases of
+    ``identify.apply_to`` run on the fitted plant, as in the workflow (module docstring)."""
     given = [Path(paths)] if isinstance(paths, (str, os.PathLike)) else [Path(path) for path in paths]
     if not given:
         raise ValueError("load: no config file given; allowed: one path or a list of paths")
     merged = merge_configs(*(read_config_file(path) for path in given))
     files = [Path(path) for path in base_config_files(merged)] + given
     checked = check_configuration(merge_configs(*(read_config_file(path) for path in files)), files)
-    return Configuration(checked.settings, checked.files)
+    if identified and checked.settings.identify is not None:
+        study = checked.settings.study
+        checked = calibrated(checked, study_paths(study.name if study is not None else None))
+    return Configuration(checked.settings, checked.files, checked.config)
 
 
 @dataclass(frozen=True)
@@ -59,6 +83,8 @@ class Configuration:
 
     settings: Settings
     files: tuple[str, ...] = ()
+    #: the completed configuration as plain values (what the workflow's archive records)
+    config: Mapping = FrozenMap()
 
     @property
     def beam(self):
@@ -135,6 +161,19 @@ class Configuration:
         """Write case ``name``'s sampled controller and its discrete plant as ``<path>.mat`` and
         ``<path>.json`` (``hubbeam.control.implementation``); the two paths."""
         return write_implementation(self.controller(name), path)
+
+    def identify(self) -> tuple[FitResult, xr.Dataset]:
+        """The fit the ``identify`` section asks for, run now on the case as configured (its
+        experiment files read relative to the last config file): the
+        :class:`~hubbeam.identification.fit.FitResult` and its dataset, as the workflow writes it
+        to ``identification/fit.nc`` (:func:`hubbeam.identification.dataset.fit_dataset`)."""
+        entry = self.config.get("identify")
+        if entry is None:
+            raise ConfigError([Problem("identify", "missing; allowed: a configuration with an identify section "
+                                                   "(docs/identification.md)")], self.files)
+        plant = CasePlant.from_configuration(self, entry["case"])
+        result, experiments = identify(entry, plant, Path(self.files[-1]).parent)
+        return result, fit_dataset(result, experiments)
 
     def _feedback_case(self, name: str) -> Case:
         case = self.case(name)

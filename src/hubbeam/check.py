@@ -14,7 +14,11 @@ the value and what is allowed:
    (:func:`hubbeam.control.analyses.control_problems`);
 3. the product sets and the cases their products read (:mod:`hubbeam.reporting.products`), and,
    with the paper's products, the alternative readings with the runs they generate
-   (:func:`hubbeam.paper.readings.reading_runs`).
+   (:func:`hubbeam.paper.readings.reading_runs`);
+4. a study's ``identify`` section: its experiment files (read relative to the last config file),
+   parameters and lists (:func:`hubbeam.identification.section.identify_problems`), then what needs
+   the cases (:func:`hubbeam.identification.section.case_problems`). The fit itself runs later,
+   once (:mod:`hubbeam.calibration`).
 
 The workflow's plan (:func:`hubbeam.pipeline.plan.build_plan`) and the Python API
 (:func:`hubbeam.api.load`) both call it, so that a configuration one accepts the other accepts
@@ -36,6 +40,7 @@ from hubbeam.configuration.settings import Settings, from_config
 from hubbeam.configuration.tabular import resolve_files
 from hubbeam.control.analyses import control_problems
 from hubbeam.control.cases import case_problems
+from hubbeam.identification import section as identification
 from hubbeam.model.frozen import FrozenMap
 from hubbeam.paper.readings import ReadingError, ReadingRuns, reading_runs
 from hubbeam.reporting.products import PAPER, Product, ProductError, product_case_problems, products_for
@@ -56,6 +61,12 @@ class CheckedConfiguration:
     products: Mapping[str, Product]
     readings: Mapping[str, ReadingRuns]
     files: tuple[str, ...]
+
+    @property
+    def base_dir(self) -> Path:
+        """The folder the configuration's relative files (tables, experiments) are read from: the
+        last config file's."""
+        return Path(self.files[-1]).parent
 
     @property
     def with_paper(self) -> bool:
@@ -97,9 +108,21 @@ def check_configuration(config: Mapping, config_files: Sequence[os.PathLike | st
                 problems.append(str(error))
             except ConfigError as error:
                 problems += error.problems
+    if isinstance(cfg.get("identify"), Mapping):
+        problems += _identify_problems(cfg, settings, Path(files[-1]).parent)
     if problems:
         error = ConfigError(problems, files)
         error.config = cfg  # the configuration as far as the check completed it, to say where a problem is
         raise error
     return CheckedConfiguration(config=cfg, settings=settings, products=products, readings=FrozenMap(readings),
                                 files=files)
+
+
+def _identify_problems(cfg: Mapping, settings: Settings | None, base_dir: Path) -> list[str]:
+    """The problems of the ``identify`` section (module docstring, step 4)."""
+    cases = cfg.get("cases") if isinstance(cfg.get("cases"), Mapping) else {}
+    names = list(settings.cases) if settings is not None else list(cases)
+    problems = identification.identify_problems(cfg["identify"], names, base_dir)
+    if problems or settings is None:
+        return problems
+    return identification.case_problems(cfg["identify"], settings, base_dir, cases)

@@ -220,7 +220,11 @@ _PATTERNS = {"^[A-Za-z0-9_-]+$": "letters, digits, '_' and '-' only",
              "^[A-Za-z0-9_]+$": "letters, digits and '_' only",
              "^[A-Za-z_][A-Za-z0-9_]*$": "a name of letters, digits and '_', not starting with a digit",
              "^[A-Za-z0-9_]+(\\.[A-Za-z0-9_]+)*$": "keys of letters, digits and '_' joined by '.' "
-                                                 "(a dotted path such as maneuver.design.speed)"}
+                                                 "(a dotted path such as maneuver.design.speed)",
+             "^[A-Za-z][A-Za-z0-9_]*$": "a name of letters, digits and '_', starting with a letter",
+             "^(beam|root_spring|damping|tip_mass|drive|sensors)\\.[A-Za-z0-9_.]+$":
+                 "a configuration key under beam, root_spring, damping, tip_mass, drive or sensors "
+                 "(such as root_spring.stiffness)"}
 
 
 def _pattern_words(pattern: Any) -> str:

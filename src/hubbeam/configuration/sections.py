@@ -204,6 +204,27 @@ class Control:
 
 
 @dataclass(frozen=True)
+class Identify:
+    """The ``identify`` section as the workflow plans it (``hubbeam.identification.section`` reads
+    and fits the rest): the identified ``case``, the ``experiments``' kinds by name, the names of
+    those ``fitted`` and ``held_out``, and the cases that run on the fitted plant (``apply_to``)."""
+
+    case: str
+    experiments: FrozenMap
+    fitted: tuple[str, ...]
+    held_out: tuple[str, ...]
+    apply_to: tuple[str, ...] = ()
+
+    @classmethod
+    def from_dict(cls, entry: Mapping) -> Identify:
+        held_out = tuple(entry.get("validate", ()))
+        fitted = tuple(entry.get("fit", [name for name in entry["experiments"] if name not in held_out]))
+        kinds = {name: experiment["kind"] for name, experiment in entry["experiments"].items()}
+        return cls(case=entry["case"], experiments=FrozenMap(kinds),
+                   fitted=fitted, held_out=held_out, apply_to=tuple(entry.get("apply_to", ())))
+
+
+@dataclass(frozen=True)
 class Reading:
     """One alternative reading of the paper (``readings.<name>``, :mod:`hubbeam.paper.readings`):
     its one change (``change`` the kind: case, maneuver, beam, tip_mass or measure; ``value`` what

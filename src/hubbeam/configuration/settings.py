@@ -27,7 +27,7 @@ import numpy as np
 
 from hubbeam.configuration.load import ConfigError, validate_parts
 from hubbeam.configuration.schema import SCHEMA, Problem
-from hubbeam.configuration.sections import Control, Grid, Linear, Reading, Validation
+from hubbeam.configuration.sections import Control, Grid, Identify, Linear, Reading, Validation
 from hubbeam.model.beam import BeamSections, beam_from_config
 from hubbeam.model.damping import ModalDamping, RayleighDamping, damping_from_dict, damping_to_dict
 from hubbeam.model.drive import DcMotor
@@ -274,8 +274,8 @@ class Sweep:
 class Settings:
     """A whole configuration, one record per section: ``study`` is None for the paper; ``sweeps``
     by name (none without a ``sweeps`` section); ``linear`` with its defaults filled in; the
-    optional ``validation`` and ``control`` sections (None when absent, :mod:`hubbeam.configuration.sections`);
-    the ``readings`` by name; the product sets asked for."""
+    optional ``validation``, ``control`` and ``identify`` sections (None when absent,
+    :mod:`hubbeam.configuration.sections`); the ``readings`` by name; the product sets asked for."""
 
     beam: UniformBeam | BeamSections
     numerics: Numerics
@@ -292,6 +292,8 @@ class Settings:
     readings: FrozenMap = field(default_factory=FrozenMap)
     #: the product sets asked for (``products``)
     products: tuple[str, ...] = ()
+    #: the calibration to a rig's experiments (None without an ``identify`` section)
+    identify: Identify | None = None
 
     def case(self, name: str) -> Case:
         """The case ``name``; a :class:`ConfigError` names the defined ones."""
@@ -351,6 +353,7 @@ def from_config(cfg: Mapping) -> Settings:
         control=None if "control" not in cfg else Control.from_dict(cfg["control"]),
         readings=FrozenMap({name: Reading.from_dict(name, entry) for name, entry in cfg.get("readings", {}).items()}),
         products=tuple(cfg.get("products", ())),
+        identify=None if "identify" not in cfg else Identify.from_dict(cfg["identify"]),
     )
 
 

@@ -1,7 +1,7 @@
 """The planned ``identify`` section of a study: its check before any job, and the fit it asks for.
 
-A study calibrates one of its cases to a rig's experiments with (``schema_fragment.yaml`` beside this
-module is the section's JSON schema; ``docs/identification.md`` describes it)::
+A study calibrates one of its cases to a rig's experiments with (the configuration's schema has
+the section; ``docs/identification.md`` describes it)::
 
     identify:
       case: rig                                  # the case whose parameters are fitted
@@ -15,14 +15,18 @@ module is the section's JSON schema; ``docs/identification.md`` describes it)::
       validate: [pulse]                          # held out: predicted with the fitted values
       starts: 5                                  # starting points of the fit (default 5)
       seed: 0                                    # of the Latin hypercube of the starts (default 0)
+      apply_to: [rig, rig_lqg]                   # the cases that run on the fitted values (default none)
 
 :func:`identify_problems` checks such a section with only the names of the configuration's cases:
 every experiment file read and checked (its problems name the file, line and column), every key a
 parameter with ordered bounds and a start within them, the lists naming experiments; each message
-starts with its key, ``identify.<...>``. What needs the case itself (a root spring's key on a case
-without one, a voltage without a drive, a mode beyond the case's) is checked when the case is known,
-by :func:`identify` (which raises at the first). :func:`identify` runs the fit the section asks for
-and returns its :class:`~hubbeam.identification.fit.FitResult` with the experiments by name.
+starts with its key, ``identify.<...>``. What needs the cases' records (a root spring's key on a
+case without one, a voltage without a drive, a mode beyond the case's, a case of ``apply_to`` that
+cannot take a fitted value) is checked by :func:`case_problems` once the cases are built; both run
+in the one check of the configuration (``hubbeam.check``). :func:`identify` runs the fit the
+section asks for and returns its :class:`~hubbeam.identification.fit.FitResult` with the
+experiments by name; :func:`fitted_fragment` is the fitted plant as the configuration fragment that
+gives the cases of ``apply_to`` its values.
 """
 
 from __future__ import annotations
@@ -32,6 +36,8 @@ import os
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 
+from hubbeam.configuration.load import merge_configs
+from hubbeam.configuration.settings import Settings
 from hubbeam.configuration.tabular import TableError
 from hubbeam.identification.experiments import (
     HUBS,
@@ -46,15 +52,23 @@ from hubbeam.identification.experiments import (
     read_time_series,
 )
 from hubbeam.identification.fit import FitResult, fit
-from hubbeam.identification.parameters import ParameterError, free_parameters, kind_of
+from hubbeam.identification.parameters import (
+    ParameterError,
+    fragment,
+    free_parameters,
+    is_sensor,
+    kind_of,
+    nominal_value,
+)
 from hubbeam.identification.plant import CasePlant
+from hubbeam.identification.predictions import ExperimentMismatch, check_experiment
 
 #: the keys of each kind of experiment entry besides ``kind`` and ``file``
 ENTRY_KEYS = {"modal": ("hub", "speed"),
               "frequency_response": ("input", "output", "averages", "hold", "sample_time"),
               "time_series": ("input", "excitation", "sensors", "loop", "hold")}
 #: the keys of the section
-SECTION_KEYS = ("case", "experiments", "parameters", "fit", "validate", "starts", "seed")
+SECTION_KEYS = ("case", "experiments", "parameters", "fit", "validate", "starts", "seed", "apply_to")
 #: the starts of a fit unless the section says
 DEFAULT_STARTS = 5
 
@@ -199,7 +213,75 @@ def identify_problems(section: Mapping, case_names: Iterable[str], base_dir: os.
             _whole(section, key, least, 0 if key == "seed" else DEFAULT_STARTS)
         except SectionError as error:
             problems.append(str(error))
+    applied = section.get("apply_to", [])
+    if not isinstance(applied, list) or not all(isinstance(name, str) for name in applied):
+        problems.append(f"identify.apply_to = {applied!r}; allowed: a list of case names")
+    else:
+        problems += [f"identify.apply_to: {name!r} is not a case; allowed: {', '.join(cases)}"
+                     for name in applied if name not in cases]
     return problems
+
+
+def identify_fitted(section: Mapping) -> list[str]:
+    """The names of the experiments the section fits."""
+    return _split(section, list(section["experiments"]))[0]
+
+
+def applied_cases(section: Mapping) -> list[str]:
+    """The cases that run on the fitted values (``identify.apply_to``)."""
+    return list(section.get("apply_to", []))
+
+
+def case_problems(section: Mapping, settings: Settings, base_dir: os.PathLike | str,
+                  listed: Iterable[str]) -> list[str]:
+    """The problems of a section :func:`identify_problems` accepts that need the cases' records
+    (``settings``): the identified case must take every parameter and predict every experiment, and
+    each case of ``apply_to`` must take every fitted value of the plant and be one of ``listed`` (the
+    cases of the configuration's ``cases``, which a fragment can change; a grid's are made from its
+    entry); a key of ``beam`` changes the beam every case runs, so with one ``apply_to`` names every
+    case."""
+    case = settings.case(section["case"])
+    plant = CasePlant(case, settings.beam, settings.numerics)
+    experiments = {name: read_entry(name, entry, base_dir) for name, entry in section["experiments"].items()}
+    measured = [signal for experiment in experiments.values() if isinstance(experiment, TimeSeries)
+                for signal in experiment.signals]
+    problems = []
+    try:
+        free_parameters(section["parameters"], case, settings.beam, "identify.parameters", measured)
+    except ParameterError as error:
+        problems.append(str(error))
+    for name, experiment in experiments.items():
+        try:
+            check_experiment(plant, experiment)
+        except ExperimentMismatch as error:
+            problems.append(f"identify.experiments.{name}: {error}")
+    keys = [key for key in section["parameters"] if not is_sensor(key)]
+    applied, listed = applied_cases(section), list(listed)
+    for name in applied:
+        if name not in listed:
+            problems.append(f"identify.apply_to: {name!r} is a case of case_grids; allowed: a case of `cases` "
+                            f"({', '.join(listed)})")
+            continue
+        for key in keys:
+            try:
+                nominal_value(key, settings.case(name), settings.beam)
+            except ParameterError as error:
+                problems.append(f"identify.apply_to: {name!r} cannot run the fitted {error}")
+    beam_keys = [key for key in keys if key.startswith("beam.")]
+    others = [name for name in settings.cases if name not in applied]
+    if applied and beam_keys and others:
+        problems.append(f"identify.apply_to = {applied!r}: the fitted {beam_keys[0]} changes the beam every case "
+                        f"runs, but {others[0]!r} is not listed; allowed: every case ({', '.join(settings.cases)}), "
+                        "or parameters of the cases only")
+    return problems
+
+
+def fitted_fragment(section: Mapping, values: Mapping[str, float], settings: Settings) -> dict:
+    """The configuration fragment that puts the fitted plant ``values`` (key -> value) into the cases
+    of ``apply_to`` (the identified case alone without one): each case's own sections with the
+    values (:func:`hubbeam.identification.parameters.fragment`), the beam's fitted keys once."""
+    names = applied_cases(section) or [section["case"]]
+    return merge_configs(*(fragment(name, values, settings.case(name), settings.beam) for name in names))
 
 
 def _split(section: Mapping, names: list[str]) -> tuple[list[str], list[str]]:
@@ -227,4 +309,5 @@ def identify(section: Mapping, plant: CasePlant, base_dir: os.PathLike | str) ->
     return result, experiments
 
 
-__all__ = ["ENTRY_KEYS", "SectionError", "identify", "identify_problems", "read_entry"]
+__all__ = ["ENTRY_KEYS", "SectionError", "applied_cases", "case_problems", "fitted_fragment", "identify",
+           "identify_fitted", "identify_problems", "read_entry"]

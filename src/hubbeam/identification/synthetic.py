@@ -26,9 +26,10 @@ the sampled loop's sensors (``hubbeam.core.sampled``):
 
 Every random number comes from ``numpy.random.default_rng`` seeded by one integer, each experiment
 from its own child of a ``SeedSequence``. ``python -m hubbeam.identification.synthetic --output
-<folder> --seed <n>`` writes the shipped data set (``studies/identification_rig``): the files, the
-study that configures the nominal rig (``rig.yaml``), the planned ``identify`` section
-(``identify.yaml``) and ``synthetic.json`` with the seed, the true values and the settings.
+<folder> --seed <n>`` writes the shipped data set (``studies/identification_rig``): the experiment
+files and ``synthetic.json`` with the seed, the true values, the nominal case and the settings. The
+study that identifies the rig from them (``study.yaml`` in that folder) is written by hand; a test
+checks that its rig is the nominal one of this module.
 """
 
 from __future__ import annotations
@@ -40,7 +41,6 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from hubbeam.configuration.settings import simulation_settings
 from hubbeam.identification.experiments import FrequencyResponse, ModalTest, PdLoop, TimeSeries, write_experiment
@@ -199,25 +199,6 @@ def sweep_responses(plant: CasePlant, truth: Mapping[str, float], rng: np.random
                     for output, short in (("deflection_angle", "deflection"), ("tip_acceleration", "acceleration"))]
 
 
-def _entry(experiment, file: str) -> dict:
-    """The experiment's entry of the planned ``identify`` section."""
-    if isinstance(experiment, ModalTest):
-        return {"kind": "modal", "file": file, "hub": experiment.hub}
-    if isinstance(experiment, FrequencyResponse):
-        entry = {"kind": "frequency_response", "file": file, "input": experiment.input, "output": experiment.output,
-                 "averages": round(float(experiment.averages), 3)}
-        if experiment.hold is not None:
-            entry |= {"hold": experiment.hold, "sample_time": experiment.sample_time}
-        return entry
-    entry = {"kind": "time_series", "file": file, "input": experiment.input, "excitation": experiment.excitation,
-             "sensors": {signal: {key: value for key, value in spec.to_dict().items()
-                                  if key != "signal" and value != SensorSpec(signal).to_dict()[key]}
-                         for signal, spec in experiment.sensors.items()}}
-    if experiment.loop is not None:
-        entry["loop"] = {"kp": experiment.loop.kp, "kd": experiment.loop.kd}
-    return entry
-
-
 def rig_dataset(output: Path, seed: int) -> dict[str, Path]:
     """Write the shipped data set into the folder ``output`` (module docstring); the files by name."""
     output.mkdir(parents=True, exist_ok=True)
@@ -243,31 +224,6 @@ def rig_dataset(output: Path, seed: int) -> dict[str, Path]:
                for name, experiment in experiments.items()}
     written["held_oscillation"] = write_columns(output / "held_oscillation.csv", {
         "time": ("s", time), "deflection_angle": ("rad", reading)}, (note, "the hub held, the link released"))
-    section = {"identify": {
-        "case": "rig",
-        "experiments": {name: _entry(experiment, f"{name}.csv") for name, experiment in experiments.items()},
-        "parameters": {"root_spring.stiffness": {"lower": 10.0, "upper": 60.0},
-                       "beam.EI_factor": {"lower": 0.7, "upper": 1.3},
-                       "damping.transverse": {"lower": 0.001, "upper": 0.1},
-                       "drive.motor_constant_factor": {"lower": 0.7, "upper": 1.3},
-                       "drive.viscous_friction": {"lower": 0.0, "upper": 0.05}},
-        "fit": ["tap_held", "frf_deflection", "frf_acceleration"],
-        "validate": ["pulse", "pd_step"],
-        "starts": 5, "seed": 1}}
-    written["identify"] = output / "identify.yaml"
-    written["identify"].write_text("# The planned identify section (docs/identification.md) for the synthetic rig.\n"
-                                   + yaml.safe_dump(section, sort_keys=False), encoding="utf-8")
-    study = {"study": {"name": "identification_rig", "title": "A synthetic flexible-link rig to identify",
-                       "description": "The nominal rig of hubbeam.identification.synthetic; the data beside this "
-                                      "file are synthetic (README.md)."},
-             "beam": RIG_BEAM, "numerics": {key: value for key, value in RIG_NUMERICS.items()},
-             "eigen": {"speeds": {"start": 0.0, "stop": 10.0, "num": 11},
-                       "positions": {"start": 0.0, "stop": 0.6, "num": 5}, "tip_masses": [0.0, 0.015],
-                       "critical_speed_search_max": 20.0},
-             "cases": {"rig": dict(RIG_CASE)}}
-    written["rig"] = output / "rig.yaml"
-    written["rig"].write_text("# The nominal rig (hubbeam.identification.synthetic.rig_case) as a study.\n"
-                              + yaml.safe_dump(study, sort_keys=False), encoding="utf-8")
     written["synthetic"] = output / "synthetic.json"
     written["synthetic"].write_text(json.dumps({
         "seed": seed, "truth": TRUTH, "nominal_case": RIG_CASE, "beam": RIG_BEAM, "numerics": RIG_NUMERICS,

@@ -181,6 +181,28 @@ class PlanContext:
         shaped = self.settings.study is not None and bool(shaped_cases(config) or shaped_cases(config, ratios=True))
         return {"shaping": self.paths.shaping()} if shaped else {}
 
+    # --- the identification ---------------------------------------------------------------------
+
+    def identification_files(self) -> dict[str, str]:
+        """The fit of the ``identify`` section and the fitted plant (``{"fit": ..., "fitted": ...}``,
+        written when the plan is made, :mod:`hubbeam.calibration`); none without the section."""
+        if self.settings.identify is None:
+            return {}
+        return {"fit": self.paths.identification_fit(), "fitted": self.paths.identified_plant()}
+
+    def identification_figures(self) -> dict[str, str]:
+        """The figures of the fit by name: one per experiment (its kind, which says how it is drawn)
+        and ``parameters``; none without an ``identify`` section."""
+        identify = self.settings.identify
+        if identify is None:
+            return {}
+        return {**{name: identify.experiments[name] for name in (*identify.fitted, *identify.held_out)},
+                "parameters": "parameters"}
+
+    def identification_figure(self, name: str) -> list[str]:
+        """The PDF and the PNG of the fit's figure ``name``."""
+        return [self.paths.identification_figure(name, ext) for ext in FIGURE_FORMATS]
+
     # --- the sampled controllers ----------------------------------------------------------------
 
     def control_cases(self) -> list[str]:

@@ -4,7 +4,9 @@
 :class:`Plan`, or raises one :class:`PlanError` listing every problem it found: those of the one
 check of the configuration (:func:`hubbeam.check.check_configuration`) and the study's folder
 (:func:`hubbeam.study.check_folder`: another config file may own it already). A configuration with
-any problem writes nothing; only then does a study claim its folder.
+any problem writes nothing; only then does a study claim its folder, and fit its ``identify``
+section (:func:`hubbeam.calibration.calibrated`: the cases of ``apply_to`` are planned on the
+fitted plant).
 
 The plan holds the checked configuration, its folders (:class:`hubbeam.results.paths.StudyPaths`),
 the steps of every family (:mod:`hubbeam.pipeline.families`: each declares its own), the targets of
@@ -22,6 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import NamedTuple
 
+from hubbeam.calibration import calibrated
 from hubbeam.check import CheckedConfiguration, check_configuration
 from hubbeam.configuration.load import ConfigError
 from hubbeam.configuration.schema import CASE_NAME_PATTERN
@@ -145,6 +148,11 @@ def build_plan(config: Mapping, config_files: Sequence[os.PathLike | str], workf
         problems.append(str(error))
     if problems:
         raise PlanError(problems, files)
+    try:
+        checked = calibrated(checked, paths)
+    except ConfigError as error:
+        raise PlanError([f"identify: the fitted plant is refused: {problem}" for problem in error.problems],
+                        files) from None
     return plan_of(PlanContext(checked, paths, Path(workflow_root)))
 
 

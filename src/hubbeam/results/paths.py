@@ -38,6 +38,7 @@ FOLDERS = {
     "reading": "readings",
     "benchmark": "benchmarks",
     "plant": "plants",
+    "identification": "identification",
 }
 
 
@@ -97,6 +98,18 @@ class StudyPaths:
 
     def figure(self, key: str, ext: str) -> str:
         return self.result(FOLDERS["figure"], f"{key}.{ext}")
+
+    def identification_fit(self) -> str:
+        """The fit of the ``identify`` section (``hubbeam.identification.dataset``)."""
+        return self.result(FOLDERS["identification"], "fit.nc")
+
+    def identified_plant(self) -> str:
+        """The fitted plant as a configuration fragment (``hubbeam.calibration``)."""
+        return self.result(FOLDERS["identification"], "fitted.yaml")
+
+    def identification_figure(self, name: str, ext: str) -> str:
+        """A figure of the fit: an experiment's, or ``parameters``."""
+        return self.result(FOLDERS["identification"], f"{name}.{ext}")
 
     def figures(self, key: str) -> list[str]:
         """The figure ``key`` in every format of :data:`FIGURE_FORMATS`."""

@@ -37,7 +37,7 @@ from hubbeam.study.trust import REFERENCE_MODEL, SETTLING_BAND, TRUST_TOLERANCE,
 def study_markdown(study, beam, rows: Sequence[Mapping],
                    figures: Mapping[str, Mapping[str, str]], designs: Sequence[Mapping] = (),
                    plants: Sequence[Mapping] = (), controllers: str = "",
-                   shaping: Mapping | None = None) -> str:
+                   shaping: Mapping | None = None, identification: str = "") -> str:
     """The report in Markdown of the study ``study`` (its record: name, title, description) and its
     beam (a beam record). ``rows`` are summary rows, ``designs`` the rows of
     :func:`hubbeam.study.trust.design_table`, ``plants`` those of
@@ -48,7 +48,8 @@ def study_markdown(study, beam, rows: Sequence[Mapping],
     paper's) are left out. ``controllers``: the section on sampled controllers
     (:func:`hubbeam.study.controllers.controllers_markdown`), shown before the case figures;
     ``shaping``: the section of a command-shaping study (:func:`hubbeam.study.shaping_report.shaping_section`),
-    None without one."""
+    None without one; ``identification``: the section of the fit to a rig's experiments
+    (:func:`hubbeam.study.identification.identification_markdown`), shown before the cases."""
     def first(section: str) -> str | None:
         return next(iter(figures.get(section, {}).values()), None)
 
@@ -65,7 +66,7 @@ def study_markdown(study, beam, rows: Sequence[Mapping],
                   reference_model=REFERENCE_MODEL, settling_band=SETTLING_BAND,
                   trust_tolerance=TRUST_TOLERANCE,
                   eigen_figures=figures.get(EIGEN_SECTION, {}), linear_figures=figures.get(LINEAR_SECTION, {}),
-                  controllers=controllers,
+                  controllers=controllers, identification=identification,
                   shaping=shaping, shaping_figures=figures.get(SHAPING_SECTION, {}))
 
 

@@ -9,6 +9,7 @@ from hubbeam.pipeline.families import (
                                        control,
                                        eigen,
                                        figures,
+                                       identification,
                                        linear,
                                        paper,
                                        plants,
@@ -19,4 +20,5 @@ from hubbeam.pipeline.families import (
 )
 
 #: every family of steps, in the order their targets are listed
-FAMILIES = (simulations, eigen, linear, plants, control, figures, paper, reports, sweeps, validation)
+FAMILIES = (simulations, eigen, linear, plants, control, figures, paper, reports, sweeps, validation,
+            identification)

@@ -1,5 +1,6 @@
-"""A study's report (Markdown, HTML, summary.csv; with a ``study`` section), and the archive of every
-configuration's results: the files of ``all``, the workflow and the completed configuration."""
+"""A study's report (Markdown, HTML, summary.csv; with a ``study`` section; its identification's
+section from the fit and its figures), and the archive of every configuration's results: the files
+of ``all``, the workflow and the completed configuration."""
 
 from __future__ import annotations
 
@@ -21,6 +22,10 @@ def targets(ctx: PlanContext) -> list[str]:
 def steps(ctx: PlanContext) -> dict[str, Step]:
     paths, settings = ctx.paths, ctx.settings
     cases = [settings.case(case) for case in ctx.cases]
+    fit = ctx.identification_files()
+    identification = {} if not fit else {
+        "identification": fit["fit"], "identification_fitted": fit["fitted"],
+        "identification_figures": [ctx.identification_figure(name)[1] for name in ctx.identification_figures()]}
     return {
         "study_report": ctx.step(
             f"{REPORTS}:study_report",
@@ -29,9 +34,10 @@ def steps(ctx: PlanContext) -> dict[str, Step]:
             log=paths.log("report", "report.log"),
             input={"simulations": ctx.simulations(ctx.cases), "figures": list(ctx.figure_files("png").values()),
                    "plants": [ctx.result(PLANT_NC["plant"].replace("{plant}", plant)) for plant in settings.plants],
-                   **ctx.control_report_inputs()},
+                   **ctx.control_report_inputs(), **identification},
             params={"study": settings.study, "beam": settings.beam, "cases": list(ctx.cases),
-                    "figures": ctx.report_figures(), "control_cases": ctx.control_cases()},
+                    "figures": ctx.report_figures(), "control_cases": ctx.control_cases(),
+                    "identification_applied": list(settings.identify.apply_to) if settings.identify else []},
             local=True, stands_for=cases),
         "archive": ctx.step(
             f"{REPORTS}:archive", output={"archive": paths.archive()}, log=paths.log("report", "archive.log"),

@@ -19,6 +19,7 @@ from hubbeam.reporting.archive import build_archive, verify_archive
 from hubbeam.reporting.document import markdown_to_html
 from hubbeam.results.io import open_result, staged, write_netcdf, write_text
 from hubbeam.study.controllers import controllers_markdown
+from hubbeam.study.identification import identification_markdown
 from hubbeam.study.plants import plant_row
 from hubbeam.study.report import study_html, study_markdown
 from hubbeam.study.shaping import reference_modes, shaped_runs, shaping_dataset
@@ -56,7 +57,7 @@ def reproduction_report(job: Job) -> None:
 def study_report(job: Job) -> None:
     """A study's report (Markdown, HTML) and its summary.csv, a row per case (``input.simulations``
     of ``params.cases``); its plants (``input.plants``, each plant's dataset); its figures by section
-    of the report (``params.figures``). With
+    of the report (``params.figures``); its identification (:func:`_identification`). With
     an output ``shaping`` (a study that shapes commands), the section and the numbers of
     :mod:`hubbeam.study.shaping`, on the reference model's modes from the linear models."""
     p, out = job.params, job.output
@@ -74,7 +75,8 @@ def study_report(job: Job) -> None:
         shaping = shaping_section(runs, modes, critical)
     markdown = study_markdown(p["study"], p["beam"], rows, figures, designs=design_table(datasets),
                               plants=plants, shaping=shaping,
-                              controllers=_controllers(job, datasets, figures, report_dir))
+                              controllers=_controllers(job, datasets, figures, report_dir),
+                              identification=_identification(job, report_dir))
     write_text(out["markdown"], markdown)
     write_text(out["html"], study_html(markdown, p["study"].title or p["study"].name, report_dir))
     with staged(out["summary"]) as (summary,), open(summary, "w", newline="") as handle:
@@ -84,6 +86,19 @@ def study_report(job: Job) -> None:
     if "shaping" in out:
         write_netcdf(shaping_dataset(runs, modes, critical), out["shaping"])
     LOG.info("%d cases -> %s, %s, %s", len(rows), out["markdown"], out["html"], out["summary"])
+
+
+def _identification(job: Job, report_dir: Path) -> str:
+    """The report's section on the ``identify`` section from the rule's optional inputs: the fit
+    (``identification``), the fitted plant (``identification_fitted``) and the fit's figures
+    (``identification_figures``, PNG); empty without them."""
+    inputs = job.input
+    if "identification" not in inputs:
+        return ""
+    figures = {Path(path).stem: os.path.relpath(path, report_dir) for path in inputs["identification_figures"]}
+    return identification_markdown(open_result(inputs["identification"]), figures,
+                                   job.params["identification_applied"],
+                                   os.path.relpath(inputs["identification_fitted"], report_dir))
 
 
 def _controllers(job: Job, datasets, figures, report_dir: Path) -> str:

@@ -219,7 +219,7 @@ def test_the_identify_section_is_checked_under_its_keys(tmp_path):
         "column frequency: unit 'rad/s'; allowed: 'Hz'",
         "identify.experiments.gone.file: file ",
         "cannot be read",
-        "identify.experiments.odd.kind = 'impulse'; allowed: one of modal, frequency_response, time_series",
+        "identify.experiments.odd.kind = 'impulse'; allowed: one of modal, free_decay, frequency_response, time_series",
         "identify.experiments.frf.input = 'current'; allowed: one of voltage, hub_torque",
         "identify.parameters.root_spring.stiffness: lower = 60.0, upper = 10.0; allowed: lower < upper",
         "identify.parameters.'beam.EI': not a parameter",

@@ -264,3 +264,24 @@ def test_a_fitted_plant_the_cases_cannot_run_is_refused_by_the_plan(study_dir, m
     with pytest.raises(PlanError) as error:
         build_plan(yaml.safe_load(path.read_text()), [path], REPO)
     assert "root_spring.stiffness" in str(error.value)
+
+
+def test_a_free_decay_entry_is_the_courseware_procedure_on_the_raw_record(tmp_path):
+    """The ``free_decay`` kind reads a held-hub free oscillation as recorded and gives its first
+    frequency and damping ratio by the logarithmic decrement: on the shipped record (made by the
+    true plant, read by the strain gauge) within 1 % and 10 % of the true plant's first held mode;
+    a record of two signals is refused naming the file and the line."""
+    from hubbeam.identification.section import SectionError, read_entry
+    from hubbeam.identification.synthetic import rig_plant
+
+    entry = {"kind": "free_decay", "file": "held_oscillation.csv", "hub": "held", "lowpass": 10.0}
+    test = read_entry("ring", entry, DATA)
+    frequency, damping = rig_plant().modes(TRUTH, "held")
+    assert test.mode.tolist() == [1] and test.hub == "held"
+    assert test.frequency[0] == pytest.approx(frequency[0], rel=0.01)
+    assert test.damping_ratio[0] == pytest.approx(damping[0], rel=0.10)
+    (tmp_path / "two.csv").write_text("time [s],hub_angle [rad],deflection_angle [rad]\n"
+                                      + "".join(f"{0.002 * k},0,{0.01 * (-0.9) ** k}\n" for k in range(40)))
+    with pytest.raises(SectionError, match=r"identify.experiments.ring.file: file .*two.csv, line 1: 2 measured "
+                                           r"signals; allowed: exactly one of hub_angle \[rad\]"):
+        read_entry("ring", {"kind": "free_decay", "file": "two.csv"}, tmp_path)

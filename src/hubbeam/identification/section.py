@@ -7,6 +7,7 @@ the section; ``docs/identification.md`` describes it)::
       case: rig                                  # the case whose parameters are fitted
       experiments:                               # name -> kind, file (relative to the config file), settings
         tap: {kind: modal, file: tap.csv, hub: held}
+        ring: {kind: free_decay, file: ring.csv, lowpass: 10}   # a free oscillation: its logarithmic decrement
         frf: {kind: frequency_response, file: frf.csv, input: voltage, output: deflection_angle, averages: 4}
         pulse: {kind: time_series, file: pulse.csv, input: voltage, sensors: {hub_angle: {quantum: 0.0015}}}
       parameters:                                # configuration key -> bounds and an optional start
@@ -62,9 +63,11 @@ from hubbeam.identification.parameters import (
 )
 from hubbeam.identification.plant import CasePlant
 from hubbeam.identification.predictions import ExperimentMismatch, check_experiment
+from hubbeam.identification.spectra import read_free_decay
 
 #: the keys of each kind of experiment entry besides ``kind`` and ``file``
 ENTRY_KEYS = {"modal": ("hub", "speed"),
+              "free_decay": ("hub", "lowpass"),
               "frequency_response": ("input", "output", "averages", "hold", "sample_time"),
               "time_series": ("input", "excitation", "sensors", "loop", "hold")}
 #: the keys of the section
@@ -98,10 +101,10 @@ def read_entry(name: str, entry: Mapping, base_dir: os.PathLike | str) -> Experi
     options = {key: value for key, value in entry.items() if key not in ("kind", "file")}
     path = Path(base_dir, file)
     try:
-        if kind == "modal":
+        if kind in ("modal", "free_decay"):
             if options.get("hub", "held") not in HUBS:
                 raise SectionError(f"{where}.hub = {options['hub']!r}; allowed: one of {', '.join(HUBS)}")
-            return read_modal_test(path, name, **options)
+            return (read_modal_test if kind == "modal" else read_free_decay)(path, name, **options)
         for key, allowed in (("input", INPUTS), ("output", SIGNALS)):
             if key in ENTRY_KEYS[kind] and (key == "input" or kind == "frequency_response") \
                     and options.get(key) not in allowed:

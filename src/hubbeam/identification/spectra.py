@@ -30,13 +30,24 @@ half cycle above ``floor`` of the first amplitude (noise and quantisation domina
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import os
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import scipy.signal
 
-from hubbeam.identification.experiments import FrequencyResponse, ModalTest, TimeSeries
+from hubbeam.identification.experiments import MIN_ROWS, SIGNALS, FrequencyResponse, ModalTest, TimeSeries
+from hubbeam.identification.files import (
+    ColumnSpec,
+    ExperimentError,
+    check_increasing,
+    read_columns,
+    uniform_step,
+)
+from hubbeam.linear.statespace import OUTPUTS
 
 
 def equivalent_averages(window: np.ndarray, step: int, segments: int) -> float:
@@ -182,6 +193,27 @@ def free_decay(time, signal, floor: float = 0.05, prominence: float | None = Non
                  times=times[:count + 1], values=values[:count + 1])
 
 
+def read_free_decay(path: os.PathLike | str, name: str | None = None, hub: str = "held",
+                    lowpass: float | None = None) -> ModalTest:
+    """The one-mode :class:`ModalTest` of a free oscillation recorded in the file ``path`` (columns
+    ``time [s]``, equally spaced, and one measured signal in its unit): its logarithmic decrement
+    (:func:`free_decay`, ``lowpass`` its cut-off in Hz), the courseware's way to the link's first
+    frequency and damping ratio with the hub ``held``."""
+    columns = [ColumnSpec("time", ("s",)), *(ColumnSpec(signal, (OUTPUTS[signal][0],), False) for signal in SIGNALS)]
+    table = read_columns(path, columns, MIN_ROWS["time_series"], "a free oscillation")
+    check_increasing(table, "time")
+    uniform_step(table, "time")
+    found = [signal for signal in SIGNALS if signal in table.values]
+    if len(found) != 1:
+        raise ExperimentError(f"{table.where(None)}, line {table.header_line}: {len(found)} measured signals; "
+                              f"allowed: exactly one of {', '.join(f'{s} [{OUTPUTS[s][0]}]' for s in SIGNALS)}")
+    try:
+        decay = free_decay(table.values["time"], table.values[found[0]], lowpass=lowpass)
+    except ValueError as error:
+        raise ExperimentError(f"{table.where(found[0])}: {error}") from None
+    return dataclasses.replace(decay_modal_test(decay, name or Path(path).stem, hub), source=str(path))
+
+
 def decay_modal_test(decay: Decay, name: str, hub: str = "held", mode: int = 1) -> ModalTest:
     """The one-mode :class:`ModalTest` of a :class:`Decay` (its frequency and damping ratio with
     their standard errors)."""
@@ -192,4 +224,4 @@ def decay_modal_test(decay: Decay, name: str, hub: str = "held", mode: int = 1) 
 
 
 __all__ = ["Decay", "decay_modal_test", "equivalent_averages", "free_decay", "frequency_response_estimate",
-           "periodic_chirp"]
+           "periodic_chirp", "read_free_decay"]

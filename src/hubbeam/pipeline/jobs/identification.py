@@ -14,8 +14,9 @@ from hubbeam.plotting.identification import plot_modes, plot_parameters, plot_re
 from hubbeam.results.io import open_result, staged
 
 LOG = logging.getLogger(__name__)
-#: the figure of an experiment by its kind
-PLOTS = {"modal": plot_modes, "frequency_response": plot_response, "time_series": plot_time_series}
+#: the figure of an experiment by its kind (a free decay is the modal test of its decrement)
+PLOTS = {"modal": plot_modes, "free_decay": plot_modes, "frequency_response": plot_response,
+         "time_series": plot_time_series}
 #: the figure of the parameters' name
 PARAMETERS = "parameters"
 

@@ -46,10 +46,11 @@ from hubbeam.pipeline.steps import file_paths
 matplotlib.use("Agg")
 from matplotlib.figure import Figure  # noqa: E402
 
-#: the seeds of ``make test``, chosen for spread within the suite's time: a voltage-driven CFOAM arm
-#: on a root spring, a payload body inward of the tip, under a sampled LQR; a FOAM arm with a body
-#: inward of the tip on a root spring, Rayleigh damping and a torque table
-SEEDS = (246, 22)
+#: the seed of ``make test``, the most the suite's time allows: a voltage-driven CFOAM arm on a root
+#: spring, a payload body inward of the tip, under a sampled LQR (``make test-studies`` runs more;
+#: seed 22, a FOAM arm with a body inward of the tip on a root spring, Rayleigh damping and a torque
+#: table, by ``HUBBEAM_STUDIES=22,246``)
+SEEDS = (246,)
 
 
 def study_seeds(text: str | None) -> tuple[int, ...]:

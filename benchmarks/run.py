@@ -45,7 +45,10 @@ the number of modes and the simulated time), ``eigen.csv`` (``K22`` eigen-analys
 :mod:`benchmarks.linear_modes`), ``rig.csv`` (a sampled LQG loop on a servo rig against a Python
 loop over the samples and against continuous feedback, :mod:`benchmarks.rig`), ``identification.csv``
 (a frequency-response fit of five parameters to 500 frequencies against scipy's least_squares around
-python-control, :mod:`benchmarks.identification`),
+python-control, :mod:`benchmarks.identification`), ``identification_time_series.csv`` (a fit of three
+parameters to a 10 s record of two signals at 1 kHz: hubbeam's fit, integrating the nonlinear model,
+against scipy's least_squares around solve_ivp on its linearisation, the motion kept small enough
+for the two to agree; the same module),
 ``sweeps.csv`` (throughput and accuracy of the parameter-sweep kernel) and ``machine.json``.
 """
 
@@ -65,7 +68,7 @@ import pandas as pd
 from benchmarks.cases import HUBBEAM, HUBBEAM_FULL, prepare_case, run_hubbeam
 from benchmarks.compilation import compilation_rows
 from benchmarks.extras import eigen_rows, scaling_rows, sweep_rows
-from benchmarks.identification import identification_rows
+from benchmarks.identification import identification_rows, time_series_rows
 from benchmarks.linear import linear_rows
 from benchmarks.linear_modes import campbell_rows
 from benchmarks.machine import load_average, machine_info
@@ -144,6 +147,8 @@ def run(config_files: Sequence[str], benchmark_file: os.PathLike | str, output: 
                                              output / "linear_modes.csv")
         written["rig"] = _write_csv(rig_rows(repeats, budget, log), output / "rig.csv")
         written["identification"] = _write_csv(identification_rows(repeats, budget), output / "identification.csv")
+        written["identification_time_series"] = _write_csv(time_series_rows(repeats, budget),
+                                                           output / "identification_time_series.csv")
         if "sweeps" in cfg:
             check = settings["sweep_check"]
             written["sweeps"] = _write_csv(sweep_rows(cfg, params, check["points"], check["rtol"]),

@@ -174,7 +174,9 @@ def _identifiability(J: np.ndarray, x: np.ndarray, keys: Sequence[str]):
             reasons[i] = f"at its {'lower' if xi <= 0.5 else 'upper'} bound"
     kept = [i for i in range(x.size) if not reasons[i]]
     while kept:
-        sigma, vt = np.linalg.svd(J[:, kept], full_matrices=True)[1:]
+        # the full V (n x n) is needed only with fewer residuals than parameters (its last row is then
+        # a null direction); the full U of a long Jacobian (m x m) never is
+        sigma, vt = np.linalg.svd(J[:, kept], full_matrices=J.shape[0] < len(kept))[1:]
         sigma = np.concatenate([sigma, np.zeros(len(kept) - sigma.size)])  # fewer residuals than parameters
         if sigma[0] > 0.0 and sigma[-1] >= SINGULAR * sigma[0]:
             break

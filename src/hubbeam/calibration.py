@@ -82,7 +82,7 @@ def fit_section(checked: CheckedConfiguration, paths: StudyPaths, fingerprint: s
     entry, settings = checked.config["identify"], checked.settings
     plant = CasePlant(settings.case(entry["case"]), settings.beam, settings.numerics)
     say(f"identify: fitting {len(entry['parameters'])} parameters of case {entry['case']} to "
-        f"{', '.join(section.identify_fitted(entry))} ...")
+        f"{', '.join(settings.identify.fitted)} ...")
     result, experiments = section.identify(entry, plant, os.path.relpath(checked.base_dir))
     fit = dataset.fit_dataset(result, experiments)
     fit.attrs[FINGERPRINT] = fingerprint

@@ -225,11 +225,6 @@ def identify_problems(section: Mapping, case_names: Iterable[str], base_dir: os.
     return problems
 
 
-def identify_fitted(section: Mapping) -> list[str]:
-    """The names of the experiments the section fits."""
-    return _split(section, list(section["experiments"]))[0]
-
-
 def applied_cases(section: Mapping) -> list[str]:
     """The cases that run on the fitted values (``identify.apply_to``)."""
     return list(section.get("apply_to", []))
@@ -313,4 +308,4 @@ def identify(section: Mapping, plant: CasePlant, base_dir: os.PathLike | str) ->
 
 
 __all__ = ["ENTRY_KEYS", "SectionError", "applied_cases", "case_problems", "fitted_fragment", "identify",
-           "identify_fitted", "identify_problems", "read_entry"]
+           "identify_problems", "read_entry"]
